@@ -1,0 +1,79 @@
+#include "contact/contact_problem.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace railvsi {
+
+void contact_residual(const Vector& delta_bar, const DenseMatrix& A,
+                      const std::vector<ContactLawPoint>& laws, const Vector& P, Vector& delta,
+                      Vector& phi, DenseMatrix* J) {
+  const auto n = P.size();
+  delta.noalias() = delta_bar - A * P;
+  phi.resize(n);
+  if (J) J->setZero(n, n);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    const ContactLawPoint& law = laws[static_cast<std::size_t>(c)];
+    if (law.is_rigid()) {
+      const double gap_force = -delta[c] / A(c, c);
+      if (law.unilateral && P[c] <= gap_force) {
+        phi[c] = P[c];
+        if (J) (*J)(c, c) = 1.0;
+      } else {
+        phi[c] = gap_force;
+        if (J) J->row(c) = A.row(c) / A(c, c);
+      }
+    } else {
+      phi[c] = P[c] - law.force(delta[c]);
+      if (J) {
+        J->row(c) = law.stiffness(delta[c]) * A.row(c);
+        (*J)(c, c) += 1.0;
+      }
+    }
+  }
+}
+
+Status solve_contact_problem(const Vector& delta_bar, const DenseMatrix& A,
+                             const std::vector<ContactLawPoint>& laws,
+                             const ContactProblemOptions& options, Vector& P,
+                             ContactWorkspace& ws, ContactProblemSummary& summary) {
+  const double scale = std::max(options.force_scale_N, 1.0);
+  summary = {};
+  contact_residual(delta_bar, A, laws, P, ws.delta, ws.phi, &ws.J);
+  double norm = ws.phi.norm();
+  for (int it = 1; it <= options.max_iterations; ++it) {
+    summary.iterations = it;
+    ws.lu.compute(ws.J);
+    ws.dP.noalias() = ws.lu.solve(-ws.phi);
+    if (!ws.dP.allFinite())
+      return {StatusCode::kDiverged, "contact Newton step is not finite (singular contact Jacobian)"};
+    // Backtracking on |Phi|: the Hertz law is stiff and the active set may
+    // change within a step.
+    double step = 1.0;
+    for (int k = 0; k < 8; ++k, step *= 0.5) {
+      ws.P_trial = P + step * ws.dP;
+      contact_residual(delta_bar, A, laws, ws.P_trial, ws.delta, ws.phi_trial, nullptr);
+      if (ws.phi_trial.norm() < norm) break;
+    }
+    P = ws.P_trial;
+    contact_residual(delta_bar, A, laws, P, ws.delta, ws.phi, &ws.J);
+    norm = ws.phi.norm();
+    summary.relative_residual = norm / scale;
+    if (!std::isfinite(norm)) return {StatusCode::kDiverged, "contact residual is not finite"};
+    if (summary.relative_residual <= options.tolerance) {
+      // Make the returned forces admissible: exactly the law's value.
+      for (Eigen::Index c = 0; c < P.size(); ++c) {
+        const ContactLawPoint& law = laws[static_cast<std::size_t>(c)];
+        if (!law.is_rigid()) P[c] = law.force(ws.delta[c]);
+        else if (law.unilateral && P[c] < 0.0) P[c] = 0.0;
+      }
+      return Status::Ok();
+    }
+  }
+  return {StatusCode::kNoConvergence,
+          fmt::format("contact Newton did not converge in {} iterations (relative residual {:.3e} > "
+                      "{:.1e})",
+                      options.max_iterations, summary.relative_residual, options.tolerance)};
+}
+
+}  // namespace railvsi

@@ -1,0 +1,72 @@
+#include "integration/hht.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace railvsi {
+
+HhtParameters HhtParameters::from_alpha(double alpha) {
+  return {alpha, 0.25 * (1.0 - alpha) * (1.0 - alpha), 0.5 * (1.0 - 2.0 * alpha)};
+}
+
+HhtCoefficients::HhtCoefficients(const HhtParameters& p, double dt_s)
+    : alpha(p.alpha), beta(p.beta), gamma(p.gamma), dt(dt_s) {
+  c0 = 1.0 / (beta * dt * dt);
+  c1 = 1.0 / (beta * dt);
+  c2 = 1.0 / (2.0 * beta) - 1.0;
+  c3 = gamma / (beta * dt);
+  c4 = 1.0 - gamma / beta;
+  c5 = dt * (1.0 - gamma / (2.0 * beta));
+}
+
+void hht_update(const HhtCoefficients& h, const Vector& u_new, KinematicState& s) {
+  Vector a_new = h.c0 * (u_new - s.u) - h.c1 * s.v - h.c2 * s.a;
+  s.v += h.dt * ((1.0 - h.gamma) * s.a + h.gamma * a_new);
+  s.a = std::move(a_new);
+  s.u = u_new;
+}
+
+double hht_spectral_radius(const HhtParameters& p, double omega_dt) {
+  // One step of m=1, k=Omega^2, c=0, dt=1 applied to the unit states.
+  const HhtCoefficients h(p, 1.0);
+  const double k = omega_dt * omega_dt;
+  const double kbar = h.c0 + (1.0 + h.alpha) * k;
+  Eigen::Matrix3d A;
+  for (int j = 0; j < 3; ++j) {
+    KinematicState s;
+    s.u = Vector::Zero(1);
+    s.v = Vector::Zero(1);
+    s.a = Vector::Zero(1);
+    (j == 0 ? s.u : j == 1 ? s.v : s.a)[0] = 1.0;
+    const double rhs = h.c0 * s.u[0] + h.c1 * s.v[0] + h.c2 * s.a[0] + h.alpha * k * s.u[0];
+    Vector u_new(1);
+    u_new[0] = rhs / kbar;
+    hht_update(h, u_new, s);
+    A.col(j) << s.u[0], s.v[0], s.a[0];
+  }
+  return A.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+std::optional<std::string> hht_stability_problem(const HhtParameters& p) {
+  if (!(p.alpha >= -1.0 / 3.0 - 1e-15 && p.alpha <= 0.0))
+    return fmt::format("hht_alpha = {} is outside [-1/3, 0]", p.alpha);
+  if (!(p.beta > 0.0)) return fmt::format("hht_beta = {} must be > 0", p.beta);
+  if (p.gamma < 0.5 - 1e-12)
+    return fmt::format("hht_gamma = {} < 1/2: the scheme has negative numerical damping and "
+                       "amplifies the response (use gamma = (1-2 alpha)/2 = {})",
+                       p.gamma, 0.5 * (1.0 - 2.0 * p.alpha));
+  // Scan the amplification matrix over the whole frequency range.
+  for (double lg = -3.0; lg <= 7.0; lg += 0.05) {
+    const double omega_dt = std::pow(10.0, lg);
+    const double rho = hht_spectral_radius(p, omega_dt);
+    if (rho > 1.0 + 1e-9)
+      return fmt::format("hht_beta = {}, hht_gamma = {} with alpha = {} amplify the response "
+                         "(spectral radius {:.6f} > 1 at omega*dt = {:.3g}); the consistent "
+                         "values are beta = (1-alpha)^2/4 = {}, gamma = (1-2 alpha)/2 = {}",
+                         p.beta, p.gamma, p.alpha, rho, omega_dt,
+                         0.25 * (1.0 - p.alpha) * (1.0 - p.alpha), 0.5 * (1.0 - 2.0 * p.alpha));
+  }
+  return std::nullopt;
+}
+
+}  // namespace railvsi

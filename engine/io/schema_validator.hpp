@@ -1,0 +1,35 @@
+#pragma once
+// JSON Schema (draft-07) validation of input documents against the schemas
+// compiled into the library (io/embedded_schemas.hpp), with valijson. $refs
+// between our schema files ("train.schema.json#/definitions/train") are
+// resolved among the embedded schemas; nothing is read from disk.
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+namespace railvsi {
+
+// The parsed embedded schema of that file name. Throws std::logic_error when
+// there is none (a build problem, not an input problem).
+nlohmann::json embedded_schema_json(std::string_view schema_name);
+
+class SchemaValidator {
+ public:
+  // schema_name: a file of schemas/, e.g. "scene.schema.json".
+  explicit SchemaValidator(std::string_view schema_name);
+  ~SchemaValidator();
+  SchemaValidator(SchemaValidator&&) noexcept;
+  SchemaValidator& operator=(SchemaValidator&&) noexcept;
+
+  // Throws InputError for the most specific violation: its JSON pointer,
+  // valijson's description, and what the schema expects there.
+  void validate(const nlohmann::json& doc, const std::string& file_for_errors) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace railvsi

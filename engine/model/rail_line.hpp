@@ -1,0 +1,43 @@
+#pragma once
+// A rail line: the ordered beam elements a wheel can run on. A wheel at x is
+// located on one element and the rail top displacement under it is the cubic
+// Hermite interpolation of the element's end displacements and rotations.
+// DOFs are stored per element so that two simply supported spans meeting at a
+// pier can each keep their own end rotation under one x.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace railvsi {
+
+// Hermite row of one wheel on one rail element: rail top = sum weight[k]*u[dof[k]].
+// Constrained DOFs carry dof = -1 and weight 0.
+struct RailContactRow {
+  int element = -1;
+  std::array<int, 4> dof{-1, -1, -1, -1};
+  std::array<double, 4> weight{0.0, 0.0, 0.0, 0.0};
+};
+
+struct RailLine {
+  std::string name;
+  std::vector<double> x_m;                     // node x, strictly increasing
+  std::vector<std::array<int, 4>> element_dofs;  // (v_i, rot_i, v_j, rot_j) per element, -1 fixed
+
+  // The usual case: one vertical and one rotation DOF per node.
+  static RailLine from_nodes(std::string name, std::vector<double> x_m, const std::vector<int>& dof_v,
+                             const std::vector<int>& dof_rot);
+
+  std::size_t num_elements() const { return element_dofs.size(); }
+  double start_m() const { return x_m.front(); }
+  double end_m() const { return x_m.back(); }
+  bool covers(double x) const { return x >= x_m.front() && x <= x_m.back(); }
+  // Empty when x lies outside the modelled track (the wheel is on a rigid path).
+  std::optional<RailContactRow> locate(double x) const;
+};
+
+// Cubic Hermite shape functions on an element of length h at xi in [0,1]:
+// weights of (v_i, theta_i, v_j, theta_j), theta = dv/dx.
+std::array<double, 4> hermite_weights(double xi, double h);
+
+}  // namespace railvsi

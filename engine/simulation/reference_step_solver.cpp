@@ -1,0 +1,165 @@
+// Reference path: eq. (36) of the paper assembled literally as one sparse
+// matrix over (structure DOFs, vehicle DOFs, contact forces) and solved by
+// UMFPACK at every Newton iteration. Slow by design; it shares no algebra
+// with the condensed path, only the discrete equations.
+#include <Eigen/UmfPackSupport>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "simulation/static_equilibrium.hpp"
+#include "simulation/step_solver.hpp"
+
+namespace railvsi {
+namespace {
+
+class ReferenceStepSolver final : public StepSolver {
+ public:
+  ReferenceStepSolver(const StructureModel& structure, const EffectiveMatrixFactors& f,
+                      const TrainLayout& layout, const HhtCoefficients& h,
+                      const StepSolverOptions& options)
+      : layout_(layout), options_(options), ns_(structure.num_dofs()),
+        nv_(layout.num_vehicle_dofs), nc_(static_cast<int>(layout.contacts.size())) {
+    const SparseMatrix Ks = effective_matrix(structure, f);
+    for (int k = 0; k < Ks.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator it(Ks, k); it; ++it)
+        base_.emplace_back(it.row(), it.col(), it.value());
+    for (const VehicleInstance& v : layout.vehicles) {
+      const DenseMatrix Kv = vehicle_effective_matrix(*v.model, h);
+      for (Eigen::Index i = 0; i < Kv.rows(); ++i)
+        for (Eigen::Index j = 0; j < Kv.cols(); ++j)
+          if (Kv(i, j) != 0.0) base_.emplace_back(ns_ + v.first_dof + i, ns_ + v.first_dof + j, Kv(i, j));
+    }
+    K_.resize(ns_ + nv_, ns_ + nv_);
+    K_.setFromTriplets(base_.begin(), base_.end());
+  }
+
+  Status solve(const StepProblem& p, StepSolution& s) override {
+    const int n = ns_ + nv_ + nc_;
+    if (z_.size() != n) z_ = Vector::Zero(n);
+    z_.tail(nc_) = s.P;
+    // Active set: contacts that carried load last step (compliant laws
+    // switch by themselves through H; rigid ones need the outer loop).
+    std::vector<bool> active(static_cast<std::size_t>(nc_));
+    for (int c = 0; c < nc_; ++c) active[c] = !layout_.contacts[c].law.unilateral || s.P[c] > 0.0;
+    s.iterations = 0;
+    for (int outer = 0; outer < 30; ++outer) {
+      if (Status st = newton(p, active, s.iterations); !st.ok()) return st;
+      bool changed = false;
+      for (int c = 0; c < nc_; ++c) {
+        const ContactSpec& cs = layout_.contacts[c];
+        if (!cs.law.is_rigid() || !cs.law.unilateral) continue;
+        const double P = z_[ns_ + nv_ + c];
+        const double delta = penetration(p, c);
+        if (active[c] && P < 0.0) { active[c] = false; changed = true; }
+        else if (!active[c] && delta > 1e-12) { active[c] = true; changed = true; }
+      }
+      if (!changed) {
+        s.u_s = z_.head(ns_);
+        s.u_v = z_.segment(ns_, nv_);
+        s.P = z_.tail(nc_);
+        return Status::Ok();
+      }
+    }
+    return {StatusCode::kNoConvergence, "reference path: rigid contact active set did not settle"};
+  }
+
+ private:
+  double penetration(const StepProblem& p, int c) const {
+    return rail_top(p.rows[c], z_) + p.r[c] - z_[ns_ + layout_.contacts[c].global_dof];
+  }
+
+  void residual(const StepProblem& p, const std::vector<bool>& active, Vector& R) const {
+    const double one_alpha = 1.0 + options_.alpha;
+    const Vector u = z_.head(ns_ + nv_);
+    R.resize(z_.size());
+    R.head(ns_ + nv_) = K_ * u;
+    R.head(ns_) -= p.rhs_s;
+    R.segment(ns_, nv_) -= p.rhs_v;
+    Vector fs = Vector::Zero(ns_);
+    const Vector P = z_.tail(nc_);
+    add_rail_loads(p.rows, P, -one_alpha, fs);  // + (1+alpha) N^T P
+    R.head(ns_) += fs;
+    for (int c = 0; c < nc_; ++c) {
+      const ContactSpec& cs = layout_.contacts[c];
+      R[ns_ + cs.global_dof] -= one_alpha * P[c];
+      const double delta = penetration(p, c);
+      if (cs.law.is_rigid()) R[ns_ + nv_ + c] = active[c] ? -delta : P[c];
+      else R[ns_ + nv_ + c] = P[c] - cs.law.force(delta);
+    }
+  }
+
+  Status newton(const StepProblem& p, const std::vector<bool>& active, int& iterations) {
+    const double one_alpha = 1.0 + options_.alpha;
+    const int n = ns_ + nv_ + nc_;
+    Vector R;
+    for (int it = 0; it < options_.max_iterations; ++it) {
+      ++iterations;
+      residual(p, active, R);
+      std::vector<Triplet> t = base_;
+      for (int c = 0; c < nc_; ++c) {
+        const ContactSpec& cs = layout_.contacts[c];
+        const int row = ns_ + nv_ + c;
+        const int wheel = ns_ + cs.global_dof;
+        // Coupling columns: D_bar of eq. (36).
+        if (p.rows[c])
+          for (int k = 0; k < 4; ++k)
+            if (p.rows[c]->dof[k] >= 0) t.emplace_back(p.rows[c]->dof[k], row, one_alpha * p.rows[c]->weight[k]);
+        t.emplace_back(wheel, row, -one_alpha);
+        // Constraint rows: H_bar of eq. (36), or the linearized contact law.
+        double dn = 0.0, dp = 0.0;  // d R_c / d(delta), d R_c / dP
+        if (cs.law.is_rigid()) {
+          if (active[c]) dn = -1.0; else dp = 1.0;
+        } else {
+          dn = -cs.law.stiffness(penetration(p, c));
+          dp = 1.0;
+        }
+        if (dp != 0.0) t.emplace_back(row, row, dp);
+        if (dn != 0.0) {
+          if (p.rows[c])
+            for (int k = 0; k < 4; ++k)
+              if (p.rows[c]->dof[k] >= 0) t.emplace_back(row, p.rows[c]->dof[k], dn * p.rows[c]->weight[k]);
+          t.emplace_back(row, wheel, -dn);
+        }
+      }
+      SparseMatrix J(n, n);
+      J.setFromTriplets(t.begin(), t.end());
+      lu_.compute(J);
+      if (lu_.info() != Eigen::Success)
+        return {StatusCode::kDiverged, "reference path: UMFPACK could not factorize eq. (36)"};
+      const Vector minus_R = -R;
+      const Vector dz = lu_.solve(minus_R);
+      if (!dz.allFinite()) return {StatusCode::kDiverged, "reference path: non-finite Newton step"};
+      z_ += dz;
+      // The structure and vehicle rows are linear and now hold to round-off;
+      // convergence is judged on the nonlinear (compliant) contact rows, in
+      // newtons, as eq. (25). Rigid rows are linear too: one iteration is exact.
+      residual(p, active, R);
+      double contact_res = 0.0;
+      for (int c = 0; c < nc_; ++c)
+        if (!layout_.contacts[c].law.is_rigid()) contact_res += R[ns_ + nv_ + c] * R[ns_ + nv_ + c];
+      if (std::sqrt(contact_res) <= options_.tolerance * options_.force_scale_N) return Status::Ok();
+    }
+    return {StatusCode::kNoConvergence,
+            fmt::format("reference path: Newton did not converge in {} iterations", options_.max_iterations)};
+  }
+
+  const TrainLayout& layout_;
+  StepSolverOptions options_;
+  int ns_, nv_, nc_;
+  std::vector<Triplet> base_;
+  SparseMatrix K_;
+  Vector z_;
+  Eigen::UmfPackLU<SparseMatrix> lu_;
+};
+
+}  // namespace
+
+std::unique_ptr<StepSolver> make_reference_step_solver(const StructureModel& structure,
+                                                       const EffectiveMatrixFactors& factors,
+                                                       const TrainLayout& layout,
+                                                       const HhtCoefficients& h,
+                                                       const StepSolverOptions& options) {
+  return std::make_unique<ReferenceStepSolver>(structure, factors, layout, h, options);
+}
+
+}  // namespace railvsi

@@ -1,0 +1,65 @@
+#pragma once
+// What a run returns: a status, a summary, and the time histories at the
+// requested points. A failed run keeps what it computed up to the failure
+// for diagnosis, but its status says it is not a result.
+#include <string>
+#include <vector>
+
+#include "core/status.hpp"
+
+namespace railvsi {
+
+struct Histories {
+  std::vector<double> t_s;
+  std::vector<std::string> point_names;
+  std::vector<std::vector<double>> deck_displacement_m;    // [point][sample]
+  std::vector<std::vector<double>> deck_acceleration_mps2;  // [point][sample]
+  std::vector<std::string> wheel_names;                    // "v<vehicle>_w<wheel>"
+  std::vector<std::vector<double>> contact_force_N;        // [wheel][sample]
+  std::vector<std::string> body_names;                     // "v<vehicle>_body"
+  std::vector<std::vector<double>> carbody_acceleration_mps2;  // [body][sample]
+};
+
+struct PointSummary {
+  std::string name;
+  double x_m = 0.0;
+  double max_abs_displacement_m = 0.0;
+  double max_abs_acceleration_mps2 = 0.0;
+};
+
+struct RunSummary {
+  std::vector<PointSummary> points;
+  double max_abs_displacement_m = 0.0;
+  double max_abs_acceleration_mps2 = 0.0;  // unfiltered
+  // Wheels (empty train of moving forces: no wheels, values stay 0).
+  double min_contact_force_N = 0.0;
+  double max_unloading_ratio = 0.0;  // (Q0 - Qmin)/Q0, 1 = contact lost
+  double contact_loss_s = 0.0;       // longest time any wheel spent without contact
+  std::vector<double> static_wheel_load_N;
+  double max_abs_carbody_acceleration_mps2 = 0.0;
+  // Run
+  long steps = 0;
+  double dt_s = 0.0;
+  long newton_iterations = 0;
+  int max_newton_iterations_in_step = 0;
+  double wall_s = 0.0;
+  double setup_s = 0.0;  // factorization, flexibility, static equilibrium
+  // Fidelity actually used.
+  std::string model;          // "moving-forces" or "interaction"
+  std::string contact_law;    // "none", "rigid", "linear-hertz", "hertz"
+  bool unilateral = false;
+  std::string solver_path;    // "condensed" or "reference"
+  std::string structure_backend;
+  int structure_dofs = 0;
+  int vehicle_dofs = 0;
+  int contacts = 0;
+  double hht_alpha = 0.0, hht_beta = 0.0, hht_gamma = 0.0;
+};
+
+struct Result {
+  Status status;
+  RunSummary summary;
+  Histories histories;
+};
+
+}  // namespace railvsi

@@ -1,0 +1,149 @@
+#include "simulation/run_state.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+namespace railvsi {
+
+RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics,
+                   double start_x_m)
+    : scene_(scene), layout_(layout), start_x_m_(start_x_m) {
+  const int ns = scene.structure->num_dofs();
+  s_.resize(ns);
+  v_.resize(layout.num_vehicle_dofs);
+  s_.u = statics.u_s;
+  if (statics.u_v.size() == layout.num_vehicle_dofs) v_.u = statics.u_v;
+  const auto nc = static_cast<Eigen::Index>(layout.contacts.size());
+  P_ = nc > 0 ? statics.P : Vector();
+  Q0_ = P_;
+  f_s_ = Vector::Zero(ns);
+  moving_force_loads(start_x_m, f_s_);
+  rows_ = locate_contacts(*scene.structure, layout, start_x_m);
+  add_rail_loads(rows_, P_, 1.0, f_s_);
+  r_ = Vector::Zero(nc);
+  const std::size_t np = scene.structure->outputs().size();
+  max_abs_u_.assign(np, 0.0);
+  max_abs_a_.assign(np, 0.0);
+  min_P_.assign(static_cast<std::size_t>(nc), std::numeric_limits<double>::infinity());
+  no_contact_s_.assign(static_cast<std::size_t>(nc), 0.0);
+}
+
+void RunState::moving_force_loads(double front_x_m, Vector& f) const {
+  const RailLine& rail = scene_.structure->rails().front();
+  for (const MovingForce& m : scene_.train.moving_forces) {
+    const auto row = rail.locate(TrainLayout::position_m(front_x_m, m.offset_m));
+    if (!row) continue;
+    for (int k = 0; k < 4; ++k)
+      if (row->dof[k] >= 0) f[row->dof[k]] -= row->weight[k] * m.load_N;
+  }
+}
+
+Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver, int& iterations) {
+  const double x = front_x(t_new);
+  // Loads known at t_{n+1}: moving forces and the irregularity under each wheel.
+  f_new_.setZero(s_.u.size());
+  moving_force_loads(x, f_new_);
+  rows_ = locate_contacts(*scene_.structure, layout_, x);
+  for (Eigen::Index c = 0; c < r_.size(); ++c)
+    r_[c] = scene_.irregularity ? scene_.irregularity->at(TrainLayout::position_m(x, layout_.contacts[c].offset_m)) : 0.0;
+
+  // Right-hand sides of eq. (3) with the new contact forces left out:
+  // (1+alpha) F_{n+1} - alpha F_n + history terms.
+  hht_history_rhs(h, scene_.structure->M(), scene_.structure->C(), scene_.structure->K(), s_, rhs_s_, work_);
+  rhs_s_ += (1.0 + h.alpha) * f_new_ - h.alpha * f_s_;
+  rhs_v_ = Vector::Zero(v_.u.size());
+  for (const VehicleInstance& vi : layout_.vehicles) {
+    const int n = vi.model->num_dofs();
+    KinematicState local;
+    local.u = v_.u.segment(vi.first_dof, n);
+    local.v = v_.v.segment(vi.first_dof, n);
+    local.a = v_.a.segment(vi.first_dof, n);
+    Vector rhs(n), work(n);
+    hht_history_rhs(h, vi.model->M(), vi.model->C(), vi.model->K(), local, rhs, work);
+    rhs_v_.segment(vi.first_dof, n) = rhs;
+  }
+  rhs_v_ += layout_.gravity_load_N;
+  for (Eigen::Index c = 0; c < P_.size(); ++c) rhs_v_[layout_.contacts[c].global_dof] -= h.alpha * P_[c];
+
+  solution_.P = P_;
+  const StepProblem problem{rhs_s_, rhs_v_, rows_, r_};
+  Status st = solver.solve(problem, solution_);
+  iterations = solution_.iterations;
+  if (!st.ok()) return st;
+  if (!solution_.u_s.allFinite() || !solution_.u_v.allFinite() || !solution_.P.allFinite())
+    return {StatusCode::kDiverged, "non-finite displacements or contact forces"};
+  const double u_max = solution_.u_s.size() ? solution_.u_s.cwiseAbs().maxCoeff() : 0.0;
+  if (u_max > 1e3)
+    return {StatusCode::kDiverged, fmt::format("structure displacement {:.3e} m: the solution diverged", u_max)};
+
+  hht_update(h, solution_.u_s, s_);
+  if (v_.u.size() > 0) hht_update(h, solution_.u_v, v_);
+  P_ = solution_.P;
+  f_s_ = f_new_;
+  add_rail_loads(rows_, P_, 1.0, f_s_);
+  last_t_s_ = t_new;
+  return Status::Ok();
+}
+
+void RunState::record(long step_index, double t_s, Histories& hist, bool store) {
+  const auto& outputs = scene_.structure->outputs();
+  const double dt = scene_.analysis.dt_s;
+  for (std::size_t p = 0; p < outputs.size(); ++p) {
+    max_abs_u_[p] = std::max(max_abs_u_[p], std::abs(s_.u[outputs[p].dof]));
+    max_abs_a_[p] = std::max(max_abs_a_[p], std::abs(s_.a[outputs[p].dof]));
+  }
+  for (Eigen::Index c = 0; c < P_.size(); ++c) {
+    min_P_[c] = std::min(min_P_[c], P_[c]);
+    if (step_index > 0 && P_[c] <= 0.0) no_contact_s_[c] += dt;
+  }
+  for (const VehicleInstance& vi : layout_.vehicles)
+    for (int d : vi.model->body_dofs())
+      max_abs_body_a_ = std::max(max_abs_body_a_, std::abs(v_.a[vi.first_dof + d]));
+  if (!store) return;
+
+  if (hist.t_s.empty()) {  // first sample: names and columns
+    for (const auto& o : outputs) hist.point_names.push_back(o.name);
+    hist.deck_displacement_m.resize(outputs.size());
+    hist.deck_acceleration_mps2.resize(outputs.size());
+    for (const ContactSpec& c : layout_.contacts)
+      hist.wheel_names.push_back(fmt::format("v{}_w{}", c.vehicle + 1, c.local_wheel + 1));
+    hist.contact_force_N.resize(layout_.contacts.size());
+    for (std::size_t v = 0; v < layout_.vehicles.size(); ++v)
+      for (std::size_t b = 0; b < layout_.vehicles[v].model->body_dofs().size(); ++b)
+        hist.body_names.push_back(b == 0 ? fmt::format("v{}_body", v + 1) : fmt::format("v{}_body{}", v + 1, b + 1));
+    hist.carbody_acceleration_mps2.resize(hist.body_names.size());
+  }
+  hist.t_s.push_back(t_s);
+  for (std::size_t p = 0; p < outputs.size(); ++p) {
+    hist.deck_displacement_m[p].push_back(s_.u[outputs[p].dof]);
+    hist.deck_acceleration_mps2[p].push_back(s_.a[outputs[p].dof]);
+  }
+  for (Eigen::Index c = 0; c < P_.size(); ++c) hist.contact_force_N[c].push_back(P_[c]);
+  std::size_t b = 0;
+  for (const VehicleInstance& vi : layout_.vehicles)
+    for (int d : vi.model->body_dofs()) hist.carbody_acceleration_mps2[b++].push_back(v_.a[vi.first_dof + d]);
+}
+
+void RunState::summarize(RunSummary& sum) const {
+  const auto& outputs = scene_.structure->outputs();
+  sum.points.clear();
+  for (std::size_t p = 0; p < outputs.size(); ++p) {
+    sum.points.push_back({outputs[p].name, outputs[p].x_m, max_abs_u_[p], max_abs_a_[p]});
+    sum.max_abs_displacement_m = std::max(sum.max_abs_displacement_m, max_abs_u_[p]);
+    sum.max_abs_acceleration_mps2 = std::max(sum.max_abs_acceleration_mps2, max_abs_a_[p]);
+  }
+  sum.min_contact_force_N = 0.0;
+  if (!min_P_.empty()) {
+    sum.min_contact_force_N = std::numeric_limits<double>::infinity();
+    for (std::size_t c = 0; c < min_P_.size(); ++c) {
+      sum.min_contact_force_N = std::min(sum.min_contact_force_N, min_P_[c]);
+      const double q0 = Q0_[static_cast<Eigen::Index>(c)];
+      if (q0 > 0.0) sum.max_unloading_ratio = std::max(sum.max_unloading_ratio, (q0 - min_P_[c]) / q0);
+      sum.contact_loss_s = std::max(sum.contact_loss_s, no_contact_s_[c]);
+    }
+  }
+  sum.max_abs_carbody_acceleration_mps2 = max_abs_body_a_;
+}
+
+}  // namespace railvsi

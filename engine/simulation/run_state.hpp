@@ -1,0 +1,46 @@
+#pragma once
+// All mutable state of one run (the "context" to the Simulation's "system"):
+// kinematic states of structure and vehicles, the contact forces and loads
+// of the last step, scratch vectors, and the envelope accumulators.
+#include <optional>
+#include <vector>
+
+#include "simulation/result.hpp"
+#include "simulation/scene.hpp"
+#include "simulation/static_equilibrium.hpp"
+#include "simulation/step_solver.hpp"
+
+namespace railvsi {
+
+class RunState {
+ public:
+  RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics, double start_x_m);
+
+  // Advance from t_n to t_new = t_n + dt.
+  Status step(const HhtCoefficients& h, double t_new, StepSolver& solver, int& iterations);
+  // Update the envelopes with the current state; append to the histories
+  // when `store`.
+  void record(long step_index, double t_s, Histories& histories, bool store);
+  void summarize(RunSummary& summary) const;
+
+ private:
+  double front_x(double t_s) const { return start_x_m_ + scene_.speed_mps * t_s; }
+  void moving_force_loads(double front_x_m, Vector& f) const;
+
+  const Scene& scene_;
+  const TrainLayout& layout_;
+  double start_x_m_;
+  KinematicState s_, v_;
+  Vector P_;    // contact forces at t_n
+  Vector Q0_;   // static wheel loads
+  Vector f_s_;  // total structure load at t_n
+  std::vector<std::optional<RailContactRow>> rows_;
+  Vector r_, rhs_s_, rhs_v_, f_new_, work_;
+  StepSolution solution_;
+  // Envelopes, updated every step (not only at stored samples).
+  std::vector<double> max_abs_u_, max_abs_a_, min_P_, no_contact_s_;
+  double max_abs_body_a_ = 0.0;
+  double last_t_s_ = 0.0;
+};
+
+}  // namespace railvsi

@@ -1,0 +1,59 @@
+#pragma once
+// Everything one run needs, already validated: the immutable models and the
+// options. Built by io/scene_loader from a JSON document or directly in code.
+#include <memory>
+#include <optional>
+
+#include "integration/hht.hpp"
+#include "model/irregularity.hpp"
+#include "model/structure_model.hpp"
+#include "model/train.hpp"
+
+namespace railvsi {
+
+enum class ContactLaw { kRigid, kLinearHertz, kHertz };
+
+struct ContactOptions {
+  ContactLaw law = ContactLaw::kHertz;
+  // A unilateral contact may open (P = 0) and close again; a bilateral one
+  // holds the wheel on the rail whatever the sign of the force.
+  bool unilateral = true;
+  // Hertz constant G in m/N^(2/3); when absent, from the wheel radius:
+  // G = 3.86e-8 * R^-0.115 (conical tread; see reference/DATA.md).
+  std::optional<double> hertz_G;
+  // Wheels sharing one contact of the model (2 for a plane model lumping
+  // both rails): P = n * (delta/G)^(3/2).
+  double wheels_per_contact = 2.0;
+};
+
+enum class SolverPath { kCondensed, kReference };
+
+struct AnalysisOptions {
+  double dt_s = 2.5e-4;
+  HhtParameters hht = HhtParameters::from_alpha(-0.05);
+  SolverPath solver = SolverPath::kCondensed;
+  ContactOptions contact;
+  int max_newton_iterations = 50;
+  // Newton stops when |residual| / |static wheel loads| <= tol (eq. 25).
+  double newton_tolerance = 1e-10;
+  // Simulated time; by default until the last axle leaves the modelled
+  // track (or the bridge when the wheels run on the deck), plus extra_time_s.
+  std::optional<double> duration_s;
+  double extra_time_s = 0.0;
+  // Store every n-th step in the histories.
+  int history_stride = 1;
+};
+
+struct Scene {
+  std::shared_ptr<const StructureModel> structure;
+  Train train;
+  double speed_mps = 0.0;
+  std::shared_ptr<const Irregularity> irregularity;  // null: perfect track
+  AnalysisOptions analysis;
+  // x of the train's first axle at t = 0; by default the start of rail line 0.
+  std::optional<double> start_x_m;
+};
+
+double hertz_constant(const ContactOptions& c, double wheel_radius_m);
+
+}  // namespace railvsi

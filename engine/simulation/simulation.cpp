@@ -1,0 +1,131 @@
+#include "simulation/simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/input_error.hpp"
+#include "simulation/run_state.hpp"
+#include "simulation/static_equilibrium.hpp"
+#include "simulation/step_solver.hpp"
+#include "solver/cholmod_operator.hpp"
+
+namespace railvsi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+EffectiveMatrixFactors structure_factors(const HhtCoefficients& h) {
+  return {h.mass_factor(), h.damping_factor(), h.stiffness_factor()};
+}
+
+const char* law_name(ContactLaw law) {
+  switch (law) {
+    case ContactLaw::kRigid: return "rigid";
+    case ContactLaw::kLinearHertz: return "linear-hertz";
+    case ContactLaw::kHertz: return "hertz";
+  }
+  return "unknown";
+}
+
+// Time simulated: until the last axle has left the modelled track (or the
+// deck, when the wheels run on it), plus any extra time asked for.
+double default_duration_s(const Scene& scene, double start_x_m) {
+  const double end_m = scene.structure->rails().front().end_m();
+  const double travel_m = end_m - start_x_m + scene.train.length_m();
+  return travel_m / scene.speed_mps + scene.analysis.extra_time_s;
+}
+
+}  // namespace
+
+std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& scene) {
+  const HhtCoefficients h(scene.analysis.hht, scene.analysis.dt_s);
+  CholmodOperatorOptions options;
+  options.rail_flexibility = !scene.train.is_moving_forces();
+  return std::make_shared<const CholmodOperator>(*scene.structure, structure_factors(h), options);
+}
+
+Simulation::Simulation(const Scene& scene, std::shared_ptr<const StructureOperator> op)
+    : scene_(scene), op_(std::move(op)) {}
+
+Result Simulation::run() const {
+  const auto t_start = Clock::now();
+  Result result;
+  RunSummary& sum = result.summary;
+  const Scene& sc = scene_;
+  const AnalysisOptions& an = sc.analysis;
+  const HhtCoefficients h(an.hht, an.dt_s);
+  const double x0 = sc.start_x_m.value_or(sc.structure->rails().front().start_m());
+  const double duration = an.duration_s.value_or(
+      sc.speed_mps > 0.0 ? default_duration_s(sc, x0) : 0.0);
+  if (!(duration > 0.0) || !std::isfinite(duration)) {
+    result.status = {StatusCode::kInvalidInput, "the run has no duration: give speed_kmh > 0 or analysis.duration_s"};
+    return result;
+  }
+
+  TrainLayout layout(sc.train, an.contact);
+  StaticState statics;
+  std::shared_ptr<const StructureOperator> op = op_;
+  std::unique_ptr<StepSolver> solver;
+  try {
+    statics = static_equilibrium(sc, layout, x0);
+    for (std::size_t c = 0; c < layout.contacts.size(); ++c)
+      layout.contacts[c].law.linearize_at(statics.P[static_cast<Eigen::Index>(c)]);
+    StepSolverOptions so;
+    so.alpha = h.alpha;
+    so.max_iterations = an.max_newton_iterations;
+    so.tolerance = an.newton_tolerance;
+    so.force_scale_N = std::max(1.0, statics.P.norm());
+    if (an.solver == SolverPath::kReference) {
+      solver = make_reference_step_solver(*sc.structure, structure_factors(h), layout, h, so);
+      sum.structure_backend = "umfpack-bordered";
+    } else {
+      if (!op) op = make_structure_operator(sc);
+      solver = make_condensed_step_solver(op, layout, make_vehicle_operators(layout, h), so);
+      sum.structure_backend = op->backend_name();
+    }
+  } catch (const InputError& e) {
+    result.status = {StatusCode::kInvalidInput, e.describe()};
+    return result;
+  }
+
+  // Fidelity record.
+  const bool mf = sc.train.is_moving_forces();
+  sum.model = mf ? "moving-forces" : "interaction";
+  sum.contact_law = mf ? "none" : law_name(an.contact.law);
+  sum.unilateral = !mf && !layout.contacts.empty() && layout.contacts.front().law.unilateral;
+  sum.solver_path = an.solver == SolverPath::kReference ? "reference" : "condensed";
+  sum.structure_dofs = sc.structure->num_dofs();
+  sum.vehicle_dofs = layout.num_vehicle_dofs;
+  sum.contacts = static_cast<int>(layout.contacts.size());
+  sum.hht_alpha = h.alpha;
+  sum.hht_beta = h.beta;
+  sum.hht_gamma = h.gamma;
+  sum.dt_s = an.dt_s;
+  sum.static_wheel_load_N.assign(statics.P.data(), statics.P.data() + statics.P.size());
+
+  RunState state(sc, layout, statics, x0);
+  sum.setup_s = std::chrono::duration<double>(Clock::now() - t_start).count();
+  const long steps = static_cast<long>(std::ceil(duration / an.dt_s - 1e-9));
+  state.record(0, 0.0, result.histories, /*store=*/true);
+  for (long n = 0; n < steps; ++n) {
+    const double t_new = (n + 1) * an.dt_s;
+    int iterations = 0;
+    const Status st = state.step(h, t_new, *solver, iterations);
+    sum.newton_iterations += iterations;
+    sum.max_newton_iterations_in_step = std::max(sum.max_newton_iterations_in_step, iterations);
+    if (!st.ok()) {
+      result.status = {st.code(), fmt::format("step {} (t = {:.6f} s, first axle at x = {:.3f} m): {}",
+                                              n + 1, t_new, x0 + sc.speed_mps * t_new, st.message())};
+      break;
+    }
+    sum.steps = n + 1;
+    const bool store = ((n + 1) % std::max(1, an.history_stride) == 0) || n + 1 == steps;
+    state.record(n + 1, t_new, result.histories, store);
+  }
+  state.summarize(sum);
+  sum.wall_s = std::chrono::duration<double>(Clock::now() - t_start).count();
+  return result;
+}
+
+}  // namespace railvsi

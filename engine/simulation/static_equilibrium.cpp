@@ -1,0 +1,159 @@
+#include "simulation/static_equilibrium.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/input_error.hpp"
+#include "solver/cholmod_operator.hpp"
+
+namespace railvsi {
+
+std::vector<std::optional<RailContactRow>> locate_contacts(const StructureModel& s,
+                                                           const TrainLayout& layout,
+                                                           double front_x_m) {
+  std::vector<std::optional<RailContactRow>> rows;
+  rows.reserve(layout.contacts.size());
+  for (const ContactSpec& c : layout.contacts) {
+    const double x = TrainLayout::position_m(front_x_m, c.offset_m);
+    rows.push_back(s.rails()[static_cast<std::size_t>(c.rail_line)].locate(x));
+  }
+  return rows;
+}
+
+void add_rail_loads(const std::vector<std::optional<RailContactRow>>& rows, const Vector& P,
+                    double scale, Vector& f) {
+  for (std::size_t c = 0; c < rows.size(); ++c) {
+    if (!rows[c]) continue;
+    for (int k = 0; k < 4; ++k)
+      if (rows[c]->dof[k] >= 0) f[rows[c]->dof[k]] -= scale * rows[c]->weight[k] * P[static_cast<Eigen::Index>(c)];
+  }
+}
+
+double rail_top(const std::optional<RailContactRow>& row, const Vector& u) {
+  if (!row) return 0.0;
+  double z = 0.0;
+  for (int k = 0; k < 4; ++k)
+    if (row->dof[k] >= 0) z += row->weight[k] * u[row->dof[k]];
+  return z;
+}
+
+namespace {
+
+// Moving forces: the loads at t = 0, structure only.
+StaticState moving_force_statics(const Scene& scene, const CholmodOperator& op, double front_x_m) {
+  const StructureModel& s = *scene.structure;
+  StaticState st;
+  Vector f = Vector::Zero(s.num_dofs());
+  for (const MovingForce& m : scene.train.moving_forces) {
+    const auto row = s.rails().front().locate(TrainLayout::position_m(front_x_m, m.offset_m));
+    Vector P(1);
+    P[0] = m.load_N;
+    add_rail_loads({row}, P, 1.0, f);
+  }
+  auto ws = op.make_workspace();
+  st.u_s = Vector::Zero(s.num_dofs());
+  if (f.squaredNorm() > 0.0) (void)op.solve(f, st.u_s, *ws);
+  return st;
+}
+
+}  // namespace
+
+StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m) {
+  const StructureModel& s = *scene.structure;
+  CholmodOperatorOptions opts;
+  opts.rail_flexibility = false;
+  const CholmodOperator op(s, EffectiveMatrixFactors{0.0, 0.0, 1.0}, opts);
+  if (scene.train.is_moving_forces()) return moving_force_statics(scene, op, front_x_m);
+
+  const auto rows = locate_contacts(s, layout, front_x_m);
+  const auto nc = static_cast<Eigen::Index>(layout.contacts.size());
+  const Eigen::Index nv = layout.num_vehicle_dofs;
+
+  // Static structure flexibility at the DOFs under the wheels.
+  std::vector<int> dofs;
+  for (const auto& row : rows)
+    if (row)
+      for (int d : row->dof)
+        if (d >= 0 && std::find(dofs.begin(), dofs.end(), d) == dofs.end()) dofs.push_back(d);
+  auto ws = op.make_workspace();
+  const DenseMatrix F = dofs.empty() ? DenseMatrix() : op.flexibility_block(dofs, *ws);
+  const auto local = [&](int d) { return std::find(dofs.begin(), dofs.end(), d) - dofs.begin(); };
+  DenseMatrix As = DenseMatrix::Zero(nc, nc);
+  for (Eigen::Index c = 0; c < nc; ++c)
+    for (Eigen::Index e = 0; e < nc; ++e) {
+      if (!rows[c] || !rows[e]) continue;
+      double a = 0.0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+          if (rows[c]->dof[i] >= 0 && rows[e]->dof[j] >= 0)
+            a += rows[c]->weight[i] * rows[e]->weight[j] * F(local(rows[c]->dof[i]), local(rows[e]->dof[j]));
+      As(c, e) = a;
+    }
+  Vector r = Vector::Zero(nc);
+  for (Eigen::Index c = 0; c < nc; ++c)
+    if (scene.irregularity)
+      r[c] = scene.irregularity->at(TrainLayout::position_m(front_x_m, layout.contacts[c].offset_m));
+
+  DenseMatrix Kv = DenseMatrix::Zero(nv, nv);
+  for (const VehicleInstance& v : layout.vehicles)
+    Kv.block(v.first_dof, v.first_dof, v.model->num_dofs(), v.model->num_dofs()) = v.model->K();
+
+  // Newton on z = [u_v; P]:
+  //   K_v u_v - E^T P - F_g = 0
+  //   -A_s P + r - E u_v - h(P) = 0   (h: compression of the law, 0 if rigid)
+  // The first iteration from z = 0 ignores h and is the rigid solution.
+  Vector z = Vector::Zero(nv + nc), R(nv + nc);
+  const auto& laws = layout.contacts;
+  for (int it = 0; it < 60; ++it) {
+    const bool compliant = it > 0;
+    const Vector u_v = z.head(nv), P = z.tail(nc);
+    DenseMatrix J = DenseMatrix::Zero(nv + nc, nv + nc);
+    J.topLeftCorner(nv, nv) = Kv;
+    J.bottomRightCorner(nc, nc) = -As;
+    R.head(nv) = Kv * u_v - layout.gravity_load_N;
+    R.tail(nc) = -As * P + r;
+    for (Eigen::Index c = 0; c < nc; ++c) {
+      const int g = laws[c].global_dof;
+      J(g, nv + c) -= 1.0;
+      J(nv + c, g) -= 1.0;
+      R[g] -= P[c];
+      R[nv + c] -= u_v[g];
+      if (compliant) {
+        R[nv + c] -= laws[c].law.compression(P[c]);
+        J(nv + c, nv + c) -= laws[c].law.compliance(P[c]);
+      }
+    }
+    const Eigen::FullPivLU<DenseMatrix> lu(J);
+    if (!lu.isInvertible())
+      throw InputError("/train", "the train is not statically supported by its wheels (the static "
+                                 "equilibrium matrix is singular: a vehicle DOF has no stiffness "
+                                 "path to a wheel)");
+    Vector dz = lu.solve(-R);
+    // Keep the loads compressive while the compliant iteration settles.
+    double step = 1.0;
+    if (compliant)
+      while (step > 1e-6 && ((z.tail(nc) + step * dz.tail(nc)).array() <= 0.0).any()) step *= 0.5;
+    z += step * dz;
+    if (!compliant) {
+      for (Eigen::Index c = 0; c < nc; ++c)
+        if (!(z[nv + c] > 0.0))
+          throw InputError("/train",
+                           fmt::format("wheel {} of vehicle {} carries no static load ({:.1f} N): "
+                                       "the vehicle does not rest on its wheels",
+                                       laws[c].local_wheel, laws[c].vehicle, z[nv + c]));
+      if (laws.empty() || laws.front().law.is_rigid()) break;
+    } else if (step * dz.norm() <= 1e-13 * z.norm()) {
+      break;
+    }
+  }
+  StaticState st;
+  st.u_v = z.head(nv);
+  st.P = z.tail(nc);
+  Vector f = Vector::Zero(s.num_dofs());
+  add_rail_loads(rows, st.P, 1.0, f);
+  st.u_s = Vector::Zero(s.num_dofs());
+  if (f.squaredNorm() > 0.0) (void)op.solve(f, st.u_s, *ws);
+  return st;
+}
+
+}  // namespace railvsi

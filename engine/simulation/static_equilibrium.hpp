@@ -1,0 +1,37 @@
+#pragma once
+// Static equilibrium of train and structure under gravity at t = 0, with
+// the contact law's static compression, so that the run starts without a
+// drop transient. Structure self-weight is excluded: deck displacements are
+// measured from the equilibrium of the structure under its own weight.
+#include <optional>
+#include <vector>
+
+#include "model/rail_line.hpp"
+#include "simulation/scene.hpp"
+#include "simulation/train_layout.hpp"
+
+namespace railvsi {
+
+struct StaticState {
+  Vector u_s;  // structure
+  Vector u_v;  // stacked vehicles
+  Vector P;    // contact forces (= static wheel loads)
+};
+
+// Where each contact is at front position x: a Hermite row on its rail line,
+// or empty on the rigid path.
+std::vector<std::optional<RailContactRow>> locate_contacts(const StructureModel& s,
+                                                           const TrainLayout& layout,
+                                                           double front_x_m);
+
+// Throws InputError if the structure is a mechanism or a vehicle is not
+// carried by its wheels.
+StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m);
+
+// Adds -scale * N_k^T P_k to f for every on-track load.
+void add_rail_loads(const std::vector<std::optional<RailContactRow>>& rows, const Vector& P,
+                    double scale, Vector& f);
+// N_c u for a located contact (0 on the rigid path).
+double rail_top(const std::optional<RailContactRow>& row, const Vector& u);
+
+}  // namespace railvsi

@@ -1,0 +1,60 @@
+#include "simulation/train_layout.hpp"
+
+#include <algorithm>
+
+namespace railvsi {
+
+TrainLayout::TrainLayout(const Train& train, const ContactOptions& contact) {
+  int next_dof = 0;
+  for (const TrainVehicle& tv : train.vehicles) {
+    const VehicleModel* model = tv.model.get();
+    auto it = std::find(types.begin(), types.end(), model);
+    const int type = static_cast<int>(it - types.begin());
+    if (it == types.end()) types.push_back(model);
+    const int vehicle = static_cast<int>(vehicles.size());
+    vehicles.push_back({model, next_dof, tv.offset_m, type});
+    for (std::size_t w = 0; w < model->wheels().size(); ++w) {
+      const Wheel& wheel = model->wheels()[w];
+      ContactSpec c;
+      c.vehicle = vehicle;
+      c.local_dof = wheel.dof;
+      c.global_dof = next_dof + wheel.dof;
+      c.local_wheel = static_cast<int>(w);
+      c.offset_m = tv.offset_m + wheel.offset_m;
+      c.rail_line = wheel.rail_line;
+      c.law.law = contact.law;
+      // Hertz cannot pull; the flag matters for rigid and linearized laws.
+      c.law.unilateral = contact.law == ContactLaw::kHertz ? true : contact.unilateral;
+      c.law.G = hertz_constant(contact, wheel.radius_m);
+      c.law.n = contact.wheels_per_contact;
+      contacts.push_back(c);
+    }
+    next_dof += model->num_dofs();
+  }
+  num_vehicle_dofs = next_dof;
+  gravity_load_N = Vector::Zero(next_dof);
+  for (const VehicleInstance& v : vehicles)
+    gravity_load_N.segment(v.first_dof, v.model->num_dofs()) = v.model->gravity_load_N();
+}
+
+DenseMatrix vehicle_effective_matrix(const VehicleModel& v, const HhtCoefficients& h) {
+  return h.mass_factor() * v.M() + h.damping_factor() * v.C() + h.stiffness_factor() * v.K();
+}
+
+std::vector<VehicleOperator> make_vehicle_operators(const TrainLayout& layout,
+                                                    const HhtCoefficients& h) {
+  std::vector<VehicleOperator> ops;
+  for (const VehicleModel* model : layout.types) {
+    VehicleOperator op;
+    op.factor.compute(vehicle_effective_matrix(*model, h));
+    const auto nw = static_cast<Eigen::Index>(model->wheels().size());
+    DenseMatrix Et = DenseMatrix::Zero(model->num_dofs(), nw);
+    for (Eigen::Index w = 0; w < nw; ++w) Et(model->wheels()[w].dof, w) = 1.0;
+    op.wheel_columns = op.factor.solve(Et);
+    op.wheel_flexibility = Et.transpose() * op.wheel_columns;
+    ops.push_back(std::move(op));
+  }
+  return ops;
+}
+
+}  // namespace railvsi

@@ -1,0 +1,58 @@
+#pragma once
+// The train flattened for the solvers: the vehicles' DOFs stacked into one
+// vector, and one contact per wheel with its law. Built once per run.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contact/contact_law.hpp"
+#include "integration/hht.hpp"
+#include "simulation/scene.hpp"
+
+namespace railvsi {
+
+struct VehicleInstance {
+  const VehicleModel* model = nullptr;
+  int first_dof = 0;
+  double offset_m = 0.0;
+  int type = 0;  // index into TrainLayout::types
+};
+
+struct ContactSpec {
+  int vehicle = 0;
+  int local_dof = 0;   // in the vehicle's matrices
+  int global_dof = 0;  // in the stacked vehicle vector
+  int local_wheel = 0;
+  double offset_m = 0.0;  // behind the train's first axle
+  int rail_line = 0;
+  ContactLawPoint law;
+};
+
+struct TrainLayout {
+  TrainLayout(const Train& train, const ContactOptions& contact);
+
+  std::vector<const VehicleModel*> types;  // distinct vehicle models
+  std::vector<VehicleInstance> vehicles;
+  std::vector<ContactSpec> contacts;
+  int num_vehicle_dofs = 0;
+  Vector gravity_load_N;  // stacked
+
+  // Position along the track of something `offset_m` behind the first axle.
+  static double position_m(double front_x_m, double offset_m) { return front_x_m - offset_m; }
+};
+
+// Per vehicle type and time step: the dense factor of K_bar_v and its
+// flexibility at the wheels.
+struct VehicleOperator {
+  Eigen::LDLT<DenseMatrix> factor;
+  DenseMatrix wheel_columns;  // K_bar_v^-1 E^T (n_dofs x n_wheels)
+  DenseMatrix wheel_flexibility;  // E K_bar_v^-1 E^T
+};
+
+std::vector<VehicleOperator> make_vehicle_operators(const TrainLayout& layout,
+                                                    const HhtCoefficients& h);
+
+// K_bar_v = c0 M + (1+alpha) c3 C + (1+alpha) K of one vehicle.
+DenseMatrix vehicle_effective_matrix(const VehicleModel& v, const HhtCoefficients& h);
+
+}  // namespace railvsi

@@ -1,0 +1,97 @@
+#include "solver/cholmod_operator.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <fmt/format.h>
+
+#include "core/input_error.hpp"
+
+namespace railvsi {
+namespace {
+
+class CholmodWorkspace final : public SolveWorkspace {
+ public:
+  CholmodCommon common;
+  // Reused between solves; cholmod_solve2 reallocates only when sizes change.
+  cholmod_dense* X = nullptr;
+  cholmod_dense* Y = nullptr;
+  cholmod_dense* E = nullptr;
+  ~CholmodWorkspace() override {
+    cholmod_free_dense(&X, common.get());
+    cholmod_free_dense(&Y, common.get());
+    cholmod_free_dense(&E, common.get());
+  }
+  // Solves for the columns of B; the result is in X.
+  bool solve(const cholmod_factor* L, Eigen::Ref<DenseMatrix> B) {
+    cholmod_dense b = cholmod_view(B);
+    return cholmod_solve2(CHOLMOD_A, const_cast<cholmod_factor*>(L), &b, nullptr, &X, nullptr, &Y,
+                          &E, common.get()) != 0;
+  }
+};
+
+}  // namespace
+
+CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMatrixFactors& factors,
+                                 const CholmodOperatorOptions& options)
+    : n_(model.num_dofs()), block_columns_(std::max(1, options.flexibility_block_columns)),
+      common_(std::make_unique<CholmodCommon>()) {
+  factors_ = factors;
+  const auto start = std::chrono::steady_clock::now();
+  const SparseMatrix A = effective_matrix(model, factors);
+  cholmod_sparse view = cholmod_view_symmetric(A);
+  cholmod_common* c = common_->get();
+  c->supernodal = CHOLMOD_SUPERNODAL;
+  factor_ = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>(cholmod_analyze(&view, c),
+                                                                    CholmodFactorDeleter{c});
+  if (!factor_) throw InputError("/structure", "CHOLMOD could not analyse the structure matrix");
+  const int ok = cholmod_factorize(&view, factor_.get(), c);
+  if (!ok || c->status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n) {
+    const auto minor = factor_->minor;
+    const int* perm = static_cast<const int*>(factor_->Perm);
+    const long dof = (perm && minor < factor_->n) ? perm[minor] : static_cast<long>(minor);
+    throw InputError("/structure",
+                     fmt::format("the {} matrix is not positive definite: pivot {} of {} fails at "
+                                 "DOF {} (0-based). The structure is a mechanism or is missing "
+                                 "supports there.",
+                                 factors.mass == 0.0 ? "stiffness" : "effective", minor + 1,
+                                 factor_->n, dof));
+  }
+  factorization_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.rail_flexibility) compute_rail_flexibility(model);
+}
+
+std::unique_ptr<SolveWorkspace> CholmodOperator::make_workspace() const {
+  return std::make_unique<CholmodWorkspace>();
+}
+
+Status CholmodOperator::solve(const Vector& b, Vector& x, SolveWorkspace& ws_base) const {
+  auto& ws = static_cast<CholmodWorkspace&>(ws_base);
+  Eigen::Map<DenseMatrix> bmap(const_cast<double*>(b.data()), b.size(), 1);
+  if (!ws.solve(factor_.get(), bmap))
+    return {StatusCode::kDiverged, "CHOLMOD solve failed"};
+  x = Eigen::Map<const Vector>(static_cast<const double*>(ws.X->x), n_);
+  return Status::Ok();
+}
+
+DenseMatrix CholmodOperator::flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws_base) const {
+  auto& ws = static_cast<CholmodWorkspace&>(ws_base);
+  const auto m = static_cast<Eigen::Index>(dofs.size());
+  DenseMatrix F(m, m);
+  for (Eigen::Index j0 = 0; j0 < m; j0 += block_columns_) {
+    const Eigen::Index nb = std::min<Eigen::Index>(block_columns_, m - j0);
+    DenseMatrix B = DenseMatrix::Zero(n_, nb);
+    for (Eigen::Index j = 0; j < nb; ++j) B(dofs[j0 + j], j) = 1.0;
+    ws.solve(factor_.get(), B);
+    const Eigen::Map<const DenseMatrix> X(static_cast<const double*>(ws.X->x), n_, nb);
+    for (Eigen::Index j = 0; j < nb; ++j)
+      for (Eigen::Index i = 0; i < m; ++i) F(i, j0 + j) = X(dofs[i], j);
+  }
+  return F;
+}
+
+double CholmodOperator::factor_nonzeros() const {
+  if (!factor_->is_super) return static_cast<double>(factor_->nzmax);
+  return static_cast<double>(factor_->xsize);
+}
+
+}  // namespace railvsi

@@ -1,0 +1,40 @@
+#pragma once
+// Full finite-element backend: one supernodal CHOLMOD factor of K_bar,
+// computed once and reused for every step of every run with the same
+// (structure, dt, HHT parameters).
+#include <memory>
+
+#include "solver/cholmod_handles.hpp"
+#include "solver/structure_operator.hpp"
+
+namespace railvsi {
+
+struct CholmodOperatorOptions {
+  bool rail_flexibility = true;
+  int flexibility_block_columns = 64;  // right-hand sides per blocked solve
+};
+
+class CholmodOperator final : public StructureOperator {
+ public:
+  // Throws InputError naming the first DOF whose pivot is not positive
+  // (a mechanism, or an indefinite matrix).
+  CholmodOperator(const StructureModel& model, const EffectiveMatrixFactors& factors,
+                  const CholmodOperatorOptions& options = {});
+
+  int num_dofs() const override { return n_; }
+  std::unique_ptr<SolveWorkspace> make_workspace() const override;
+  Status solve(const Vector& b, Vector& x, SolveWorkspace& ws) const override;
+  DenseMatrix flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const override;
+  std::string backend_name() const override { return "cholmod"; }
+  // Nonzeros of the factor, for benchmarks.
+  double factor_nonzeros() const;
+
+ private:
+  int n_ = 0;
+  int block_columns_ = 64;
+  // The factor's own common is used for factorization and freeing only.
+  std::unique_ptr<CholmodCommon> common_;
+  std::unique_ptr<cholmod_factor, CholmodFactorDeleter> factor_;
+};
+
+}  // namespace railvsi
