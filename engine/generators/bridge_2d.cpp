@@ -79,7 +79,8 @@ void check_options(const Bridge2dOptions& o) {
         {"pad_c_Ns_per_m", t.pad_c_Ns_per_m},
         {"ballast_c_Ns_per_m", t.ballast_c_Ns_per_m},
         {"subballast_c_Ns_per_m", t.subballast_c_Ns_per_m},
-        {"approach_m", t.approach_m}};
+        {"approach_m", t.approach_m},
+        {"exit_m", t.exit_m}};
     for (const auto& [key, value] : non_negative)
       if (!(value >= 0.0)) throw InputError(fmt::format("/structure/track/{}", key), "must be >= 0");
   }
@@ -195,7 +196,7 @@ std::shared_ptr<const StructureModel> make_bridge_2d(const Bridge2dOptions& o) {
     const double s = t.sleeper_spacing_m;
     const int n_approach = static_cast<int>(std::ceil(t.approach_m / s - 1e-9));
     const double x_start = -n_approach * s;
-    const int n_nodes = static_cast<int>(std::ceil((total_m + t.approach_m - x_start) / s - 1e-9)) + 1;
+    const int n_nodes = static_cast<int>(std::ceil((total_m + t.exit_m - x_start) / s - 1e-9)) + 1;
     std::vector<double> rx(n_nodes);
     std::vector<int> rv(n_nodes), rrot(n_nodes);
     for (int k = 0; k < n_nodes; ++k) {

@@ -23,7 +23,12 @@ struct TrackOptions {
   double ballast_mass_kg = 531.4;       // per sleeper, on the embankments only
   double subballast_k_N_per_m = 77.5e6;
   double subballast_c_Ns_per_m = 3.115e4;
-  double approach_m = 30.0;  // embankment length before and after the bridge
+  // Embankment track before and after the bridge. A train that starts with
+  // all its wheels on the track starts from a true static equilibrium; a
+  // wheel that rolls from the rigid path onto the anchored rail end gets a
+  // transient instead (see default_start_x_m in simulation.hpp).
+  double approach_m = 40.0;
+  double exit_m = 40.0;
 };
 
 struct Bridge2dOptions {

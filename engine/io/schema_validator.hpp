@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/input_error.hpp"
+
 namespace railvsi {
 
 // The parsed embedded schema of that file name. Throws std::logic_error when
@@ -31,5 +33,19 @@ class SchemaValidator {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The steps every document goes through: validate `doc` against its schema,
+// then build(); errors of build() are placed in `file` unless they already
+// name another file (a train of the library, a map of an imported model).
+template <class Build>
+auto parse_validated(const nlohmann::json& doc, std::string_view schema_name, const std::string& file,
+                     Build&& build) -> decltype(build()) {
+  SchemaValidator(schema_name).validate(doc, file);
+  try {
+    return build();
+  } catch (const InputError& e) {
+    throw e.with_file(file);
+  }
+}
 
 }  // namespace railvsi

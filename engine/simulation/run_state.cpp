@@ -27,6 +27,14 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
   max_abs_a_.assign(np, 0.0);
   min_P_.assign(static_cast<std::size_t>(nc), std::numeric_limits<double>::infinity());
   no_contact_s_.assign(static_cast<std::size_t>(nc), 0.0);
+  const auto [b0, b1] = bridge_extent_m(*scene.structure);
+  window_start_m_ = b0 - scene.analysis.evaluation_margin_m;
+  window_end_m_ = b1 + scene.analysis.evaluation_margin_m;
+}
+
+bool RunState::in_window(double front_x_m, const ContactSpec& c) const {
+  const double x = TrainLayout::position_m(front_x_m, c.offset_m);
+  return x >= window_start_m_ && x <= window_end_m_;
 }
 
 void RunState::moving_force_loads(double front_x_m, Vector& f) const {
@@ -82,7 +90,6 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   P_ = solution_.P;
   f_s_ = f_new_;
   add_rail_loads(rows_, P_, 1.0, f_s_);
-  last_t_s_ = t_new;
   return Status::Ok();
 }
 
@@ -93,13 +100,22 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
     max_abs_u_[p] = std::max(max_abs_u_[p], std::abs(s_.u[outputs[p].dof]));
     max_abs_a_[p] = std::max(max_abs_a_[p], std::abs(s_.a[outputs[p].dof]));
   }
+  const double x = front_x(t_s);
+  std::vector<bool>& vehicle_in = vehicle_in_window_;
+  vehicle_in.assign(layout_.vehicles.size(), false);
   for (Eigen::Index c = 0; c < P_.size(); ++c) {
+    const ContactSpec& cs = layout_.contacts[c];
+    if (!in_window(x, cs)) continue;
+    vehicle_in[cs.vehicle] = true;
     min_P_[c] = std::min(min_P_[c], P_[c]);
     if (step_index > 0 && P_[c] <= 0.0) no_contact_s_[c] += dt;
   }
-  for (const VehicleInstance& vi : layout_.vehicles)
+  for (std::size_t v = 0; v < layout_.vehicles.size(); ++v) {
+    if (!vehicle_in[v]) continue;
+    const VehicleInstance& vi = layout_.vehicles[v];
     for (int d : vi.model->body_dofs())
       max_abs_body_a_ = std::max(max_abs_body_a_, std::abs(v_.a[vi.first_dof + d]));
+  }
   if (!store) return;
 
   if (hist.t_s.empty()) {  // first sample: names and columns
@@ -137,11 +153,13 @@ void RunState::summarize(RunSummary& sum) const {
   if (!min_P_.empty()) {
     sum.min_contact_force_N = std::numeric_limits<double>::infinity();
     for (std::size_t c = 0; c < min_P_.size(); ++c) {
+      if (!std::isfinite(min_P_[c])) continue;  // never in the evaluation window
       sum.min_contact_force_N = std::min(sum.min_contact_force_N, min_P_[c]);
       const double q0 = Q0_[static_cast<Eigen::Index>(c)];
       if (q0 > 0.0) sum.max_unloading_ratio = std::max(sum.max_unloading_ratio, (q0 - min_P_[c]) / q0);
       sum.contact_loss_s = std::max(sum.contact_loss_s, no_contact_s_[c]);
     }
+    if (!std::isfinite(sum.min_contact_force_N)) sum.min_contact_force_N = 0.0;
   }
   sum.max_abs_carbody_acceleration_mps2 = max_abs_body_a_;
 }

@@ -25,6 +25,7 @@ class RunState {
 
  private:
   double front_x(double t_s) const { return start_x_m_ + scene_.speed_mps * t_s; }
+  bool in_window(double front_x_m, const ContactSpec& c) const;
   void moving_force_loads(double front_x_m, Vector& f) const;
 
   const Scene& scene_;
@@ -40,7 +41,8 @@ class RunState {
   // Envelopes, updated every step (not only at stored samples).
   std::vector<double> max_abs_u_, max_abs_a_, min_P_, no_contact_s_;
   double max_abs_body_a_ = 0.0;
-  double last_t_s_ = 0.0;
+  std::vector<bool> vehicle_in_window_;
+  double window_start_m_ = 0.0, window_end_m_ = 0.0;
 };
 
 }  // namespace railvsi

@@ -36,9 +36,13 @@ struct AnalysisOptions {
   int max_newton_iterations = 50;
   // Newton stops when |residual| / |static wheel loads| <= tol (eq. 25).
   double newton_tolerance = 1e-10;
-  // Simulated time; by default until the last axle leaves the modelled
-  // track (or the bridge when the wheels run on the deck), plus extra_time_s.
+  // Simulated time; by default until the last axle is evaluation_margin_m
+  // past the bridge, plus extra_time_s.
   std::optional<double> duration_s;
+  // Wheel and car-body envelopes count while the wheel (any wheel of the
+  // vehicle) is within this distance of the bridge: transients where wheels
+  // leave the modelled track are not bridge results.
+  double evaluation_margin_m = 10.0;
   double extra_time_s = 0.0;
   // Store every n-th step in the histories.
   int history_stride = 1;
@@ -50,9 +54,16 @@ struct Scene {
   double speed_mps = 0.0;
   std::shared_ptr<const Irregularity> irregularity;  // null: perfect track
   AnalysisOptions analysis;
-  // x of the train's first axle at t = 0; by default the start of rail line 0.
+  // x of the train's first axle at t = 0; default_start_x_m() when absent.
   std::optional<double> start_x_m;
 };
+
+// The whole train on the modelled track when the approach is long enough
+// (a true static equilibrium, no entry transient), the first axle at the
+// bridge start otherwise.
+double default_start_x_m(const Scene& scene);
+// [start, end] of the bridge along rail line 0.
+std::pair<double, double> bridge_extent_m(const StructureModel& structure);
 
 double hertz_constant(const ContactOptions& c, double wheel_radius_m);
 

@@ -28,15 +28,29 @@ const char* law_name(ContactLaw law) {
   return "unknown";
 }
 
-// Time simulated: until the last axle has left the modelled track (or the
-// deck, when the wheels run on it), plus any extra time asked for.
+// Time simulated: until the last axle is past the evaluation window behind
+// the bridge, plus any extra time asked for.
 double default_duration_s(const Scene& scene, double start_x_m) {
-  const double end_m = scene.structure->rails().front().end_m();
+  const double end_m = bridge_extent_m(*scene.structure).second + scene.analysis.evaluation_margin_m;
   const double travel_m = end_m - start_x_m + scene.train.length_m();
   return travel_m / scene.speed_mps + scene.analysis.extra_time_s;
 }
 
 }  // namespace
+
+std::pair<double, double> bridge_extent_m(const StructureModel& structure) {
+  const StructureInfo& info = structure.info();
+  const RailLine& rail = structure.rails().front();
+  if (info.bridge_end_m > info.bridge_start_m) return {info.bridge_start_m, info.bridge_end_m};
+  return {rail.start_m(), rail.end_m()};
+}
+
+double default_start_x_m(const Scene& scene) {
+  const double rail_start = scene.structure->rails().front().start_m();
+  const double bridge_start = bridge_extent_m(*scene.structure).first;
+  const double whole_train_on_track = rail_start + scene.train.length_m() + 1.0;
+  return std::max(rail_start, std::min(bridge_start, whole_train_on_track));
+}
 
 std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& scene) {
   const HhtCoefficients h(scene.analysis.hht, scene.analysis.dt_s);
@@ -55,7 +69,7 @@ Result Simulation::run() const {
   const Scene& sc = scene_;
   const AnalysisOptions& an = sc.analysis;
   const HhtCoefficients h(an.hht, an.dt_s);
-  const double x0 = sc.start_x_m.value_or(sc.structure->rails().front().start_m());
+  const double x0 = sc.start_x_m.value_or(default_start_x_m(sc));
   const double duration = an.duration_s.value_or(
       sc.speed_mps > 0.0 ? default_duration_s(sc, x0) : 0.0);
   if (!(duration > 0.0) || !std::isfinite(duration)) {

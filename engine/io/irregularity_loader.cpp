@@ -1,0 +1,105 @@
+#include "io/irregularity_loader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/input_error.hpp"
+#include "io/json_document.hpp"
+#include "io/schema_validator.hpp"
+#include "io/text_fields.hpp"
+
+namespace railvsi {
+namespace {
+
+struct ProfileSamples {
+  std::vector<double> x_m, r_m;
+  std::vector<int> line;  // line of each sample, for errors found later
+};
+
+InputError csv_error(const std::filesystem::path& file, int line, const std::string& what) {
+  return InputError("/csv", line > 0 ? fmt::format("{}:{}: {}", file.string(), line, what)
+                                     : fmt::format("{}: {}", file.string(), what));
+}
+
+bool is_blank_or_comment(const std::string& line) {
+  const auto first = line.find_first_not_of(" \t\r");
+  return first == std::string::npos || line[first] == '#';
+}
+
+// A header names the columns; a line starting with a digit is a bad sample.
+bool looks_like_header(const std::string& line) {
+  const auto first = line.find_first_not_of(" \t");
+  return std::isalpha(static_cast<unsigned char>(line[first])) || line[first] == '"';
+}
+
+// Two columns x_m, r_m separated by a comma, a semicolon or blanks; one
+// header line allowed before the first sample; '#' starts a comment line.
+ProfileSamples read_profile_csv(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw csv_error(file, 0, "cannot open the profile file");
+  ProfileSamples s;
+  bool header_allowed = true;
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    if (is_blank_or_comment(line)) continue;
+    std::string fields = line;
+    std::replace_if(fields.begin(), fields.end(), [](char c) { return c == ',' || c == ';'; }, ' ');
+    double x = 0.0, r = 0.0;
+    if (parse_fields(fields, x, r)) {
+      s.x_m.push_back(x);
+      s.r_m.push_back(r);
+      s.line.push_back(number);
+    } else if (!header_allowed || !looks_like_header(line)) {
+      throw csv_error(file, number, fmt::format("expected two numbers 'x_m, r_m', found '{}'", line));
+    }
+    header_allowed = false;
+  }
+  if (s.x_m.empty()) throw csv_error(file, 0, "no samples; expected lines 'x_m, r_m' (one header line allowed)");
+  return s;
+}
+
+// Index k of a path ".../k" reported by the Irregularity constructor.
+std::optional<std::size_t> trailing_index(const std::string& json_path) {
+  const std::string last = json_path.substr(json_path.rfind('/') + 1);
+  if (last.empty() || !std::all_of(last.begin(), last.end(), [](unsigned char c) { return std::isdigit(c); })) return std::nullopt;
+  return std::stoul(last);
+}
+
+std::shared_ptr<const Irregularity> irregularity_from_csv(const std::filesystem::path& file) {
+  ProfileSamples s = read_profile_csv(file);
+  const std::vector<int> lines = s.line;
+  try {
+    return std::make_shared<const Irregularity>(std::move(s.x_m), std::move(s.r_m), file.string());
+  } catch (const InputError& e) {
+    const auto k = trailing_index(e.json_path());
+    throw csv_error(file, k && *k < lines.size() ? lines[*k] : 0, e.what());
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<const Irregularity> parse_irregularity(const nlohmann::json& node,
+                                                       const std::filesystem::path& base_dir) {
+  if (node.contains("csv")) {
+    if (node.contains("x_m") || node.contains("r_m"))
+      throw InputError("/x_m", "give either csv or x_m and r_m, not both");
+    return irregularity_from_csv(resolve_relative(base_dir, node.at("csv").get<std::string>()));
+  }
+  return std::make_shared<const Irregularity>(node.at("x_m").get<std::vector<double>>(),
+                                              node.at("r_m").get<std::vector<double>>(), "inline");
+}
+
+std::shared_ptr<const Irregularity> parse_irregularity_document(const nlohmann::json& doc,
+                                                                const std::filesystem::path& file) {
+  return parse_validated(doc, "irregularity.schema.json", file.string(),
+                         [&] { return parse_irregularity(doc, file.parent_path()); });
+}
+
+}  // namespace railvsi

@@ -1,0 +1,20 @@
+#pragma once
+// The structure of a scene: the bridge-2d generator, or a model imported
+// from Matrix Market files plus a JSON map (schema structure-map.schema.json).
+#include <filesystem>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "model/structure_model.hpp"
+
+namespace railvsi {
+
+// `structure` and `outputs` are the validated /structure and /outputs values
+// of a scene (outputs may be an empty object). InputError paths are absolute
+// in the scene; errors in the map file name that file.
+std::shared_ptr<const StructureModel> parse_structure(const nlohmann::json& structure,
+                                                      const nlohmann::json& outputs,
+                                                      const std::filesystem::path& base_dir);
+
+}  // namespace railvsi

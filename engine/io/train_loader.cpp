@@ -1,0 +1,197 @@
+#include "io/train_loader.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/input_error.hpp"
+#include "generators/vehicle_2d.hpp"
+#include "io/json_document.hpp"
+#include "io/schema_validator.hpp"
+
+namespace railvsi {
+namespace {
+
+using nlohmann::json;
+
+std::optional<double> optional_number(const json& object, const char* key) {
+  const auto it = object.find(key);
+  return it == object.end() ? std::nullopt : std::optional<double>(it->get<double>());
+}
+
+SpringDamper spring_damper(const json& s) {
+  return {s.at("k_N_per_m").get<double>(), s.at("c_Ns_per_m").get<double>()};
+}
+
+Car2dOptions car_2d_options(const json& car) {
+  Car2dOptions o;
+  o.name = car.at("name").get<std::string>();
+  o.body_mass_kg = car.at("car_body").at("mass_kg").get<double>();
+  o.body_pitch_inertia_kgm2 = car.at("car_body").at("pitch_inertia_kgm2").get<double>();
+  o.bogie_mass_kg = car.at("bogie").at("mass_kg").get<double>();
+  o.bogie_pitch_inertia_kgm2 = car.at("bogie").at("pitch_inertia_kgm2").get<double>();
+  o.wheelset_mass_kg = car.at("wheelset").at("mass_kg").get<double>();
+  o.wheel_radius_m = car.at("wheelset").value("radius_m", o.wheel_radius_m);
+  o.bogie_spacing_m = car.at("bogie_spacing_m").get<double>();
+  o.axle_spacing_m = car.at("axle_spacing_m").get<double>();
+  o.primary = spring_damper(car.at("primary"));
+  o.secondary = spring_damper(car.at("secondary"));
+  return o;
+}
+
+// A square matrix given as a list of rows; `path` is its JSON pointer.
+DenseMatrix dense_matrix(const json& rows, const std::string& path) {
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  DenseMatrix A(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const json& row = rows[static_cast<std::size_t>(i)];
+    if (static_cast<Eigen::Index>(row.size()) != n)
+      throw InputError(child_path(path, static_cast<std::size_t>(i)),
+                       fmt::format("row has {} values; the matrix has {} rows and must be square", row.size(), n));
+    for (Eigen::Index j = 0; j < n; ++j) A(i, j) = row[static_cast<std::size_t>(j)].get<double>();
+  }
+  return A;
+}
+
+std::shared_ptr<const VehicleModel> imported_vehicle(const json& v) {
+  const json& m = v.at("matrices");
+  DenseMatrix C = m.contains("C") ? dense_matrix(m.at("C"), "/matrices/C") : DenseMatrix();
+  const auto flags = v.at("vertical_dofs").get<std::vector<double>>();
+  const Vector gravity_dofs = Eigen::Map<const Vector>(flags.data(), static_cast<Eigen::Index>(flags.size()));
+  std::vector<Wheel> wheels;
+  for (const json& w : v.at("wheels")) {
+    Wheel wheel;
+    wheel.dof = w.at("dof").get<int>();
+    wheel.offset_m = w.at("offset_m").get<double>();
+    wheel.radius_m = w.value("radius_m", wheel.radius_m);
+    wheels.push_back(wheel);
+  }
+  auto model = std::make_shared<VehicleModel>(
+      v.at("name").get<std::string>(), dense_matrix(m.at("K"), "/matrices/K"), dense_matrix(m.at("M"), "/matrices/M"),
+      std::move(C), gravity_dofs, std::move(wheels));
+  const auto body_dofs = v.value("body_dofs", std::vector<int>{});
+  for (std::size_t k = 0; k < body_dofs.size(); ++k)
+    if (body_dofs[k] >= model->num_dofs())
+      throw InputError(child_path("/body_dofs", k),
+                       fmt::format("DOF {} outside the vehicle (0..{})", body_dofs[k], model->num_dofs() - 1));
+  model->set_body_dofs(body_dofs);
+  return model;
+}
+
+// Identical car definitions (placement aside) share one model.
+class VehicleCatalog {
+ public:
+  std::shared_ptr<const VehicleModel> model_of(const json& car, const std::string& path) {
+    json definition = car;
+    for (const char* placement : {"offset_m", "count", "length_m", "source"}) definition.erase(placement);
+    auto& model = models_[definition.dump()];
+    if (!model)
+      model = with_path_prefix(path, [&] {
+        return car.contains("template") ? make_car_2d(car_2d_options(car)) : imported_vehicle(car);
+      });
+    return model;
+  }
+
+ private:
+  std::map<std::string, std::shared_ptr<const VehicleModel>> models_;
+};
+
+// Cars front to back; a car without offset_m follows the previous one.
+std::vector<TrainVehicle> place_vehicles(const json& cars) {
+  VehicleCatalog catalog;
+  std::vector<TrainVehicle> placed;
+  std::optional<double> next_offset_m = 0.0;  // where a car without offset_m goes
+  for (std::size_t i = 0; i < cars.size(); ++i) {
+    const json& car = cars[i];
+    const std::string path = child_path("/vehicles", i);
+    const auto model = catalog.model_of(car, path);
+    const std::optional<double> length_m = optional_number(car, "length_m");
+    const int count = car.value("count", 1);
+    if (count > 1 && !length_m)
+      throw InputError(path + "/length_m", "needed to repeat the car (count > 1)");
+    const std::optional<double> given_offset_m = optional_number(car, "offset_m");
+    if (!given_offset_m && !next_offset_m)
+      throw InputError(path + "/offset_m",
+                       "needed: the previous car has no length_m to place this one behind it");
+    const double offset_m = given_offset_m ? *given_offset_m : *next_offset_m;
+    for (int k = 0; k < count; ++k) placed.push_back({model, offset_m + k * length_m.value_or(0.0)});
+    next_offset_m = length_m ? std::optional<double>(offset_m + count * *length_m) : std::nullopt;
+  }
+  return placed;
+}
+
+// For now each vehicle's weight is shared equally by its wheels (the static
+// wheel loads of a symmetric car); documented in train.schema.json "as".
+std::vector<MovingForce> wheel_loads_as_moving_forces(const std::vector<TrainVehicle>& vehicles) {
+  std::vector<MovingForce> forces;
+  for (const TrainVehicle& v : vehicles) {
+    const auto& wheels = v.model->wheels();
+    const double load_N = v.model->total_mass_kg() * kGravity_mps2 / static_cast<double>(wheels.size());
+    for (const Wheel& w : wheels) forces.push_back({v.offset_m + w.offset_m, load_N});
+  }
+  std::stable_sort(forces.begin(), forces.end(),
+                   [](const MovingForce& a, const MovingForce& b) { return a.offset_m < b.offset_m; });
+  return forces;
+}
+
+std::vector<MovingForce> moving_forces(const json& list) {
+  std::vector<MovingForce> forces;
+  for (const json& f : list) forces.push_back({f.at("offset_m").get<double>(), f.at("load_N").get<double>()});
+  return forces;
+}
+
+}  // namespace
+
+std::filesystem::path train_library_dir() {
+  const char* library = std::getenv("RAILVSI_LIBRARY");
+  return std::filesystem::path(library != nullptr && *library != '\0' ? library : RAILVSI_SOURCE_DIR "/jobs") /
+         "trains";
+}
+
+std::vector<std::string> library_train_names() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(train_library_dir(), ec))
+    if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Train load_library_train(const std::string& name) {
+  // Only names listed in the library are opened: a name is never a path.
+  const auto names = library_train_names();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw InputError("", fmt::format("unknown train '{}'; the library {} has: {}", name,
+                                     train_library_dir().string(),
+                                     names.empty() ? std::string("no trains") : fmt::format("{}", fmt::join(names, ", "))));
+  const auto file = train_library_dir() / (name + ".json");
+  return parse_train_document(read_json_file(file), file);
+}
+
+Train parse_train(const json& train) {
+  Train t;
+  t.name = train.at("name").get<std::string>();
+  if (train.contains("moving_forces")) {
+    if (train.contains("vehicles")) throw InputError("/vehicles", "give either moving_forces or vehicles, not both");
+    if (train.contains("as")) throw InputError("/as", "applies to vehicles only; moving_forces are moving forces already");
+    t.moving_forces = moving_forces(train.at("moving_forces"));
+    return t;
+  }
+  t.vehicles = place_vehicles(train.at("vehicles"));
+  if (train.value("as", "multibody") == "moving_forces") {
+    t.moving_forces = wheel_loads_as_moving_forces(t.vehicles);
+    t.vehicles.clear();
+  }
+  return t;
+}
+
+Train parse_train_document(const json& doc, const std::filesystem::path& file) {
+  return parse_validated(doc, "train.schema.json", file.string(), [&] { return parse_train(doc); });
+}
+
+}  // namespace railvsi
