@@ -15,14 +15,8 @@ void contact_residual(const Vector& delta_bar, const DenseMatrix& A,
   for (Eigen::Index c = 0; c < n; ++c) {
     const ContactLawPoint& law = laws[static_cast<std::size_t>(c)];
     if (law.is_rigid()) {
-      const double gap_force = -delta[c] / A(c, c);
-      if (law.unilateral && P[c] <= gap_force) {
-        phi[c] = P[c];
-        if (J) (*J)(c, c) = 1.0;
-      } else {
-        phi[c] = gap_force;
-        if (J) J->row(c) = A.row(c) / A(c, c);
-      }
+      phi[c] = -delta[c] / A(c, c);
+      if (J) J->row(c) = A.row(c) / A(c, c);
     } else {
       phi[c] = P[c] - law.force(delta[c]);
       if (J) {
@@ -65,7 +59,6 @@ Status solve_contact_problem(const Vector& delta_bar, const DenseMatrix& A,
       for (Eigen::Index c = 0; c < P.size(); ++c) {
         const ContactLawPoint& law = laws[static_cast<std::size_t>(c)];
         if (!law.is_rigid()) P[c] = law.force(ws.delta[c]);
-        else if (law.unilateral && P[c] < 0.0) P[c] = 0.0;
       }
       return Status::Ok();
     }

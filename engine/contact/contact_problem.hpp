@@ -3,13 +3,15 @@
 // vehicles (DESIGN.md step 4): find the contact forces P with
 //   delta(P) = delta_bar - A P
 //   compliant contact:  P_c = H_c(delta_c(P))
-//   rigid, bilateral:   delta_c(P) = 0
-//   rigid, unilateral:  P_c >= 0, delta_c <= 0, P_c delta_c = 0
+//   rigid (bilateral):  delta_c(P) = 0
 // by a semi-smooth Newton method on Phi(P) = 0, every component in newtons:
 //   compliant: Phi_c = P_c - H_c(delta_c)
-//   rigid:     Phi_c = min(P_c, -delta_c / A_cc)   (bilateral: -delta_c / A_cc)
-// The active set follows from the min/max branches, so contacts open and
-// close inside the iteration.
+//   rigid:     Phi_c = -delta_c / A_cc
+// A unilateral compliant law has H = 0 for an open contact, so contacts
+// open and close inside the iteration (the active set follows from the
+// branch of H). A rigid contact is always bilateral: with a displacement
+// constraint, re-impact of a wheel is ill-posed under HHT (the force
+// chatters between zero and MN-level spikes from step to step).
 #include <vector>
 
 #include "contact/contact_law.hpp"

@@ -37,30 +37,12 @@ class ReferenceStepSolver final : public StepSolver {
     const int n = ns_ + nv_ + nc_;
     if (z_.size() != n) z_ = Vector::Zero(n);
     z_.tail(nc_) = s.P;
-    // Active set: contacts that carried load last step (compliant laws
-    // switch by themselves through H; rigid ones need the outer loop).
-    std::vector<bool> active(static_cast<std::size_t>(nc_));
-    for (int c = 0; c < nc_; ++c) active[c] = !layout_.contacts[c].law.unilateral || s.P[c] > 0.0;
     s.iterations = 0;
-    for (int outer = 0; outer < 30; ++outer) {
-      if (Status st = newton(p, active, s.iterations); !st.ok()) return st;
-      bool changed = false;
-      for (int c = 0; c < nc_; ++c) {
-        const ContactSpec& cs = layout_.contacts[c];
-        if (!cs.law.is_rigid() || !cs.law.unilateral) continue;
-        const double P = z_[ns_ + nv_ + c];
-        const double delta = penetration(p, c);
-        if (active[c] && P < 0.0) { active[c] = false; changed = true; }
-        else if (!active[c] && delta > 1e-12) { active[c] = true; changed = true; }
-      }
-      if (!changed) {
-        s.u_s = z_.head(ns_);
-        s.u_v = z_.segment(ns_, nv_);
-        s.P = z_.tail(nc_);
-        return Status::Ok();
-      }
-    }
-    return {StatusCode::kNoConvergence, "reference path: rigid contact active set did not settle"};
+    if (Status st = newton(p, s.iterations); !st.ok()) return st;
+    s.u_s = z_.head(ns_);
+    s.u_v = z_.segment(ns_, nv_);
+    s.P = z_.tail(nc_);
+    return Status::Ok();
   }
 
  private:
@@ -68,7 +50,7 @@ class ReferenceStepSolver final : public StepSolver {
     return rail_top(p.rows[c], z_) + p.r[c] - z_[ns_ + layout_.contacts[c].global_dof];
   }
 
-  void residual(const StepProblem& p, const std::vector<bool>& active, Vector& R) const {
+  void residual(const StepProblem& p, Vector& R) const {
     const double one_alpha = 1.0 + options_.alpha;
     const Vector u = z_.head(ns_ + nv_);
     R.resize(z_.size());
@@ -83,18 +65,18 @@ class ReferenceStepSolver final : public StepSolver {
       const ContactSpec& cs = layout_.contacts[c];
       R[ns_ + cs.global_dof] -= one_alpha * P[c];
       const double delta = penetration(p, c);
-      if (cs.law.is_rigid()) R[ns_ + nv_ + c] = active[c] ? -delta : P[c];
+      if (cs.law.is_rigid()) R[ns_ + nv_ + c] = -delta;
       else R[ns_ + nv_ + c] = P[c] - cs.law.force(delta);
     }
   }
 
-  Status newton(const StepProblem& p, const std::vector<bool>& active, int& iterations) {
+  Status newton(const StepProblem& p, int& iterations) {
     const double one_alpha = 1.0 + options_.alpha;
     const int n = ns_ + nv_ + nc_;
     Vector R;
     for (int it = 0; it < options_.max_iterations; ++it) {
       ++iterations;
-      residual(p, active, R);
+      residual(p, R);
       std::vector<Triplet> t = base_;
       for (int c = 0; c < nc_; ++c) {
         const ContactSpec& cs = layout_.contacts[c];
@@ -108,7 +90,7 @@ class ReferenceStepSolver final : public StepSolver {
         // Constraint rows: H_bar of eq. (36), or the linearized contact law.
         double dn = 0.0, dp = 0.0;  // d R_c / d(delta), d R_c / dP
         if (cs.law.is_rigid()) {
-          if (active[c]) dn = -1.0; else dp = 1.0;
+          dn = -1.0;
         } else {
           dn = -cs.law.stiffness(penetration(p, c));
           dp = 1.0;
@@ -133,7 +115,7 @@ class ReferenceStepSolver final : public StepSolver {
       // The structure and vehicle rows are linear and now hold to round-off;
       // convergence is judged on the nonlinear (compliant) contact rows, in
       // newtons, as eq. (25). Rigid rows are linear too: one iteration is exact.
-      residual(p, active, R);
+      residual(p, R);
       double contact_res = 0.0;
       for (int c = 0; c < nc_; ++c)
         if (!layout_.contacts[c].law.is_rigid()) contact_res += R[ns_ + nv_ + c] * R[ns_ + nv_ + c];

@@ -23,8 +23,10 @@ TrainLayout::TrainLayout(const Train& train, const ContactOptions& contact) {
       c.offset_m = tv.offset_m + wheel.offset_m;
       c.rail_line = wheel.rail_line;
       c.law.law = contact.law;
-      // Hertz cannot pull; the flag matters for rigid and linearized laws.
-      c.law.unilateral = contact.law == ContactLaw::kHertz ? true : contact.unilateral;
+      // Hertz cannot pull and a rigid contact cannot let go (see
+      // contact_problem.hpp); the flag matters for the linearized law only.
+      c.law.unilateral = contact.law == ContactLaw::kHertz ||
+                         (contact.law == ContactLaw::kLinearHertz && contact.unilateral);
       c.law.G = hertz_constant(contact, wheel.radius_m);
       c.law.n = contact.wheels_per_contact;
       contacts.push_back(c);
