@@ -19,11 +19,13 @@ HhtCoefficients::HhtCoefficients(const HhtParameters& p, double dt_s)
   c5 = dt * (1.0 - gamma / (2.0 * beta));
 }
 
-void hht_update(const HhtCoefficients& h, const Vector& u_new, KinematicState& s) {
-  Vector a_new = h.c0 * (u_new - s.u) - h.c1 * s.v - h.c2 * s.a;
-  s.v += h.dt * ((1.0 - h.gamma) * s.a + h.gamma * a_new);
-  s.a = std::move(a_new);
-  s.u = u_new;
+void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new, KinematicState& s) {
+  for (Eigen::Index i = 0; i < u_new.size(); ++i) {
+    const double a_new = h.c0 * (u_new[i] - s.u[i]) - h.c1 * s.v[i] - h.c2 * s.a[i];
+    s.v[i] += h.dt * ((1.0 - h.gamma) * s.a[i] + h.gamma * a_new);
+    s.a[i] = a_new;
+    s.u[i] = u_new[i];
+  }
 }
 
 double hht_spectral_radius(const HhtParameters& p, double omega_dt) {

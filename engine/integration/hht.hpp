@@ -63,7 +63,8 @@ void hht_history_rhs(const HhtCoefficients& h, const Mat& M, const Mat& C, const
   }
 }
 
-// Velocities and accelerations at t_{n+1} from the new displacements.
-void hht_update(const HhtCoefficients& h, const Vector& u_new, KinematicState& s);
+// Velocities and accelerations at t_{n+1} from the new displacements
+// (eqs. 16-17), in place.
+void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new, KinematicState& s);
 
 }  // namespace railvsi

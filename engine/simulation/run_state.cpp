@@ -11,9 +11,15 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
     : scene_(scene), layout_(layout), start_x_m_(start_x_m) {
   const int ns = scene.structure->num_dofs();
   s_.resize(ns);
-  v_.resize(layout.num_vehicle_dofs);
   s_.u = statics.u_s;
-  if (statics.u_v.size() == layout.num_vehicle_dofs) v_.u = statics.u_v;
+  for (const VehicleInstance& vi : layout.vehicles) {
+    KinematicState k;
+    k.resize(vi.model->num_dofs());
+    k.u = statics.u_v.segment(vi.first_dof, vi.model->num_dofs());
+    vehicles_.push_back(std::move(k));
+    vehicle_rhs_.emplace_back(vi.model->num_dofs());
+    vehicle_work_.emplace_back(vi.model->num_dofs());
+  }
   const auto nc = static_cast<Eigen::Index>(layout.contacts.size());
   P_ = nc > 0 ? statics.P : Vector();
   Q0_ = P_;
@@ -58,18 +64,14 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
 
   // Right-hand sides of eq. (3) with the new contact forces left out:
   // (1+alpha) F_{n+1} - alpha F_n + history terms.
-  hht_history_rhs(h, scene_.structure->M(), scene_.structure->C(), scene_.structure->K(), s_, rhs_s_, work_);
+  scene_.structure->history().apply(h, s_, rhs_s_);
   rhs_s_ += (1.0 + h.alpha) * f_new_ - h.alpha * f_s_;
-  rhs_v_ = Vector::Zero(v_.u.size());
-  for (const VehicleInstance& vi : layout_.vehicles) {
-    const int n = vi.model->num_dofs();
-    KinematicState local;
-    local.u = v_.u.segment(vi.first_dof, n);
-    local.v = v_.v.segment(vi.first_dof, n);
-    local.a = v_.a.segment(vi.first_dof, n);
-    Vector rhs(n), work(n);
-    hht_history_rhs(h, vi.model->M(), vi.model->C(), vi.model->K(), local, rhs, work);
-    rhs_v_.segment(vi.first_dof, n) = rhs;
+  rhs_v_.resize(layout_.num_vehicle_dofs);
+  for (std::size_t i = 0; i < layout_.vehicles.size(); ++i) {
+    const VehicleInstance& vi = layout_.vehicles[i];
+    hht_history_rhs(h, vi.model->M(), vi.model->C(), vi.model->K(), vehicles_[i], vehicle_rhs_[i],
+                    vehicle_work_[i]);
+    rhs_v_.segment(vi.first_dof, vi.model->num_dofs()) = vehicle_rhs_[i];
   }
   rhs_v_ += layout_.gravity_load_N;
   for (Eigen::Index c = 0; c < P_.size(); ++c) rhs_v_[layout_.contacts[c].global_dof] -= h.alpha * P_[c];
@@ -86,7 +88,9 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
     return {StatusCode::kDiverged, fmt::format("structure displacement {:.3e} m: the solution diverged", u_max)};
 
   hht_update(h, solution_.u_s, s_);
-  if (v_.u.size() > 0) hht_update(h, solution_.u_v, v_);
+  for (std::size_t i = 0; i < layout_.vehicles.size(); ++i)
+    hht_update(h, solution_.u_v.segment(layout_.vehicles[i].first_dof, layout_.vehicles[i].model->num_dofs()),
+               vehicles_[i]);
   P_ = solution_.P;
   f_s_ = f_new_;
   add_rail_loads(rows_, P_, 1.0, f_s_);
@@ -112,9 +116,8 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
   }
   for (std::size_t v = 0; v < layout_.vehicles.size(); ++v) {
     if (!vehicle_in[v]) continue;
-    const VehicleInstance& vi = layout_.vehicles[v];
-    for (int d : vi.model->body_dofs())
-      max_abs_body_a_ = std::max(max_abs_body_a_, std::abs(v_.a[vi.first_dof + d]));
+    for (int d : layout_.vehicles[v].model->body_dofs())
+      max_abs_body_a_ = std::max(max_abs_body_a_, std::abs(vehicles_[v].a[d]));
   }
   if (!store) return;
 
@@ -137,8 +140,9 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
   }
   for (Eigen::Index c = 0; c < P_.size(); ++c) hist.contact_force_N[c].push_back(P_[c]);
   std::size_t b = 0;
-  for (const VehicleInstance& vi : layout_.vehicles)
-    for (int d : vi.model->body_dofs()) hist.carbody_acceleration_mps2[b++].push_back(v_.a[vi.first_dof + d]);
+  for (std::size_t v = 0; v < layout_.vehicles.size(); ++v)
+    for (int d : layout_.vehicles[v].model->body_dofs())
+      hist.carbody_acceleration_mps2[b++].push_back(vehicles_[v].a[d]);
 }
 
 void RunState::summarize(RunSummary& sum) const {

@@ -31,12 +31,14 @@ class RunState {
   const Scene& scene_;
   const TrainLayout& layout_;
   double start_x_m_;
-  KinematicState s_, v_;
+  KinematicState s_;
+  std::vector<KinematicState> vehicles_;  // one per vehicle instance
+  std::vector<Vector> vehicle_rhs_, vehicle_work_;
   Vector P_;    // contact forces at t_n
   Vector Q0_;   // static wheel loads
   Vector f_s_;  // total structure load at t_n
   std::vector<std::optional<RailContactRow>> rows_;
-  Vector r_, rhs_s_, rhs_v_, f_new_, work_;
+  Vector r_, rhs_s_, rhs_v_, f_new_;
   StepSolution solution_;
   // Envelopes, updated every step (not only at stored samples).
   std::vector<double> max_abs_u_, max_abs_a_, min_P_, no_contact_s_;

@@ -1,0 +1,95 @@
+// Engine benchmarks. Timings are reported as ratios to a floor measured in
+// the same process: one structure solve (forward/backward substitution with
+// the cached CHOLMOD factor) of the same model.
+//   overhead = wall / (steps x t_solve)
+// The condensed method needs two solves per step, so 2.0 is the floor.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+
+#include "simulation/simulation.hpp"
+#include "test_scenes.hpp"
+
+namespace railvsi {
+namespace {
+
+// ICE3-like train (8 coaches) at 300 km/h over three 25 m simply supported
+// spans with ballasted track, nonlinear Hertz, dt = 2.5e-4 s.
+Scene ice3_on_viaduct() {
+  Bridge2dOptions b;
+  b.spans_m = {25.0, 25.0, 25.0};
+  b.deck_mass_kg_per_m = 18000.0;
+  // f1 = 5 Hz: EI = m (2 L^2 f1 / pi)^2
+  const double f1 = 5.0, L = 25.0;
+  b.deck_EI_Nm2 = b.deck_mass_kg_per_m * std::pow(2.0 * L * L * f1 / std::numbers::pi, 2);
+  b.damping_ratio = 0.02;
+  Scene s;
+  const auto coach = make_car_2d(testing::ice3_coach());
+  for (int i = 0; i < 8; ++i) s.train.vehicles.push_back({coach, 24.775 * i});
+  TrackOptions t;
+  t.approach_m = s.train.length_m() + 10.0;  // the whole train starts on the track
+  b.track = t;
+  s.structure = make_bridge_2d(b);
+  s.speed_mps = 300.0 / 3.6;
+  s.analysis.dt_s = 2.5e-4;
+  s.analysis.contact.law = ContactLaw::kHertz;
+  s.analysis.history_stride = 10;
+  return s;
+}
+
+double seconds_per_solve(const StructureOperator& op) {
+  auto ws = op.make_workspace();
+  Vector b = Vector::Ones(op.num_dofs()), x;
+  const int reps = 2000;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < reps; ++i) {
+    (void)op.solve(b, x, *ws);
+    b[i % b.size()] += 1e-3 * x[0];  // keep the loop honest
+  }
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / reps;
+}
+
+void BM_StructureSolve(benchmark::State& state) {
+  const Scene scene = ice3_on_viaduct();
+  const auto op = make_structure_operator(scene);
+  auto ws = op->make_workspace();
+  Vector b = Vector::Ones(op->num_dofs()), x;
+  for (auto _ : state) {
+    (void)op->solve(b, x, *ws);
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.counters["dofs"] = op->num_dofs();
+}
+BENCHMARK(BM_StructureSolve)->Unit(benchmark::kMicrosecond);
+
+void BM_Ice3Viaduct300(benchmark::State& state) {
+  const Scene scene = ice3_on_viaduct();
+  Result r;
+  double t_solve = 0.0;
+  for (auto _ : state) {
+    r = Simulation(scene).run();
+    state.PauseTiming();
+    const auto op = make_structure_operator(scene);
+    t_solve = seconds_per_solve(*op);
+    state.ResumeTiming();
+  }
+  if (!r.status.ok()) state.SkipWithError(r.status.message().c_str());
+  const RunSummary& s = r.summary;
+  state.counters["wall_s"] = s.wall_s;
+  state.counters["setup_s"] = s.setup_s;
+  state.counters["steps"] = static_cast<double>(s.steps);
+  state.counters["newton_per_step"] = static_cast<double>(s.newton_iterations) / static_cast<double>(s.steps);
+  state.counters["structure_dofs"] = s.structure_dofs;
+  state.counters["vehicle_dofs"] = s.vehicle_dofs;
+  state.counters["contacts"] = s.contacts;
+  state.counters["solve_us"] = t_solve * 1e6;
+  state.counters["overhead"] = (s.wall_s - s.setup_s) / (static_cast<double>(s.steps) * t_solve);
+  state.counters["max_unloading"] = s.max_unloading_ratio;
+  state.counters["max_deck_acc"] = s.max_abs_acceleration_mps2;
+}
+BENCHMARK(BM_Ice3Viaduct300)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
+}  // namespace railvsi
+
+BENCHMARK_MAIN();
