@@ -37,6 +37,25 @@ double rail_top(const std::optional<RailContactRow>& row, const Vector& u) {
   return z;
 }
 
+Vector static_wheel_loads_on_rigid_track(const VehicleModel& vehicle) {
+  // [K -E^T; -E 0] [u; P] = [F_g; 0]: wheels held at zero displacement.
+  const Eigen::Index n = vehicle.num_dofs();
+  const auto nw = static_cast<Eigen::Index>(vehicle.wheels().size());
+  DenseMatrix J = DenseMatrix::Zero(n + nw, n + nw);
+  J.topLeftCorner(n, n) = vehicle.K();
+  for (Eigen::Index w = 0; w < nw; ++w) {
+    J(vehicle.wheels()[w].dof, n + w) = -1.0;
+    J(n + w, vehicle.wheels()[w].dof) = -1.0;
+  }
+  Vector rhs = Vector::Zero(n + nw);
+  rhs.head(n) = vehicle.gravity_load_N();
+  const Eigen::FullPivLU<DenseMatrix> lu(J);
+  if (!lu.isInvertible())
+    throw InputError("", fmt::format("vehicle '{}' is not statically supported by its wheels",
+                                     vehicle.name()));
+  return lu.solve(rhs).tail(nw);
+}
+
 namespace {
 
 // Moving forces: the loads at t = 0, structure only.

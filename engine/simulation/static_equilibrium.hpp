@@ -28,6 +28,11 @@ std::vector<std::optional<RailContactRow>> locate_contacts(const StructureModel&
 // carried by its wheels.
 StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m);
 
+// Wheel loads of one vehicle standing on a rigid, level track: what the
+// vehicle becomes when a scene asks for it as moving forces. Throws
+// InputError if the vehicle is not carried by its wheels.
+Vector static_wheel_loads_on_rigid_track(const VehicleModel& vehicle);
+
 // Adds -scale * N_k^T P_k to f for every on-track load.
 void add_rail_loads(const std::vector<std::optional<RailContactRow>>& rows, const Vector& P,
                     double scale, Vector& f);
