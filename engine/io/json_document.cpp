@@ -10,8 +10,9 @@ namespace railvsi {
 nlohmann::json parse_json_text(std::string_view text, const std::string& file_for_errors) {
   try {
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann's message already has "line L, column C"; drop its error id.
+  } catch (const nlohmann::json::exception& e) {
+    // A syntax error's message already has "line L, column C"; a number too
+    // large for a double says which number. Drop nlohmann's error id.
     std::string message = e.what();
     if (const auto bracket = message.find("] "); message.starts_with("[json.exception") &&
                                                  bracket != std::string::npos)

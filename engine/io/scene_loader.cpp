@@ -75,6 +75,7 @@ AnalysisOptions parse_analysis(const json& a) {
   o.max_newton_iterations = a.value("max_newton_iterations", o.max_newton_iterations);
   o.newton_tolerance = a.value("newton_tolerance", o.newton_tolerance);
   if (a.contains("duration_s")) o.duration_s = a.at("duration_s").get<double>();
+  o.evaluation_margin_m = a.value("evaluation_margin_m", o.evaluation_margin_m);
   o.extra_time_s = a.value("extra_time_s", o.extra_time_s);
   o.history_stride = a.value("history_stride", o.history_stride);
   return o;

@@ -1,5 +1,6 @@
 #include "io/schema_validator.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -165,12 +166,38 @@ std::string quoted_name(const std::string& description) {
   return first == std::string::npos ? std::string() : description.substr(first + 1, last - first - 1);
 }
 
-std::string with_expectation(std::string message, const std::string& description) {
-  if (!description.empty()) message += " Expected: " + description;
-  return message;
+// valijson's own message, then what the schema says about the value.
+std::string with_expectation(const std::string& message, std::string description) {
+  if (description.empty()) return message;
+  if (!message.starts_with("Expected")) return message + " Expected: " + description;
+  if (description.ends_with('.')) description.pop_back();
+  return message + " (" + description + ")";
 }
 
-InputError to_input_error(const valijson::ValidationResults::Error& error, const Place& place,
+bool is_missing_property(const std::string& description) {
+  return description.starts_with("Missing required property");
+}
+
+// Every property missing at the place of `error`, in one message.
+InputError missing_properties_error(const std::vector<valijson::ValidationResults::Error>& errors,
+                                    const valijson::ValidationResults::Error& error, const Place& place,
+                                    const SchemaWalker& walker, const std::string& file) {
+  std::vector<std::string> keys;
+  for (const auto& e : errors)
+    if (e.context == error.context && is_missing_property(e.description)) {
+      const std::string key = quoted_name(e.description);
+      if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+    }
+  if (keys.size() > 1)
+    return InputError(place.pointer, fmt::format("missing required properties '{}'.", fmt::join(keys, "', '")), file);
+  return InputError(place.pointer,
+                    with_expectation(fmt::format("missing required property '{}'.", keys.front()),
+                                     first_description(walker.step(place.schemas, keys.front(), false))),
+                    file);
+}
+
+InputError to_input_error(const std::vector<valijson::ValidationResults::Error>& errors,
+                          const valijson::ValidationResults::Error& error, const Place& place,
                           const SchemaWalker& walker, const std::string& file) {
   const std::string& what = error.description;
   if (what.starts_with("Object contains a property that could not be validated")) {
@@ -180,13 +207,7 @@ InputError to_input_error(const valijson::ValidationResults::Error& error, const
                                   fmt::join(allowed_properties(place.schemas), ", ")),
                       file);
   }
-  if (what.starts_with("Missing required property")) {
-    const std::string key = quoted_name(what);
-    return InputError(place.pointer,
-                      with_expectation(fmt::format("missing required property '{}'.", key),
-                                       first_description(walker.step(place.schemas, key, false))),
-                      file);
-  }
+  if (is_missing_property(what)) return missing_properties_error(errors, error, place, walker, file);
   if (what.starts_with("Value type not permitted") && place.value != nullptr)
     return InputError(place.pointer,
                       with_expectation(fmt::format("wrong type ({}).", place.value->type_name()),
@@ -241,7 +262,7 @@ void SchemaValidator::validate(const json& doc, const std::string& file_for_erro
   const SchemaWalker walker(impl_->documents);
   const json& root = impl_->documents.at(impl_->root_name);
   const Place place = locate(error.context, doc, walker, {&root, &root});
-  throw to_input_error(error, place, walker, file_for_errors);
+  throw to_input_error(errors, error, place, walker, file_for_errors);
 }
 
 }  // namespace railvsi

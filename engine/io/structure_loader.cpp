@@ -46,7 +46,8 @@ TrackOptions track_options(const json& t) {
       {"ballast_mass_kg", &o.ballast_mass_kg},
       {"subballast_k_N_per_m", &o.subballast_k_N_per_m},
       {"subballast_c_Ns_per_m", &o.subballast_c_Ns_per_m},
-      {"approach_m", &o.approach_m}};
+      {"approach_m", &o.approach_m},
+      {"exit_m", &o.exit_m}};
   for (const auto& [key, field] : fields) *field = t.value(key, *field);
   return o;
 }

@@ -1,0 +1,59 @@
+// vsi: the railvsi command line. Exit codes: 0 success, 1 runtime failure,
+// 2 invalid input or usage; whatever happens, main reports it and returns.
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/commands.hpp"
+
+namespace railvsi::cli {
+namespace {
+
+int run(int argc, char** argv) {
+  CLI::App app{"railvsi: nonlinear vehicle-structure interaction of railway bridges", "vsi"};
+  app.set_version_flag("--version", "vsi " RAILVSI_VERSION);
+  app.require_subcommand(1);
+
+  SimulateArgs simulate_args;
+  CLI::App* simulate = app.add_subcommand("simulate", "Run one scene and print its summary JSON on stdout");
+  simulate->add_option("scene", simulate_args.scene_file, "Scene file (JSON, schemas/scene.schema.json)")->required();
+  simulate->add_option("--histories", simulate_args.histories_dir,
+                       "Directory for the time histories: deck.csv, and for multibody trains contact_forces.csv "
+                       "and carbody.csv (created if needed)");
+
+  std::string validate_file;
+  CLI::App* validate = app.add_subcommand(
+      "validate", "Check a scene, train or irregularity profile: schema, then every semantic check of a run");
+  validate->add_option("file", validate_file, "Document (JSON)")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitOk : kExitInvalidInput;  // help and --version are successes
+  }
+  if (simulate->parsed()) return simulate_command(simulate_args);
+  return validate_command(validate_file);
+}
+
+}  // namespace
+
+void report_input_error(const InputError& e) { std::cerr << "error: " << e.describe() << '\n'; }
+
+}  // namespace railvsi::cli
+
+int main(int argc, char** argv) {
+  using namespace railvsi::cli;
+  try {
+    return run(argc, argv);
+  } catch (const railvsi::InputError& e) {
+    report_input_error(e);
+    return kExitInvalidInput;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kExitRuntimeFailure;
+  } catch (...) {
+    std::cerr << "error: unexpected failure\n";
+    return kExitRuntimeFailure;
+  }
+}

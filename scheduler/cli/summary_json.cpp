@@ -1,0 +1,65 @@
+#include "cli/summary_json.hpp"
+
+#include <cmath>
+
+namespace railvsi::cli {
+namespace {
+
+using nlohmann::ordered_json;
+
+// A NaN printed as a number would be silent garbage: null says "no value".
+ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
+
+ordered_json deck(const RunSummary& s) {
+  ordered_json points = ordered_json::array();
+  for (const PointSummary& p : s.points)
+    points.push_back({{"name", p.name},
+                      {"x_m", number(p.x_m)},
+                      {"max_abs_displacement_m", number(p.max_abs_displacement_m)},
+                      {"max_abs_acceleration_mps2", number(p.max_abs_acceleration_mps2)}});
+  return {{"max_abs_displacement_m", number(s.max_abs_displacement_m)},
+          {"max_abs_acceleration_mps2", number(s.max_abs_acceleration_mps2)},
+          {"points", points}};
+}
+
+ordered_json wheels(const RunSummary& s, bool moving_forces) {
+  const auto value = [&](double v) { return moving_forces ? ordered_json(nullptr) : number(v); };
+  return {{"min_contact_force_N", value(s.min_contact_force_N)},
+          {"max_unloading_ratio", value(s.max_unloading_ratio)},
+          {"contact_loss_s", value(s.contact_loss_s)}};
+}
+
+ordered_json fidelity(const RunSummary& s) {
+  return {{"model", s.model},
+          {"contact_law", s.contact_law},
+          {"unilateral", s.unilateral},
+          {"solver_path", s.solver_path},
+          {"structure_backend", s.structure_backend},
+          {"structure_dofs", s.structure_dofs},
+          {"vehicle_dofs", s.vehicle_dofs},
+          {"contacts", s.contacts},
+          {"hht_alpha", number(s.hht_alpha)},
+          {"hht_beta", number(s.hht_beta)},
+          {"hht_gamma", number(s.hht_gamma)}};
+}
+
+}  // namespace
+
+ordered_json summary_json(const Result& result, bool moving_forces) {
+  const RunSummary& s = result.summary;
+  ordered_json out;
+  out["status"] = std::string(result.status.name());
+  if (!result.status.ok()) out["message"] = result.status.message();
+  out["deck"] = deck(s);
+  out["wheels"] = wheels(s, moving_forces);
+  out["vehicles"] = {{"max_abs_carbody_acceleration_mps2",
+                      moving_forces ? ordered_json(nullptr) : number(s.max_abs_carbody_acceleration_mps2)}};
+  out["run"] = {{"steps", s.steps},
+                {"dt_s", number(s.dt_s)},
+                {"newton_iterations", s.newton_iterations},
+                {"wall_s", number(s.wall_s)},
+                {"fidelity", fidelity(s)}};
+  return out;
+}
+
+}  // namespace railvsi::cli

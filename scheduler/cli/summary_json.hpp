@@ -1,0 +1,14 @@
+#pragma once
+// The summary JSON of `vsi simulate` (DESIGN.md "Command line contract").
+#include <nlohmann/json.hpp>
+
+#include "simulation/result.hpp"
+
+namespace railvsi::cli {
+
+// Keys in the order of the contract. Non-finite numbers become null, and so
+// do the wheel values of a train of moving forces (it has no wheels); a
+// "message" follows the status when the run failed.
+nlohmann::ordered_json summary_json(const Result& result, bool moving_forces);
+
+}  // namespace railvsi::cli
