@@ -13,6 +13,7 @@
 #include "generators/vehicle_2d.hpp"
 #include "io/json_document.hpp"
 #include "io/schema_validator.hpp"
+#include "simulation/static_equilibrium.hpp"
 
 namespace railvsi {
 namespace {
@@ -101,38 +102,54 @@ class VehicleCatalog {
   std::map<std::string, std::shared_ptr<const VehicleModel>> models_;
 };
 
+// One entry of "vehicles": its model and where its copies stand.
+struct PlacedCar {
+  std::string path;
+  std::shared_ptr<const VehicleModel> model;
+  std::vector<double> offsets_m;  // first axle of each copy
+};
+
 // Cars front to back; a car without offset_m follows the previous one.
-std::vector<TrainVehicle> place_vehicles(const json& cars) {
+std::vector<PlacedCar> place_cars(const json& cars) {
   VehicleCatalog catalog;
-  std::vector<TrainVehicle> placed;
+  std::vector<PlacedCar> placed;
   std::optional<double> next_offset_m = 0.0;  // where a car without offset_m goes
   for (std::size_t i = 0; i < cars.size(); ++i) {
     const json& car = cars[i];
-    const std::string path = child_path("/vehicles", i);
-    const auto model = catalog.model_of(car, path);
+    PlacedCar p{child_path("/vehicles", i), nullptr, {}};
+    p.model = catalog.model_of(car, p.path);
     const std::optional<double> length_m = optional_number(car, "length_m");
     const int count = car.value("count", 1);
     if (count > 1 && !length_m)
-      throw InputError(path + "/length_m", "needed to repeat the car (count > 1)");
+      throw InputError(p.path + "/length_m", "needed to repeat the car (count > 1)");
     const std::optional<double> given_offset_m = optional_number(car, "offset_m");
     if (!given_offset_m && !next_offset_m)
-      throw InputError(path + "/offset_m",
+      throw InputError(p.path + "/offset_m",
                        "needed: the previous car has no length_m to place this one behind it");
     const double offset_m = given_offset_m ? *given_offset_m : *next_offset_m;
-    for (int k = 0; k < count; ++k) placed.push_back({model, offset_m + k * length_m.value_or(0.0)});
+    for (int k = 0; k < count; ++k) p.offsets_m.push_back(offset_m + k * length_m.value_or(0.0));
     next_offset_m = length_m ? std::optional<double>(offset_m + count * *length_m) : std::nullopt;
+    placed.push_back(std::move(p));
   }
   return placed;
 }
 
-// For now each vehicle's weight is shared equally by its wheels (the static
-// wheel loads of a symmetric car); documented in train.schema.json "as".
-std::vector<MovingForce> wheel_loads_as_moving_forces(const std::vector<TrainVehicle>& vehicles) {
+std::vector<TrainVehicle> as_vehicles(const std::vector<PlacedCar>& cars) {
+  std::vector<TrainVehicle> vehicles;
+  for (const PlacedCar& car : cars)
+    for (double offset_m : car.offsets_m) vehicles.push_back({car.model, offset_m});
+  return vehicles;
+}
+
+// Every wheel becomes its static load on a rigid, level track.
+std::vector<MovingForce> as_moving_forces(const std::vector<PlacedCar>& cars) {
   std::vector<MovingForce> forces;
-  for (const TrainVehicle& v : vehicles) {
-    const auto& wheels = v.model->wheels();
-    const double load_N = v.model->total_mass_kg() * kGravity_mps2 / static_cast<double>(wheels.size());
-    for (const Wheel& w : wheels) forces.push_back({v.offset_m + w.offset_m, load_N});
+  for (const PlacedCar& car : cars) {
+    const Vector loads_N = with_path_prefix(car.path, [&] { return static_wheel_loads_on_rigid_track(*car.model); });
+    const auto& wheels = car.model->wheels();
+    for (double offset_m : car.offsets_m)
+      for (std::size_t w = 0; w < wheels.size(); ++w)
+        forces.push_back({offset_m + wheels[w].offset_m, loads_N[static_cast<Eigen::Index>(w)]});
   }
   std::stable_sort(forces.begin(), forces.end(),
                    [](const MovingForce& a, const MovingForce& b) { return a.offset_m < b.offset_m; });
@@ -182,10 +199,11 @@ Train parse_train(const json& train) {
     t.moving_forces = moving_forces(train.at("moving_forces"));
     return t;
   }
-  t.vehicles = place_vehicles(train.at("vehicles"));
+  const std::vector<PlacedCar> cars = place_cars(train.at("vehicles"));
   if (train.value("as", "multibody") == "moving_forces") {
-    t.moving_forces = wheel_loads_as_moving_forces(t.vehicles);
-    t.vehicles.clear();
+    t.moving_forces = as_moving_forces(cars);
+  } else {
+    t.vehicles = as_vehicles(cars);
   }
   return t;
 }

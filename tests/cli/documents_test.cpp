@@ -85,7 +85,7 @@ TEST_F(Documents, MultibodyTrainReportsWheelsAndWritesContactAndCarbodyHistories
   EXPECT_TRUE(std::filesystem::exists(out / "carbody.csv"));
 }
 
-TEST_F(Documents, VehiclesAsMovingForcesCarryTheirWeightEquallyOnEveryWheel) {
+TEST_F(Documents, VehiclesAsMovingForcesRunAsAMovingForceModelWithoutWheelValues) {
   json scene = small_scene();
   scene["train"] = json::parse(read_text(kJobs / "trains/ICE3.json"));
   scene["train"]["as"] = "moving_forces";

@@ -56,13 +56,17 @@ TEST(TrainLoader, CarTemplateErrorsGetTheCarsPath) {
   }
 }
 
-TEST(TrainLoader, MovingForceViewSharesEachVehiclesWeightEquallyAmongItsWheels) {
-  const Train multibody = parse_train({{"name", "t"}, {"vehicles", {car(25.0)}}});
-  const Train forces = parse_train({{"name", "t"}, {"vehicles", {car(25.0)}}, {"as", "moving_forces"}});
+TEST(TrainLoader, MovingForceViewPutsEachWheelsStaticLoadAtItsAxle) {
+  json two = car(25.0);
+  two["count"] = 2;
+  const Train multibody = parse_train({{"name", "t"}, {"vehicles", {two}}});
+  const Train forces = parse_train({{"name", "t"}, {"vehicles", {two}}, {"as", "moving_forces"}});
   ASSERT_TRUE(forces.is_moving_forces());
-  ASSERT_EQ(forces.moving_forces.size(), 4u);
+  ASSERT_EQ(forces.moving_forces.size(), 8u);
+  // The car is symmetric: each wheel carries a quarter of its weight.
   const double weight_N = (40000 + 2 * 3000 + 4 * 1500) * kGravity_mps2;
-  for (const MovingForce& f : forces.moving_forces) EXPECT_DOUBLE_EQ(f.load_N, weight_N / 4);
+  for (const MovingForce& f : forces.moving_forces) EXPECT_NEAR(f.load_N, weight_N / 4, 1e-9 * weight_N);
+  EXPECT_DOUBLE_EQ(forces.moving_forces[4].offset_m, 25.0);
   EXPECT_DOUBLE_EQ(forces.length_m(), multibody.length_m());
 }
 
