@@ -8,6 +8,7 @@
 
 #include "core/input_error.hpp"
 #include "generators/beam_element.hpp"
+#include "model/rayleigh.hpp"
 
 namespace railvsi {
 namespace {
@@ -180,11 +181,9 @@ std::shared_ptr<const StructureModel> make_bridge_2d(const Bridge2dOptions& o) {
   if (f2 <= 0.0) f2 = std::max(30.0, 9.0 * f_first);  // f3 of a simply supported span
   if (o.damping_ratio > 0.0) {
     if (!(f2 > f1)) throw InputError("/structure/damping", "f2_hz must be greater than f1_hz");
-    const double w1 = 2.0 * std::numbers::pi * f1, w2 = 2.0 * std::numbers::pi * f2;
-    const double a0 = 2.0 * o.damping_ratio * w1 * w2 / (w1 + w2);
-    const double a1 = 2.0 * o.damping_ratio / (w1 + w2);
-    for (const auto& t : as.M_deck) as.C.emplace_back(t.row(), t.col(), a0 * t.value());
-    for (const auto& t : as.K_deck) as.C.emplace_back(t.row(), t.col(), a1 * t.value());
+    const RayleighCoefficients r = rayleigh_coefficients(o.damping_ratio, f1, f2);
+    for (const auto& t : as.M_deck) as.C.emplace_back(t.row(), t.col(), r.a0_per_s * t.value());
+    for (const auto& t : as.K_deck) as.C.emplace_back(t.row(), t.col(), r.a1_s * t.value());
   }
   as.K.insert(as.K.end(), as.K_deck.begin(), as.K_deck.end());
   as.M.insert(as.M.end(), as.M_deck.begin(), as.M_deck.end());

@@ -45,11 +45,10 @@ std::shared_ptr<const VehicleModel> Multibody2d::build(std::string name) const {
   std::vector<Wheel> wheels;
   for (const auto& [body, radius] : wheels_)
     wheels.push_back({bodies_[body].dof, bodies_[body].offset, radius, 0});
-  auto model = std::make_shared<VehicleModel>(std::move(name), K, M, C, gravity, std::move(wheels));
   std::vector<int> body_dofs;
   for (int b : body_of_interest_) body_dofs.push_back(bodies_[b].dof);
-  model->set_body_dofs(std::move(body_dofs));
-  return model;
+  return std::make_shared<const VehicleModel>(std::move(name), K, M, C, gravity, std::move(wheels),
+                                              std::move(body_dofs));
 }
 
 std::shared_ptr<const VehicleModel> make_car_2d(const Car2dOptions& o) {

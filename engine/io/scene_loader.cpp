@@ -38,7 +38,15 @@ ContactLaw contact_law(const std::string& name) {
 ContactOptions contact_options(const json& c) {
   ContactOptions o;
   if (c.contains("law")) o.law = contact_law(c.at("law").get<std::string>());
-  o.unilateral = c.value("unilateral", o.unilateral);
+  // A rigid contact holds the wheel on the rail (see contact_problem.hpp).
+  o.unilateral = c.value("unilateral", o.law != ContactLaw::kRigid);
+  if (o.law == ContactLaw::kRigid && o.unilateral)
+    throw InputError("/analysis/contact/unilateral",
+                     "a rigid contact is bilateral: a wheel held by a displacement constraint cannot "
+                     "land again without force spikes that depend on the time step. Use \"hertz\" "
+                     "to let wheels lose contact");
+  if (o.law == ContactLaw::kHertz && !o.unilateral)
+    throw InputError("/analysis/contact/unilateral", "the Hertz law is unilateral: it cannot pull the wheel");
   if (c.contains("G_m_per_N23")) o.hertz_G = c.at("G_m_per_N23").get<double>();
   o.wheels_per_contact = c.value("wheels_per_contact", o.wheels_per_contact);
   return o;
@@ -90,7 +98,7 @@ Scene parse_scene(const json& doc, const std::filesystem::path& base_dir, const 
     scene.speed_mps = speed_mps(doc, scene.analysis);
     scene.train = scene_train(doc.at("train"));
     scene.irregularity = scene_irregularity(doc, base_dir);
-    scene.structure = parse_structure(doc.at("structure"), doc.value("outputs", json::object()), base_dir);
+    scene.structure = parse_structure(doc.at("structure"), doc.value("outputs", json::object()), base_dir, scene.train);
     return scene;
   });
 }

@@ -13,6 +13,7 @@
 #include "io/json_document.hpp"
 #include "io/matrix_market.hpp"
 #include "io/schema_validator.hpp"
+#include "model/rayleigh.hpp"
 
 namespace railvsi {
 namespace {
@@ -52,7 +53,7 @@ TrackOptions track_options(const json& t) {
   return o;
 }
 
-Bridge2dOptions bridge_options(const json& s, const json& outputs) {
+Bridge2dOptions bridge_options(const json& s, const json& outputs, double min_approach_m) {
   Bridge2dOptions o;
   o.spans_m = s.at("spans_m").get<std::vector<double>>();
   o.continuous = s.value("continuous", o.continuous);
@@ -64,7 +65,10 @@ Bridge2dOptions bridge_options(const json& s, const json& outputs) {
   o.damping_f2_hz = damping.value("f2_hz", o.damping_f2_hz);
   o.element_length_m = s.value("element_length_m", o.element_length_m);
   if (s.contains("bearing_k_N_per_m")) o.bearing_k_N_per_m = s.at("bearing_k_N_per_m").get<double>();
-  if (s.contains("track") && !s.at("track").is_null()) o.track = track_options(s.at("track"));
+  if (s.contains("track") && !s.at("track").is_null()) {
+    o.track = track_options(s.at("track"));
+    if (!s.at("track").contains("approach_m")) o.track->approach_m = std::max(o.track->approach_m, min_approach_m);
+  }
   if (outputs.contains("points")) {
     check_unique_names(outputs.at("points"), "/outputs/points");
     for (const json& p : outputs.at("points"))
@@ -137,13 +141,10 @@ ImportedMatrices read_matrices(const json& files, const std::filesystem::path& b
 
 // C = a0 M + a1 K with the ratio matched at f1 and f2.
 SparseMatrix rayleigh_damping(const ImportedMatrices& m, const json& damping) {
-  const double ratio = damping.at("ratio").get<double>();
-  const double w1 = 2.0 * std::numbers::pi * damping.at("f1_hz").get<double>();
-  const double w2 = 2.0 * std::numbers::pi * damping.at("f2_hz").get<double>();
-  if (!(w2 > w1)) throw InputError("/structure/damping/f2_hz", "must be greater than f1_hz");
-  const double a0 = 2.0 * ratio * w1 * w2 / (w1 + w2);
-  const double a1 = 2.0 * ratio / (w1 + w2);
-  return SparseMatrix(a0 * m.M + a1 * m.K);
+  const double f1 = damping.at("f1_hz").get<double>(), f2 = damping.at("f2_hz").get<double>();
+  if (!(f2 > f1)) throw InputError("/structure/damping/f2_hz", "must be greater than f1_hz");
+  const RayleighCoefficients r = rayleigh_coefficients(damping.at("ratio").get<double>(), f1, f2);
+  return SparseMatrix(r.a0_per_s * m.M + r.a1_s * m.K);
 }
 
 // StructureModel reports "/structure/...": rail lines and output points are
@@ -182,9 +183,13 @@ std::shared_ptr<const StructureModel> import_structure(const json& s, const json
 }  // namespace
 
 std::shared_ptr<const StructureModel> parse_structure(const json& structure, const json& outputs,
-                                                      const std::filesystem::path& base_dir) {
+                                                      const std::filesystem::path& base_dir,
+                                                      const Train& train) {
   if (structure.contains("import")) return import_structure(structure, outputs, base_dir);
-  return make_bridge_2d(bridge_options(structure, outputs));
+  // A multibody train starts wholly on the track (static equilibrium, no
+  // entry transient) when the approach is not given explicitly.
+  const double min_approach_m = train.is_moving_forces() ? 0.0 : train.length_m() + 10.0;
+  return make_bridge_2d(bridge_options(structure, outputs, min_approach_m));
 }
 
 }  // namespace railvsi

@@ -7,14 +7,17 @@
 #include <nlohmann/json.hpp>
 
 #include "model/structure_model.hpp"
+#include "model/train.hpp"
 
 namespace railvsi {
 
 // `structure` and `outputs` are the validated /structure and /outputs values
 // of a scene (outputs may be an empty object). InputError paths are absolute
-// in the scene; errors in the map file name that file.
+// in the scene; errors in the map file name that file. The train sizes the
+// default approach embankment of a generated track.
 std::shared_ptr<const StructureModel> parse_structure(const nlohmann::json& structure,
                                                       const nlohmann::json& outputs,
-                                                      const std::filesystem::path& base_dir);
+                                                      const std::filesystem::path& base_dir,
+                                                      const Train& train);
 
 }  // namespace railvsi

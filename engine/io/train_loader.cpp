@@ -72,16 +72,11 @@ std::shared_ptr<const VehicleModel> imported_vehicle(const json& v) {
     wheel.radius_m = w.value("radius_m", wheel.radius_m);
     wheels.push_back(wheel);
   }
-  auto model = std::make_shared<VehicleModel>(
+  std::optional<std::vector<int>> body_dofs;
+  if (v.contains("body_dofs")) body_dofs = v.at("body_dofs").get<std::vector<int>>();
+  return std::make_shared<const VehicleModel>(
       v.at("name").get<std::string>(), dense_matrix(m.at("K"), "/matrices/K"), dense_matrix(m.at("M"), "/matrices/M"),
-      std::move(C), gravity_dofs, std::move(wheels));
-  const auto body_dofs = v.value("body_dofs", std::vector<int>{});
-  for (std::size_t k = 0; k < body_dofs.size(); ++k)
-    if (body_dofs[k] >= model->num_dofs())
-      throw InputError(child_path("/body_dofs", k),
-                       fmt::format("DOF {} outside the vehicle (0..{})", body_dofs[k], model->num_dofs() - 1));
-  model->set_body_dofs(body_dofs);
-  return model;
+      std::move(C), gravity_dofs, std::move(wheels), std::move(body_dofs));
 }
 
 // Identical car definitions (placement aside) share one model.

@@ -7,7 +7,8 @@
 namespace railvsi {
 
 VehicleModel::VehicleModel(std::string name, DenseMatrix K, DenseMatrix M, DenseMatrix C,
-                           Vector gravity_dofs, std::vector<Wheel> wheels)
+                           Vector gravity_dofs, std::vector<Wheel> wheels,
+                           std::optional<std::vector<int>> body_dofs)
     : name_(std::move(name)), K_(std::move(K)), M_(std::move(M)), C_(std::move(C)),
       wheels_(std::move(wheels)) {
   const auto n = K_.rows();
@@ -36,6 +37,14 @@ VehicleModel::VehicleModel(std::string name, DenseMatrix K, DenseMatrix M, Dense
   gravity_load_ = -kGravity_mps2 * (M_ * gravity_dofs);
   total_mass_ = gravity_dofs.dot(M_ * gravity_dofs);
   if (!(total_mass_ > 0.0)) throw InputError("/matrices/M", "vehicle has no translational mass");
+  if (body_dofs) {
+    body_dofs_ = std::move(*body_dofs);
+    for (std::size_t k = 0; k < body_dofs_.size(); ++k)
+      if (body_dofs_[k] < 0 || body_dofs_[k] >= n)
+        throw InputError(fmt::format("/body_dofs/{}", k),
+                         fmt::format("DOF {} outside the vehicle (0..{})", body_dofs_[k], n - 1));
+    return;
+  }
   // By default every translational DOF that is not a wheel is "body".
   for (Eigen::Index i = 0; i < n; ++i) {
     bool wheel = false;

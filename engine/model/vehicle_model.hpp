@@ -2,6 +2,7 @@
 // A vehicle (or an articulated set of car bodies sharing bogies): small,
 // dense, linear. Immutable once built; one instance may be shared by every
 // car of the same type in a train.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,10 +20,12 @@ struct Wheel {
 class VehicleModel {
  public:
   // gravity_dofs[i] = 1 for a vertical translation, 0 for a rotation: the
-  // gravity load is -g * M * gravity_dofs. Throws InputError on bad sizes,
+  // gravity load is -g * M * gravity_dofs. body_dofs: the DOFs whose
+  // accelerations are car-body accelerations; by default every
+  // translational DOF that is not a wheel. Throws InputError on bad sizes,
   // asymmetric matrices or non-positive mass.
   VehicleModel(std::string name, DenseMatrix K, DenseMatrix M, DenseMatrix C, Vector gravity_dofs,
-               std::vector<Wheel> wheels);
+               std::vector<Wheel> wheels, std::optional<std::vector<int>> body_dofs = std::nullopt);
 
   const std::string& name() const { return name_; }
   int num_dofs() const { return static_cast<int>(K_.rows()); }
@@ -35,7 +38,6 @@ class VehicleModel {
   double total_mass_kg() const { return total_mass_; }
   // Indices of the DOFs that the car-body acceleration envelope looks at.
   const std::vector<int>& body_dofs() const { return body_dofs_; }
-  void set_body_dofs(std::vector<int> dofs) { body_dofs_ = std::move(dofs); }
 
  private:
   std::string name_;

@@ -59,8 +59,8 @@ std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& sc
   return std::make_shared<const CholmodOperator>(*scene.structure, structure_factors(h), options);
 }
 
-Simulation::Simulation(const Scene& scene, std::shared_ptr<const StructureOperator> op)
-    : scene_(scene), op_(std::move(op)) {}
+Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
+    : scene_(std::move(scene)), op_(std::move(op)) {}
 
 Result Simulation::run() const {
   const auto t_start = Clock::now();

@@ -16,13 +16,14 @@ std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& sc
 
 class Simulation {
  public:
-  // `op` may be null: it is then built for this scene.
-  Simulation(const Scene& scene, std::shared_ptr<const StructureOperator> op = nullptr);
+  // `op` may be null: it is then built for this scene. The scene is copied
+  // (it holds only shared immutable models and options).
+  explicit Simulation(Scene scene, std::shared_ptr<const StructureOperator> op = nullptr);
   // Never throws for numerical trouble: the status of the Result tells.
   Result run() const;
 
  private:
-  const Scene& scene_;
+  Scene scene_;
   std::shared_ptr<const StructureOperator> op_;
 };
 

@@ -122,6 +122,12 @@ TEST_F(InvalidInput, RejectsUnknownContactLaw) {
   expect_rejected(scene_with("/analysis/contact", json{{"law", "hertzian"}}), "/analysis/contact/law");
 }
 
+TEST_F(InvalidInput, RigidContactCannotBeUnilateral) {
+  const auto scene = scene_with("/analysis/contact", json{{"law", "rigid"}, {"unilateral", true}});
+  expect_rejected(scene, "/analysis/contact/unilateral");
+  EXPECT_NE(vsi("validate '" + scene.string() + "'").err.find("bilateral"), std::string::npos);
+}
+
 TEST_F(InvalidInput, RejectsMisspelledPropertyNamingIt) {
   const auto scene = scene_with("/analysis/dt", 1.0e-3);
   expect_rejected(scene, "/analysis/dt");
