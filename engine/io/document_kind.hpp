@@ -17,8 +17,9 @@ std::string_view document_kind_name(DocumentKind kind);  // "scene", "train", "i
 // the schema nor the keys tell) naming file_for_errors.
 DocumentKind detect_document_kind(const nlohmann::json& doc, const std::string& file_for_errors);
 
-// Reads the file and runs every check a run of it would (schema, semantics,
-// construction of the models; not the factorization). Throws InputError.
+// Reads the file and runs the input checks (schema, semantics, construction
+// of the models). The engine's setup checks (factorization, static
+// equilibrium) are Simulation's: `vsi validate` runs them too. Throws InputError.
 DocumentKind validate_document(const std::filesystem::path& file);
 
 }  // namespace railvsi

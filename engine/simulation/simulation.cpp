@@ -59,8 +59,35 @@ std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& sc
   return std::make_shared<const CholmodOperator>(*scene.structure, structure_factors(h), options);
 }
 
+// What the constructor prepares once and every run() reads.
+struct SimulationSetup {
+  HhtCoefficients h;
+  double start_x_m = 0.0;
+  double duration_s = 0.0;
+  TrainLayout layout;
+  StaticState statics;
+  double setup_s = 0.0;
+};
+
 Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
-    : scene_(std::move(scene)), op_(std::move(op)) {}
+    : scene_(std::move(scene)), op_(std::move(op)) {
+  const auto t_start = Clock::now();
+  const AnalysisOptions& an = scene_.analysis;
+  const double x0 = scene_.start_x_m.value_or(default_start_x_m(scene_));
+  const double duration = an.duration_s.value_or(scene_.speed_mps > 0.0 ? default_duration_s(scene_, x0) : 0.0);
+  if (!(duration > 0.0) || !std::isfinite(duration))
+    throw InputError("/analysis/duration_s", "the run has no duration: give speed_kmh > 0 or analysis.duration_s");
+  auto setup = std::make_unique<SimulationSetup>(
+      SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, 0.0});
+  setup->statics = static_equilibrium(scene_, setup->layout, x0);
+  for (std::size_t c = 0; c < setup->layout.contacts.size(); ++c)
+    setup->layout.contacts[c].law.linearize_at(setup->statics.P[static_cast<Eigen::Index>(c)]);
+  if (!op_ && an.solver == SolverPath::kCondensed) op_ = make_structure_operator(scene_);
+  setup->setup_s = std::chrono::duration<double>(Clock::now() - t_start).count();
+  setup_ = std::move(setup);
+}
+
+Simulation::~Simulation() = default;
 
 Result Simulation::run() const {
   const auto t_start = Clock::now();
@@ -68,39 +95,24 @@ Result Simulation::run() const {
   RunSummary& sum = result.summary;
   const Scene& sc = scene_;
   const AnalysisOptions& an = sc.analysis;
-  const HhtCoefficients h(an.hht, an.dt_s);
-  const double x0 = sc.start_x_m.value_or(default_start_x_m(sc));
-  const double duration = an.duration_s.value_or(
-      sc.speed_mps > 0.0 ? default_duration_s(sc, x0) : 0.0);
-  if (!(duration > 0.0) || !std::isfinite(duration)) {
-    result.status = {StatusCode::kInvalidInput, "the run has no duration: give speed_kmh > 0 or analysis.duration_s"};
-    return result;
-  }
+  const SimulationSetup& setup = *setup_;
+  const HhtCoefficients& h = setup.h;
+  const TrainLayout& layout = setup.layout;
+  const StaticState& statics = setup.statics;
+  const double x0 = setup.start_x_m;
 
-  TrainLayout layout(sc.train, an.contact);
-  StaticState statics;
-  std::shared_ptr<const StructureOperator> op = op_;
+  StepSolverOptions so;
+  so.alpha = h.alpha;
+  so.max_iterations = an.max_newton_iterations;
+  so.tolerance = an.newton_tolerance;
+  so.force_scale_N = std::max(1.0, statics.P.norm());
   std::unique_ptr<StepSolver> solver;
-  try {
-    statics = static_equilibrium(sc, layout, x0);
-    for (std::size_t c = 0; c < layout.contacts.size(); ++c)
-      layout.contacts[c].law.linearize_at(statics.P[static_cast<Eigen::Index>(c)]);
-    StepSolverOptions so;
-    so.alpha = h.alpha;
-    so.max_iterations = an.max_newton_iterations;
-    so.tolerance = an.newton_tolerance;
-    so.force_scale_N = std::max(1.0, statics.P.norm());
-    if (an.solver == SolverPath::kReference) {
-      solver = make_reference_step_solver(*sc.structure, structure_factors(h), layout, h, so);
-      sum.structure_backend = "umfpack-bordered";
-    } else {
-      if (!op) op = make_structure_operator(sc);
-      solver = make_condensed_step_solver(op, layout, make_vehicle_operators(layout, h), so);
-      sum.structure_backend = op->backend_name();
-    }
-  } catch (const InputError& e) {
-    result.status = {StatusCode::kInvalidInput, e.describe()};
-    return result;
+  if (an.solver == SolverPath::kReference) {
+    solver = make_reference_step_solver(*sc.structure, structure_factors(h), layout, h, so);
+    sum.structure_backend = "umfpack-bordered";
+  } else {
+    solver = make_condensed_step_solver(op_, layout, make_vehicle_operators(layout, h), so);
+    sum.structure_backend = op_->backend_name();
   }
 
   // Fidelity record.
@@ -119,8 +131,8 @@ Result Simulation::run() const {
   sum.static_wheel_load_N.assign(statics.P.data(), statics.P.data() + statics.P.size());
 
   RunState state(sc, layout, statics, x0);
-  sum.setup_s = std::chrono::duration<double>(Clock::now() - t_start).count();
-  const long steps = static_cast<long>(std::ceil(duration / an.dt_s - 1e-9));
+  sum.setup_s = setup.setup_s + std::chrono::duration<double>(Clock::now() - t_start).count();
+  const long steps = static_cast<long>(std::ceil(setup.duration_s / an.dt_s - 1e-9));
   state.record(0, 0.0, result.histories, /*store=*/true);
   for (long n = 0; n < steps; ++n) {
     const double t_new = (n + 1) * an.dt_s;
@@ -138,7 +150,7 @@ Result Simulation::run() const {
     state.record(n + 1, t_new, result.histories, store);
   }
   state.summarize(sum);
-  sum.wall_s = std::chrono::duration<double>(Clock::now() - t_start).count();
+  sum.wall_s = setup.setup_s + std::chrono::duration<double>(Clock::now() - t_start).count();
   return result;
 }
 

@@ -16,15 +16,24 @@ std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& sc
 
 class Simulation {
  public:
-  // `op` may be null: it is then built for this scene. The scene is copied
-  // (it holds only shared immutable models and options).
+  // Accepts the scene: static equilibrium of train and structure, the
+  // structure operator when `op` is null (shareable between runs with the
+  // same structure, dt and HHT parameters). Throws InputError when the
+  // scene cannot be run (a mechanism, a train its wheels cannot carry, no
+  // duration). The scene is copied: it holds only shared immutable models.
   explicit Simulation(Scene scene, std::shared_ptr<const StructureOperator> op = nullptr);
-  // Never throws for numerical trouble: the status of the Result tells.
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  // The time loop. Never throws for numerical trouble: the status of the
+  // Result tells. May be called several times, from several threads.
   Result run() const;
 
  private:
   Scene scene_;
   std::shared_ptr<const StructureOperator> op_;
+  std::unique_ptr<const struct SimulationSetup> setup_;
 };
 
 }  // namespace railvsi
