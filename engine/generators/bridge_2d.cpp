@@ -60,9 +60,20 @@ void check_options(const Bridge2dOptions& o) {
   for (std::size_t i = 0; i < o.spans_m.size(); ++i)
     if (!(o.spans_m[i] > 0.0))
       throw InputError(fmt::format("/structure/spans_m/{}", i), "span length must be > 0");
-  if (!(o.deck_EI_Nm2 > 0.0)) throw InputError("/structure/deck/EI_Nm2", "must be > 0");
   if (!(o.deck_mass_kg_per_m > 0.0)) throw InputError("/structure/deck/mass_kg_per_m", "must be > 0");
-  if (!(o.damping_ratio >= 0.0 && o.damping_ratio < 1.0))
+  if (o.deck_EI_Nm2 != 0.0 && o.deck_first_frequency_hz != 0.0)
+    throw InputError("/structure/deck", "give either EI_Nm2 or first_frequency_hz, not both");
+  if (o.deck_first_frequency_hz != 0.0) {
+    if (!(o.deck_first_frequency_hz > 0.0)) throw InputError("/structure/deck/first_frequency_hz", "must be > 0");
+    const auto [shortest, longest] = std::minmax_element(o.spans_m.begin(), o.spans_m.end());
+    if (o.continuous && *longest - *shortest > 1e-9 * *longest)
+      throw InputError("/structure/deck/first_frequency_hz",
+                       "a continuous girder of unequal spans needs EI_Nm2: its first frequency is not the "
+                       "simply supported frequency of its longest span, which first_frequency_hz stands for");
+  } else if (!(o.deck_EI_Nm2 > 0.0)) {
+    throw InputError("/structure/deck/EI_Nm2", "must be > 0 (or give first_frequency_hz instead)");
+  }
+  if (!o.damping_en1991 && !(o.damping_ratio >= 0.0 && o.damping_ratio < 1.0))
     throw InputError("/structure/damping/ratio", "must be in [0, 1)");
   if (!(o.element_length_m > 0.0)) throw InputError("/structure/element_length_m", "must be > 0");
   if (o.bearing_k_N_per_m && !(*o.bearing_k_N_per_m > 0.0))
@@ -93,8 +104,23 @@ double simply_supported_frequency_hz(double span_m, double EI_Nm2, double mass_k
   return std::numbers::pi / (2.0 * span_m * span_m) * std::sqrt(EI_Nm2 / mass_kg_per_m);
 }
 
-std::shared_ptr<const StructureModel> make_bridge_2d(const Bridge2dOptions& o) {
-  check_options(o);
+double simply_supported_EI_Nm2(double span_m, double frequency_hz, double mass_kg_per_m) {
+  const double root = 2.0 * span_m * span_m * frequency_hz / std::numbers::pi;
+  return mass_kg_per_m * root * root;
+}
+
+std::shared_ptr<const StructureModel> make_bridge_2d(const Bridge2dOptions& options) {
+  check_options(options);
+  Bridge2dOptions o = options;
+  const double longest = *std::max_element(o.spans_m.begin(), o.spans_m.end());
+  if (o.deck_first_frequency_hz > 0.0)
+    o.deck_EI_Nm2 = simply_supported_EI_Nm2(longest, o.deck_first_frequency_hz, o.deck_mass_kg_per_m);
+  std::string damping_source = "given";
+  if (o.damping_en1991) {
+    o.damping_ratio = en1991_damping_ratio(*o.damping_en1991, longest);
+    damping_source = fmt::format("EN 1991-2 Table 6.6, {}, L = {} m (longest span)",
+                                 en1991_bridge_type_name(*o.damping_en1991), longest);
+  }
   const double total_m = std::accumulate(o.spans_m.begin(), o.spans_m.end(), 0.0);
   std::vector<std::pair<std::string, double>> outputs = o.output_points;
   for (std::size_t i = 0; i < outputs.size(); ++i)
@@ -175,7 +201,6 @@ std::shared_ptr<const StructureModel> make_bridge_2d(const Bridge2dOptions& o) {
 
   // ---- Rayleigh damping of the deck.
   double f1 = o.damping_f1_hz, f2 = o.damping_f2_hz;
-  const double longest = *std::max_element(o.spans_m.begin(), o.spans_m.end());
   const double f_first = simply_supported_frequency_hz(longest, o.deck_EI_Nm2, o.deck_mass_kg_per_m);
   if (f1 <= 0.0) f1 = f_first;
   if (f2 <= 0.0) f2 = std::max(30.0, 9.0 * f_first);  // f3 of a simply supported span
@@ -240,6 +265,11 @@ std::shared_ptr<const StructureModel> make_bridge_2d(const Bridge2dOptions& o) {
   info.first_frequency_hz = f_first;
   info.deck_dofs = deck_dofs;
   info.track_dofs = as.n - deck_dofs;
+  info.damping_ratio = o.damping_ratio;
+  info.damping_source = damping_source;
+  info.deck_line = deck_line;
+  info.support_x_m.push_back(0.0);
+  for (const double L : o.spans_m) info.support_x_m.push_back(info.support_x_m.back() + L);
   return std::make_shared<const StructureModel>(to_sparse(as.n, as.K), to_sparse(as.n, as.M),
                                                 to_sparse(as.n, as.C), std::move(rails),
                                                 std::move(output_points), std::move(info));

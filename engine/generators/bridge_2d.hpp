@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "model/en1991_damping.hpp"
 #include "model/structure_model.hpp"
 
 namespace railvsi {
@@ -34,9 +35,20 @@ struct TrackOptions {
 struct Bridge2dOptions {
   std::vector<double> spans_m;
   bool continuous = false;
+  // Bending stiffness: deck_EI_Nm2, or derived from the designer's first
+  // frequency as EI = m (2 L^2 f1 / pi)^2 with L the longest span, i.e. f1
+  // is the first bending frequency of the deck alone on rigid supports
+  // (exact for simply supported spans and for a continuous girder of equal
+  // spans). Give exactly one of the two (> 0). A continuous girder of
+  // unequal spans needs EI: its first frequency is not its longest span's.
   double deck_EI_Nm2 = 0.0;
+  double deck_first_frequency_hz = 0.0;
   double deck_mass_kg_per_m = 0.0;
+  // Damping ratio of the deck; when damping_en1991 is set, the lower bound of
+  // EN 1991-2 Table 6.6 for that bridge type instead, taken at the longest
+  // span (the smallest ratio of all spans: the table decreases with L).
   double damping_ratio = 0.0;
+  std::optional<En1991BridgeType> damping_en1991;
   // Rayleigh damping matched at these two frequencies; 0 means default
   // (first bending frequency of the longest span, and max(30 Hz, f3)).
   double damping_f1_hz = 0.0;
@@ -54,5 +66,7 @@ std::shared_ptr<const StructureModel> make_bridge_2d(const Bridge2dOptions& opti
 
 // First bending frequency of a simply supported Euler-Bernoulli span.
 double simply_supported_frequency_hz(double span_m, double EI_Nm2, double mass_kg_per_m);
+// Its inverse: the EI that gives a simply supported span this first frequency.
+double simply_supported_EI_Nm2(double span_m, double frequency_hz, double mass_kg_per_m);
 
 }  // namespace railvsi

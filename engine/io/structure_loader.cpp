@@ -13,6 +13,7 @@
 #include "io/json_document.hpp"
 #include "io/matrix_market.hpp"
 #include "io/schema_validator.hpp"
+#include "model/en1991_damping.hpp"
 #include "model/rayleigh.hpp"
 
 namespace railvsi {
@@ -57,10 +58,18 @@ Bridge2dOptions bridge_options(const json& s, const json& outputs, double min_ap
   Bridge2dOptions o;
   o.spans_m = s.at("spans_m").get<std::vector<double>>();
   o.continuous = s.value("continuous", o.continuous);
-  o.deck_EI_Nm2 = s.at("deck").at("EI_Nm2").get<double>();
+  o.deck_EI_Nm2 = s.at("deck").value("EI_Nm2", 0.0);
+  o.deck_first_frequency_hz = s.at("deck").value("first_frequency_hz", 0.0);
   o.deck_mass_kg_per_m = s.at("deck").at("mass_kg_per_m").get<double>();
   const json& damping = s.at("damping");
-  o.damping_ratio = damping.at("ratio").get<double>();
+  if (damping.contains("en1991")) {
+    const auto type = damping.at("en1991").at("bridge_type").get<std::string>();
+    o.damping_en1991 = en1991_bridge_type_from_name(type);
+    if (!o.damping_en1991)  // the schema's enum lists the names; kept in step by a test
+      throw InputError("/structure/damping/en1991/bridge_type", fmt::format("unknown bridge type '{}'", type));
+  } else {
+    o.damping_ratio = damping.at("ratio").get<double>();
+  }
   o.damping_f1_hz = damping.value("f1_hz", o.damping_f1_hz);
   o.damping_f2_hz = damping.value("f2_hz", o.damping_f2_hz);
   o.element_length_m = s.value("element_length_m", o.element_length_m);
@@ -172,6 +181,13 @@ std::shared_ptr<const StructureModel> import_structure(const json& s, const json
   StructureMap map = parse_validated(map_doc, "structure-map.schema.json", map_file,
                                      [&] { return parse_structure_map(map_doc); });
   map.info.deck_dofs = static_cast<int>(m.K.rows());  // the whole model counts as structure
+  if (s.contains("damping")) {
+    map.info.damping_ratio = s.at("damping").at("ratio").get<double>();
+    map.info.damping_source = "given (Rayleigh on the whole imported model)";
+  } else {
+    map.info.damping_source = files.contains("C") ? "imported C matrix" : "none";
+    if (!files.contains("C")) map.info.damping_ratio = 0.0;
+  }
   try {
     return std::make_shared<const StructureModel>(m.K, m.M, m.C, std::move(map.rails), std::move(map.outputs),
                                                   std::move(map.info));

@@ -3,6 +3,7 @@
 // already applied (constrained DOFs are not in the matrices). Shared between
 // runs and threads as shared_ptr<const StructureModel>.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,8 +26,19 @@ struct StructureInfo {
   double bridge_start_m = 0.0;   // first support of the bridge
   double bridge_end_m = 0.0;     // last support of the bridge
   double first_frequency_hz = 0.0;  // estimate used for Rayleigh damping, 0 if unknown
+  // DOFs [0, deck_dofs) are the deck's, [deck_dofs, deck_dofs + track_dofs)
+  // the track's (rail, sleepers, embankment ballast).
   int deck_dofs = 0;
   int track_dofs = 0;
+  // Damping ratio the structure's damping was built with (fraction of
+  // critical; absent when unknown, e.g. an imported C) and where it came
+  // from, for reports: "given", "EN 1991-2 Table 6.6 ...", "import C".
+  std::optional<double> damping_ratio;
+  std::string damping_source;
+  // The deck girder as a line of beam elements and the x of its supports
+  // (bridge-2d). Empty when unknown (imported models).
+  RailLine deck_line;
+  std::vector<double> support_x_m;
 };
 
 class StructureModel {

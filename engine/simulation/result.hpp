@@ -27,6 +27,16 @@ struct PointSummary {
   double max_abs_acceleration_mps2 = 0.0;
 };
 
+// Per wheel, over the evaluation window (see AnalysisOptions).
+struct WheelSummary {
+  std::string name;  // as in Histories::wheel_names
+  double static_load_N = 0.0;
+  double min_force_N = 0.0;
+  double unloading_ratio = 0.0;  // (Q0 - Qmin)/Q0
+  double contact_loss_s = 0.0;   // total time without contact
+  bool evaluated = false;        // false: never inside the evaluation window
+};
+
 struct RunSummary {
   std::vector<PointSummary> points;
   double max_abs_displacement_m = 0.0;
@@ -36,6 +46,7 @@ struct RunSummary {
   double max_unloading_ratio = 0.0;  // (Q0 - Qmin)/Q0, 1 = contact lost
   double contact_loss_s = 0.0;       // longest time any wheel spent without contact
   std::vector<double> static_wheel_load_N;
+  std::vector<WheelSummary> wheels;
   double max_abs_carbody_acceleration_mps2 = 0.0;
   // Run
   long steps = 0;

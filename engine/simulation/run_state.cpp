@@ -126,7 +126,7 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
     hist.deck_displacement_m.resize(outputs.size());
     hist.deck_acceleration_mps2.resize(outputs.size());
     for (const ContactSpec& c : layout_.contacts)
-      hist.wheel_names.push_back(fmt::format("v{}_w{}", c.vehicle + 1, c.local_wheel + 1));
+      hist.wheel_names.push_back(wheel_name(c));
     hist.contact_force_N.resize(layout_.contacts.size());
     for (std::size_t v = 0; v < layout_.vehicles.size(); ++v)
       for (std::size_t b = 0; b < layout_.vehicles[v].model->body_dofs().size(); ++b)
@@ -157,7 +157,18 @@ void RunState::summarize(RunSummary& sum) const {
   if (!min_P_.empty()) {
     sum.min_contact_force_N = std::numeric_limits<double>::infinity();
     for (std::size_t c = 0; c < min_P_.size(); ++c) {
-      if (!std::isfinite(min_P_[c])) continue;  // never in the evaluation window
+      const ContactSpec& cs = layout_.contacts[c];
+      WheelSummary w;
+      w.name = wheel_name(cs);
+      w.static_load_N = Q0_[static_cast<Eigen::Index>(c)];
+      w.evaluated = std::isfinite(min_P_[c]);
+      if (w.evaluated) {
+        w.min_force_N = min_P_[c];
+        w.unloading_ratio = w.static_load_N > 0.0 ? (w.static_load_N - min_P_[c]) / w.static_load_N : 0.0;
+        w.contact_loss_s = no_contact_s_[c];
+      }
+      sum.wheels.push_back(w);
+      if (!w.evaluated) continue;  // never in the evaluation window
       sum.min_contact_force_N = std::min(sum.min_contact_force_N, min_P_[c]);
       const double q0 = Q0_[static_cast<Eigen::Index>(c)];
       if (q0 > 0.0) sum.max_unloading_ratio = std::max(sum.max_unloading_ratio, (q0 - min_P_[c]) / q0);

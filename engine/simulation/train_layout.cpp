@@ -1,6 +1,7 @@
 #include "simulation/train_layout.hpp"
 
 #include <algorithm>
+#include <fmt/format.h>
 
 namespace railvsi {
 
@@ -37,6 +38,10 @@ TrainLayout::TrainLayout(const Train& train, const ContactOptions& contact) {
   gravity_load_N = Vector::Zero(next_dof);
   for (const VehicleInstance& v : vehicles)
     gravity_load_N.segment(v.first_dof, v.model->num_dofs()) = v.model->gravity_load_N();
+}
+
+std::string wheel_name(const ContactSpec& c) {
+  return fmt::format("v{}_w{}", c.vehicle + 1, c.local_wheel + 1);
 }
 
 DenseMatrix vehicle_effective_matrix(const VehicleModel& v, const HhtCoefficients& h) {

@@ -28,6 +28,9 @@ struct ContactSpec {
   ContactLawPoint law;
 };
 
+// "v<vehicle>_w<wheel>", 1-based: the name of a wheel in histories and summaries.
+std::string wheel_name(const ContactSpec& c);
+
 struct TrainLayout {
   TrainLayout(const Train& train, const ContactOptions& contact);
 
