@@ -1,0 +1,113 @@
+#include "envelopes/code_filter.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace railvsi {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// One second-order section, direct form II transposed, a0 = 1.
+struct Section {
+  double b0, b1, b2, a1, a2;
+};
+
+using Sections = std::array<Section, kCodeFilterPoles / 2>;
+
+// Analog Butterworth pole pair k has damping sin(pi (2k+1) / (2n)); with
+// K = tan(pi f_c dt) (pre-warped, s normalized by 2/dt) the bilinear
+// transform of K^2 / (s^2 + 2 zeta K s + K^2) is the section below. Its DC
+// gain is exactly 1: (b0 + b1 + b2) = 4K^2/a0 = 1 + a1 + a2.
+Sections design(double dt_s, double half_gain_hz) {
+  const double K = std::tan(kPi * half_gain_hz * dt_s);
+  Sections s{};
+  for (int k = 0; k < kCodeFilterPoles / 2; ++k) {
+    const double zeta = std::sin(kPi * (2 * k + 1) / (2.0 * kCodeFilterPoles));
+    const double a0 = 1.0 + 2.0 * zeta * K + K * K;
+    const double b0 = K * K / a0;
+    s[static_cast<std::size_t>(k)] = {b0, 2.0 * b0, b0, 2.0 * (K * K - 1.0) / a0, (1.0 - 2.0 * zeta * K + K * K) / a0};
+  }
+  return s;
+}
+
+// One causal pass, in place, starting from the steady state of a constant
+// input equal to x[0] (each section has unit DC gain, so every section sees
+// x[0] at steady state): y = x0 needs z2 = (b2 - a2) x0 and
+// z1 = (b1 + b2 - a1 - a2) x0.
+void causal_pass(const Sections& sections, std::vector<double>& x) {
+  if (x.empty()) return;
+  const double x0 = x.front();
+  for (const Section& s : sections) {
+    double z1 = (s.b1 + s.b2 - s.a1 - s.a2) * x0;
+    double z2 = (s.b2 - s.a2) * x0;
+    for (double& v : x) {
+      const double in = v;
+      const double out = s.b0 * in + z1;
+      z1 = s.b1 * in - s.a1 * out + z2;
+      z2 = s.b2 * in - s.a2 * out;
+      v = out;
+    }
+  }
+}
+
+void check_arguments(double dt_s, double cutoff_hz) {
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) throw std::invalid_argument("code filter: dt_s must be > 0");
+  if (!(cutoff_hz > 0.0) || !std::isfinite(cutoff_hz))
+    throw std::invalid_argument("code filter: cutoff_hz must be > 0");
+}
+
+}  // namespace
+
+double code_cutoff_hz(double f0_hz, double f3_hz) { return std::max({30.0, 1.5 * f0_hz, f3_hz}); }
+
+double code_filter_half_gain_hz(double dt_s, double cutoff_hz) {
+  check_arguments(dt_s, cutoff_hz);
+  if (cutoff_hz * dt_s >= 0.5) throw std::invalid_argument("code filter: cut-off at or above the Nyquist frequency");
+  // Both passes: |H(f)| = 1 / (1 + r^(2n)), r = tan(pi f dt) / tan(pi f_c dt).
+  // |H(f_cut)| = g gives r = (1/g - 1)^(1/(2n)) at f_cut.
+  const double r = std::pow(1.0 / kCodeFilterGainAtCutoff - 1.0, 1.0 / (2.0 * kCodeFilterPoles));
+  return std::atan(std::tan(kPi * cutoff_hz * dt_s) / r) / (kPi * dt_s);
+}
+
+std::vector<double> code_low_pass(const std::vector<double>& signal, double dt_s, double cutoff_hz) {
+  check_arguments(dt_s, cutoff_hz);
+  const std::size_t n = signal.size();
+  if (n < 2 || cutoff_hz * dt_s >= 0.5) return signal;
+  const double fc = code_filter_half_gain_hz(dt_s, cutoff_hz);
+  const Sections sections = design(dt_s, fc);
+
+  // The slowest pole (damping sin(pi/2n)) decays to 1e-8 in ln(1e8) / (zeta
+  // 2 pi f_c): pad that long, or as long as the signal allows.
+  const double zeta_min = std::sin(kPi / (2.0 * kCodeFilterPoles));
+  const double pad_s = std::log(1e8) / (zeta_min * 2.0 * kPi * fc);
+  const std::size_t pad = std::min(n - 1, static_cast<std::size_t>(std::ceil(pad_s / dt_s)));
+
+  // Odd reflection about each end: x(-k) = 2 x(0) - x(k).
+  std::vector<double> x(n + 2 * pad);
+  for (std::size_t k = 0; k < pad; ++k) x[k] = 2.0 * signal.front() - signal[pad - k];
+  std::copy(signal.begin(), signal.end(), x.begin() + static_cast<std::ptrdiff_t>(pad));
+  for (std::size_t k = 1; k <= pad; ++k) x[pad + n - 1 + k] = 2.0 * signal.back() - signal[n - 1 - k];
+
+  causal_pass(sections, x);
+  std::reverse(x.begin(), x.end());
+  causal_pass(sections, x);
+  std::reverse(x.begin(), x.end());
+  return {x.begin() + static_cast<std::ptrdiff_t>(pad), x.begin() + static_cast<std::ptrdiff_t>(pad + n)};
+}
+
+std::string code_filter_description(double dt_s, double cutoff_hz) {
+  check_arguments(dt_s, cutoff_hz);
+  if (cutoff_hz * dt_s >= 0.5)
+    return fmt::format("none: cut-off {:.1f} Hz at or above the Nyquist frequency {:.1f} Hz", cutoff_hz,
+                       0.5 / dt_s);
+  return fmt::format("Butterworth {} poles forward-backward, gain {} at {:.1f} Hz, 0.5 at {:.1f} Hz",
+                     kCodeFilterPoles, kCodeFilterGainAtCutoff, cutoff_hz, code_filter_half_gain_hz(dt_s, cutoff_hz));
+}
+
+}  // namespace railvsi

@@ -1,0 +1,133 @@
+// The deck acceleration filter of EN 1990 A2.4.4.2 (results/envelopes/code_filter.hpp).
+// Expected gains come from the closed form of a Butterworth magnitude under
+// the bilinear transform, written here independently of the filter code.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "envelopes/code_filter.hpp"
+
+namespace railvsi {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDt = 2.5e-4;  // 4 kHz sampling
+constexpr double kCut = 30.0;
+
+std::vector<double> sampled(double duration_s, double dt_s, auto f) {
+  std::vector<double> x;
+  for (std::size_t k = 0; k * dt_s <= duration_s + 1e-12; ++k) x.push_back(f(k * dt_s));
+  return x;
+}
+
+// Amplitude of the f_hz component of x over samples [k0, k1): least squares
+// fit of a sin + b cos.
+double amplitude(const std::vector<double>& x, double dt_s, double f_hz, std::size_t k0, std::size_t k1) {
+  double ss = 0, sc = 0, cc = 0, xs = 0, xc = 0;
+  for (std::size_t k = k0; k < k1; ++k) {
+    const double s = std::sin(2 * kPi * f_hz * k * dt_s), c = std::cos(2 * kPi * f_hz * k * dt_s);
+    ss += s * s, sc += s * c, cc += c * c, xs += x[k] * s, xc += x[k] * c;
+  }
+  const double det = ss * cc - sc * sc;
+  const double a = (xs * cc - xc * sc) / det, b = (xc * ss - xs * sc) / det;
+  return std::hypot(a, b);
+}
+
+// Butterworth of n poles by the bilinear transform, both passes:
+// |H(f)| = 1 / (1 + (tan(pi f dt) / tan(pi fc dt))^(2n)). With the design
+// condition |H(f_cut)| = g this is
+// 1 / (1 + (1/g - 1) (tan(pi f dt) / tan(pi f_cut dt))^(2n)).
+double expected_gain(double f_hz, double dt_s, double cut_hz) {
+  const double ratio = std::tan(kPi * f_hz * dt_s) / std::tan(kPi * cut_hz * dt_s);
+  return 1.0 / (1.0 + (1.0 / 0.99 - 1.0) * std::pow(ratio, 16));
+}
+
+double gain(double f_hz) {
+  const auto x = sampled(4.0, kDt, [&](double t) { return std::sin(2 * kPi * f_hz * t + 0.3); });
+  const auto y = code_low_pass(x, kDt, kCut);
+  return amplitude(y, kDt, f_hz, 4000, 12000) / amplitude(x, kDt, f_hz, 4000, 12000);
+}
+
+TEST(CodeCutoff, IsTheLargestOf30HzOneAndAHalfF0AndF3) {
+  EXPECT_DOUBLE_EQ(code_cutoff_hz(4.0, 25.0), 30.0);
+  EXPECT_DOUBLE_EQ(code_cutoff_hz(24.0, 31.0), 36.0);
+  EXPECT_DOUBLE_EQ(code_cutoff_hz(8.0, 41.5), 41.5);
+  EXPECT_DOUBLE_EQ(code_cutoff_hz(0.0, 0.0), 30.0);  // unknown frequencies
+}
+
+TEST(CodeFilter, KeepsTheAmplitudeOfA10HzSine) {
+  const auto x = sampled(3.0, kDt, [](double t) { return 2.0 * std::sin(2 * kPi * 10.0 * t + 0.7); });
+  const auto y = code_low_pass(x, kDt, kCut);
+  ASSERT_EQ(y.size(), x.size());
+  // Pointwise within 0.5 % of the amplitude away from the edges (0.2 s),
+  // and within 2 % up to the edges (the odd reflection is not the sine).
+  double inner = 0.0, all = 0.0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double e = std::abs(y[k] - x[k]) / 2.0;
+    all = std::max(all, e);
+    if (k * kDt > 0.2 && k * kDt < 2.8) inner = std::max(inner, e);
+  }
+  EXPECT_LT(inner, 0.005);
+  EXPECT_LT(all, 0.02);
+  EXPECT_NEAR(amplitude(y, kDt, 10.0, 2000, 10000), 2.0, 2.0 * 0.005);
+}
+
+TEST(CodeFilter, RemovesA200HzComponent) {
+  const auto x = sampled(3.0, kDt, [](double t) {
+    return std::sin(2 * kPi * 10.0 * t + 0.7) + 0.5 * std::sin(2 * kPi * 200.0 * t + 0.1);
+  });
+  const auto y = code_low_pass(x, kDt, kCut);
+  double residual = 0.0;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (k * kDt > 0.2 && k * kDt < 2.8) residual = std::max(residual, std::abs(y[k] - std::sin(2 * kPi * 10.0 * k * kDt + 0.7)));
+  // What is left of the 200 Hz component (and the 10 Hz error) is < 1 % of its amplitude.
+  EXPECT_LT(residual, 0.01 * 0.5);
+  EXPECT_LT(amplitude(y, kDt, 200.0, 2000, 10000), 0.01 * 0.5);
+}
+
+TEST(CodeFilter, PassesAConstantUnchanged) {
+  const std::vector<double> x(5000, -3.25);
+  const auto y = code_low_pass(x, kDt, kCut);
+  for (double v : y) EXPECT_NEAR(v, -3.25, 3.25e-11);  // round-off only
+}
+
+TEST(CodeFilter, GainMatchesTheButterworthDesignAtAndAboveTheCutoff) {
+  // 99 % at the code frequency, 0.5 at the design frequency f_c, and the
+  // closed form at 10 Hz, 1.5 and 2 times the cut-off.
+  EXPECT_NEAR(gain(kCut), 0.99, 0.002);
+  const double fc = code_filter_half_gain_hz(kDt, kCut);
+  // In the analog limit f_c = f_cut (1/0.99 - 1)^(-1/16) = 1.3326 f_cut.
+  EXPECT_NEAR(fc / kCut, std::pow(1.0 / 0.99 - 1.0, -1.0 / 16.0), 2e-3);
+  EXPECT_NEAR(gain(fc), 0.5, 0.003);
+  for (double f : {10.0, 45.0, 60.0}) EXPECT_NEAR(gain(f), expected_gain(f, kDt, kCut), 0.003) << f << " Hz";
+  EXPECT_LT(gain(60.0), 0.002);
+}
+
+TEST(CodeFilter, IsZeroPhaseAPulseKeepsItsPeakTime) {
+  // A smooth pulse centred at t = 1 s, 0.1 s wide: its peak stays on the same sample.
+  const auto x = sampled(2.0, kDt, [](double t) { return std::exp(-0.5 * std::pow((t - 1.0) / 0.02, 2)); });
+  const auto y = code_low_pass(x, kDt, kCut);
+  const auto peak = [](const std::vector<double>& v) { return std::max_element(v.begin(), v.end()) - v.begin(); };
+  EXPECT_EQ(peak(y), peak(x));
+}
+
+TEST(CodeFilter, SameInputGivesTheSameBits) {
+  const auto x = sampled(1.0, kDt, [](double t) { return std::sin(2 * kPi * 7.0 * t) + 0.1 * std::cos(2 * kPi * 90.0 * t); });
+  EXPECT_EQ(code_low_pass(x, kDt, kCut), code_low_pass(x, kDt, kCut));
+}
+
+TEST(CodeFilter, CutoffAboveNyquistLeavesTheSignalUnchanged) {
+  const std::vector<double> x{0.0, 1.0, -1.0, 0.5};
+  EXPECT_EQ(code_low_pass(x, 0.02, 30.0), x);  // Nyquist 25 Hz
+}
+
+TEST(CodeFilter, RejectsANonPositiveStepOrCutoff) {
+  const std::vector<double> x{0.0, 1.0};
+  EXPECT_THROW(code_low_pass(x, 0.0, 30.0), std::invalid_argument);
+  EXPECT_THROW(code_low_pass(x, kDt, -1.0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace railvsi
