@@ -1,0 +1,58 @@
+#include "envelopes/envelope_rows.hpp"
+
+#include <algorithm>
+
+namespace railvsi {
+
+const std::vector<EnvelopeQuantity>& envelope_quantities() {
+  static const std::vector<EnvelopeQuantity> all = {
+      {"deck_displacement_m", Extreme::kMax, "max |vertical deck displacement| from the unloaded equilibrium"},
+      {"deck_acceleration_mps2", Extreme::kMax,
+       "max |vertical deck acceleration| after the EN 1990 A2.4.4.2 low-pass filter"},
+      {"deck_acceleration_unfiltered_mps2", Extreme::kMax, "max |vertical deck acceleration|, all frequencies"},
+      {"wheel_static_load_N", Extreme::kMax, "static wheel load Q0"},
+      {"wheel_min_contact_force_N", Extreme::kMin, "smallest contact force in the evaluation window"},
+      {"wheel_unloading_ratio", Extreme::kMax, "(Q0 - Qmin)/Q0 in the evaluation window, 1 = contact lost"},
+      {"wheel_contact_loss_s", Extreme::kMax, "time without contact in the evaluation window"},
+      {"carbody_acceleration_mps2", Extreme::kMax, "max |car-body vertical acceleration| in the evaluation window"},
+      {"newton_iterations", Extreme::kMax, "Newton iterations of the whole run"},
+      {"max_newton_iterations_in_step", Extreme::kMax, "most Newton iterations in one step"},
+  };
+  return all;
+}
+
+std::optional<Extreme> extreme_of(std::string_view quantity) {
+  const auto& all = envelope_quantities();
+  const auto it = std::find_if(all.begin(), all.end(), [&](const EnvelopeQuantity& q) { return q.name == quantity; });
+  if (it == all.end()) return std::nullopt;
+  return it->extreme;
+}
+
+std::vector<EnvelopeRow> envelope_rows(const JobEnvelopes& e) {
+  std::vector<EnvelopeRow> rows;
+  const auto add = [&](std::string_view quantity, const std::string& location, std::optional<double> value) {
+    rows.push_back({std::string(quantity), location, value});
+  };
+  for (const PointEnvelope& p : e.points) add("deck_displacement_m", p.name, p.max_abs_displacement_m);
+  add("deck_displacement_m", "", e.max_abs_displacement_m);
+  for (const PointEnvelope& p : e.points) add("deck_acceleration_mps2", p.name, p.max_abs_acceleration_mps2);
+  add("deck_acceleration_mps2", "", e.max_abs_acceleration_mps2);
+  for (const PointEnvelope& p : e.points)
+    add("deck_acceleration_unfiltered_mps2", p.name, p.max_abs_acceleration_unfiltered_mps2);
+  add("deck_acceleration_unfiltered_mps2", "", e.max_abs_acceleration_unfiltered_mps2);
+  if (!e.wheels.empty()) {
+    for (const WheelEnvelope& w : e.wheels) add("wheel_static_load_N", w.name, w.static_load_N);
+    for (const WheelEnvelope& w : e.wheels) add("wheel_min_contact_force_N", w.name, w.min_force_N);
+    add("wheel_min_contact_force_N", "", e.min_contact_force_N);
+    for (const WheelEnvelope& w : e.wheels) add("wheel_unloading_ratio", w.name, w.unloading_ratio);
+    add("wheel_unloading_ratio", "", e.max_unloading_ratio);
+    for (const WheelEnvelope& w : e.wheels) add("wheel_contact_loss_s", w.name, w.contact_loss_s);
+    add("wheel_contact_loss_s", "", e.max_contact_loss_s);
+    add("carbody_acceleration_mps2", "", e.max_abs_carbody_acceleration_mps2);
+  }
+  add("newton_iterations", "", static_cast<double>(e.newton_iterations));
+  add("max_newton_iterations_in_step", "", static_cast<double>(e.max_newton_iterations_in_step));
+  return rows;
+}
+
+}  // namespace railvsi

@@ -1,0 +1,143 @@
+#include "envelopes/job_envelopes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string_view>
+
+#include <fmt/format.h>
+
+#include "envelopes/code_filter.hpp"
+
+namespace railvsi {
+namespace {
+
+// A non-finite number is never an envelope value: it is left out, named in
+// the notes, and a run that called itself ok is not.
+class FiniteOnly {
+ public:
+  explicit FiniteOnly(JobEnvelopes& e) : e_(e) {}
+  std::optional<double> operator()(double v, std::string_view what) {
+    if (std::isfinite(v)) return v;
+    e_.notes.push_back(fmt::format("{}: non-finite value left out", what));
+    if (e_.ok()) {
+      e_.status = "diverged";
+      e_.message = fmt::format("the run reported ok but produced a non-finite {}", what);
+    }
+    return std::nullopt;
+  }
+
+ private:
+  JobEnvelopes& e_;
+};
+
+// The extreme over items that all have a value; absent when the set is
+// empty or has a hole (a maximum with a missing member is not the maximum).
+template <class Item, class Compare, class Counts>
+std::optional<double> extreme(const std::vector<Item>& items, std::optional<double> Item::*field, Compare better,
+                              Counts counts) {
+  std::optional<double> out;
+  for (const Item& it : items) {
+    if (!counts(it)) continue;
+    const std::optional<double>& v = it.*field;
+    if (!v) return std::nullopt;
+    if (!out || better(*v, *out)) out = v;
+  }
+  return out;
+}
+
+// Why the histories cannot give a filtered acceleration, or "" when they can.
+std::string filter_obstacle(const Result& r, double dt_s, int history_stride) {
+  const Histories& h = r.histories;
+  if (history_stride != 1)
+    return fmt::format("histories store every {}th step: decimation would alias content above {:.1f} Hz into the "
+                       "filtered band; run with history_stride = 1",
+                       history_stride, 0.5 / (dt_s * history_stride));
+  if (h.deck_acceleration_mps2.size() != r.summary.points.size() || h.point_names.size() != r.summary.points.size())
+    return "histories do not hold the deck acceleration of every output point";
+  for (std::size_t p = 0; p < h.point_names.size(); ++p)
+    if (h.point_names[p] != r.summary.points[p].name || h.deck_acceleration_mps2[p].size() != h.t_s.size())
+      return fmt::format("histories of output point {} do not match the summary", r.summary.points[p].name);
+  for (std::size_t k = 0; k < h.t_s.size(); ++k)
+    if (std::abs(h.t_s[k] - static_cast<double>(k) * dt_s) > 1e-6 * dt_s)
+      return fmt::format("histories are not sampled every dt = {} s (sample {} at t = {} s)", dt_s, k, h.t_s[k]);
+  return "";
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::isnan(x) || std::isnan(m) ? std::nan("") : std::max(m, std::abs(x));
+  return m;
+}
+
+FidelityRecord fidelity_of(const RunSummary& s) {
+  return {s.model,          s.contact_law,  s.unilateral, s.solver_path, s.structure_backend, s.structure_dofs,
+          s.vehicle_dofs,   s.contacts,     s.hht_alpha,  s.hht_beta,    s.hht_gamma};
+}
+
+}  // namespace
+
+JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_stride, double cutoff_hz) {
+  const RunSummary& s = result.summary;
+  JobEnvelopes e;
+  e.status = std::string(result.status.name());
+  e.message = result.status.message();
+  FiniteOnly finite(e);
+  const auto greater = [](double a, double b) { return a > b; };
+  const auto less = [](double a, double b) { return a < b; };
+  const auto every = [](const auto&) { return true; };
+
+  // Deck.
+  e.cutoff_hz = cutoff_hz;
+  e.filter = code_filter_description(dt_s, cutoff_hz);
+  const std::string obstacle = filter_obstacle(result, dt_s, history_stride);
+  if (!obstacle.empty()) e.notes.push_back("filtered deck acceleration left out: " + obstacle);
+  for (std::size_t p = 0; p < s.points.size(); ++p) {
+    const PointSummary& ps = s.points[p];
+    PointEnvelope pe;
+    pe.name = ps.name;
+    pe.x_m = ps.x_m;
+    pe.max_abs_displacement_m = finite(ps.max_abs_displacement_m, "deck displacement at " + ps.name);
+    pe.max_abs_acceleration_unfiltered_mps2 = finite(ps.max_abs_acceleration_mps2, "deck acceleration at " + ps.name);
+    if (obstacle.empty())
+      pe.max_abs_acceleration_mps2 =
+          finite(max_abs(code_low_pass(result.histories.deck_acceleration_mps2[p], dt_s, cutoff_hz)),
+                 "filtered deck acceleration at " + ps.name);
+    e.points.push_back(std::move(pe));
+  }
+  e.max_abs_displacement_m = extreme(e.points, &PointEnvelope::max_abs_displacement_m, greater, every);
+  e.max_abs_acceleration_mps2 = extreme(e.points, &PointEnvelope::max_abs_acceleration_mps2, greater, every);
+  e.max_abs_acceleration_unfiltered_mps2 =
+      extreme(e.points, &PointEnvelope::max_abs_acceleration_unfiltered_mps2, greater, every);
+
+  // Wheels: only those inside the evaluation window have values.
+  for (const WheelSummary& ws : s.wheels) {
+    WheelEnvelope we;
+    we.name = ws.name;
+    we.evaluated = ws.evaluated;
+    we.static_load_N = finite(ws.static_load_N, "static load of wheel " + ws.name);
+    if (ws.evaluated) {
+      we.min_force_N = finite(ws.min_force_N, "contact force of wheel " + ws.name);
+      we.unloading_ratio = finite(ws.unloading_ratio, "unloading of wheel " + ws.name);
+      we.contact_loss_s = finite(ws.contact_loss_s, "time without contact of wheel " + ws.name);
+    }
+    e.wheels.push_back(std::move(we));
+  }
+  const auto evaluated = [](const WheelEnvelope& w) { return w.evaluated; };
+  e.max_unloading_ratio = extreme(e.wheels, &WheelEnvelope::unloading_ratio, greater, evaluated);
+  e.max_contact_loss_s = extreme(e.wheels, &WheelEnvelope::contact_loss_s, greater, evaluated);
+  e.min_contact_force_N = extreme(e.wheels, &WheelEnvelope::min_force_N, less, evaluated);
+  if (!s.wheels.empty())  // a train of moving forces has neither wheels nor bodies
+    e.max_abs_carbody_acceleration_mps2 = finite(s.max_abs_carbody_acceleration_mps2, "car-body acceleration");
+
+  // Run.
+  e.steps = s.steps;
+  e.dt_s = dt_s;
+  e.newton_iterations = s.newton_iterations;
+  e.max_newton_iterations_in_step = s.max_newton_iterations_in_step;
+  e.wall_s = std::isfinite(s.wall_s) ? s.wall_s : 0.0;
+  e.setup_s = std::isfinite(s.setup_s) ? s.setup_s : 0.0;
+  e.fidelity = fidelity_of(s);
+  return e;
+}
+
+}  // namespace railvsi

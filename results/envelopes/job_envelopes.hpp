@@ -1,0 +1,98 @@
+#pragma once
+// The envelopes of one job (DESIGN.md "Study, queue, workers"): what the
+// result store keeps of a run. Every value is finite or absent: an absent
+// value (std::nullopt) is "no value" in the store, never a number. A value
+// is absent when it does not apply (wheel values of moving forces, a wheel
+// never inside the evaluation window), when the histories cannot give it
+// (the filtered acceleration needs every step), or when the run produced a
+// non-finite number; the last also turns status "ok" into "diverged" and
+// is named in notes.
+//
+// Deterministic: the same Result gives the same bits (wall_s and setup_s
+// are measurements, not envelope values).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "simulation/result.hpp"
+
+namespace railvsi {
+
+struct PointEnvelope {
+  std::string name;
+  double x_m = 0.0;
+  std::optional<double> max_abs_displacement_m;
+  // After code_low_pass (EN 1990 A2.4.4.2); absent when the histories are
+  // not sampled at every step.
+  std::optional<double> max_abs_acceleration_mps2;
+  std::optional<double> max_abs_acceleration_unfiltered_mps2;
+};
+
+// Wheels inside the evaluation window only (WheelSummary::evaluated); the
+// others keep their name and static load with the other values absent.
+struct WheelEnvelope {
+  std::string name;
+  bool evaluated = false;
+  std::optional<double> static_load_N;
+  std::optional<double> min_force_N;
+  std::optional<double> unloading_ratio;  // (Q0 - Qmin)/Q0, 1 = contact lost
+  std::optional<double> contact_loss_s;   // total time without contact
+};
+
+// The model the run used (RunSummary), recorded with each job.
+struct FidelityRecord {
+  std::string model;        // "moving-forces", "interaction"
+  std::string contact_law;  // "none", "rigid", "linear-hertz", "hertz"
+  bool unilateral = false;
+  std::string solver_path;
+  std::string structure_backend;
+  int structure_dofs = 0;
+  int vehicle_dofs = 0;
+  int contacts = 0;
+  double hht_alpha = 0.0, hht_beta = 0.0, hht_gamma = 0.0;
+};
+
+struct JobEnvelopes {
+  std::string status = "ok";  // Status::name() of the run, or "diverged" for a non-finite value
+  std::string message;
+  std::vector<std::string> notes;  // values left out and why
+
+  // Deck, per output point and over all points.
+  std::vector<PointEnvelope> points;
+  std::optional<double> max_abs_displacement_m;
+  std::optional<double> max_abs_acceleration_mps2;  // filtered
+  std::optional<double> max_abs_acceleration_unfiltered_mps2;
+  double cutoff_hz = 0.0;  // code frequency max(30 Hz, 1.5 f0, f3) used
+  std::string filter;      // code_filter_description()
+
+  // Wheels (empty for moving forces) and over the evaluated wheels.
+  std::vector<WheelEnvelope> wheels;
+  std::optional<double> max_unloading_ratio;
+  std::optional<double> max_contact_loss_s;  // the longest of any wheel
+  std::optional<double> min_contact_force_N;
+
+  // Car bodies inside the evaluation window (absent for moving forces).
+  std::optional<double> max_abs_carbody_acceleration_mps2;
+
+  // Run.
+  long steps = 0;
+  double dt_s = 0.0;
+  long newton_iterations = 0;
+  int max_newton_iterations_in_step = 0;
+  double wall_s = 0.0;
+  double setup_s = 0.0;
+  FidelityRecord fidelity;
+
+  bool ok() const { return status == "ok"; }
+};
+
+// history_stride is the AnalysisOptions::history_stride the run used. The
+// filter needs the acceleration at every step: decimated histories alias
+// everything above 1/(2 dt stride) into the band the filter keeps, so with
+// stride > 1 the filtered values are absent (and a note says so) rather
+// than quietly wrong. The displacement and unfiltered acceleration come
+// from the run's summary, which sees every step whatever the stride.
+// cutoff_hz: code_cutoff_hz(f0, f3) of the structure.
+JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_stride, double cutoff_hz);
+
+}  // namespace railvsi
