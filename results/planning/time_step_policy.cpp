@@ -1,0 +1,94 @@
+#include "planning/time_step_policy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <set>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "envelopes/code_filter.hpp"
+#include "simulation/static_equilibrium.hpp"
+
+namespace railvsi {
+namespace {
+
+void require(bool ok, const char* what) {
+  if (!ok) throw std::invalid_argument(std::string("choose_time_step: ") + what);
+}
+
+bool finite_non_negative(double v) { return std::isfinite(v) && v >= 0.0; }
+
+}  // namespace
+
+double shortest_rail_element_m(const StructureModel& structure) {
+  double h = std::numeric_limits<double>::infinity();
+  for (const RailLine& rail : structure.rails())
+    for (std::size_t i = 0; i + 1 < rail.x_m.size(); ++i) h = std::min(h, rail.x_m[i + 1] - rail.x_m[i]);
+  return h;
+}
+
+double highest_contact_frequency_hz(const Train& train, const ContactOptions& contact) {
+  if (train.is_moving_forces() || contact.law == ContactLaw::kRigid) return 0.0;
+  double f_max = 0.0;
+  std::set<const VehicleModel*> seen;  // one vehicle type is shared by many cars
+  for (const TrainVehicle& tv : train.vehicles) {
+    if (!seen.insert(tv.model.get()).second) continue;
+    const VehicleModel& v = *tv.model;
+    const Vector loads = static_wheel_loads_on_rigid_track(v);
+    for (std::size_t w = 0; w < v.wheels().size(); ++w) {
+      const Wheel& wheel = v.wheels()[w];
+      const double Q = std::max(0.0, loads[static_cast<Eigen::Index>(w)]);
+      const double n = contact.wheels_per_contact;
+      // P = n (delta/G)^(3/2): dP/d(delta) = 1.5 n (P/n)^(1/3) / G.
+      const double k = 1.5 * n * std::cbrt(Q / n) / hertz_constant(contact, wheel.radius_m);
+      const double m = v.M()(wheel.dof, wheel.dof);
+      if (m > 0.0) f_max = std::max(f_max, std::sqrt(k / m) / (2.0 * std::numbers::pi));
+    }
+  }
+  return f_max;
+}
+
+TimeStepChoice choose_time_step(const StructureModel& structure, const Train& train, double speed_mps,
+                                const ContactOptions& contact, double f0_hz, double f3_hz,
+                                const TimeStepPolicy& policy) {
+  require(finite_non_negative(speed_mps), "speed_mps must be finite and >= 0");
+  require(finite_non_negative(f0_hz) && finite_non_negative(f3_hz), "f0_hz and f3_hz must be finite and >= 0");
+  require(policy.dt_max_s > 0.0 && policy.steps_per_period > 0.0 && policy.max_travel_fraction_of_element > 0.0 &&
+              policy.contact_steps_per_period > 0.0,
+          "policy values must be > 0");
+
+  TimeStepChoice c;
+  const double f_cut = code_cutoff_hz(f0_hz, f3_hz);
+  c.bounds.push_back({"code frequency", 1.0 / (policy.steps_per_period * f_cut),
+                      fmt::format("f_cut = max(30, 1.5 f0 = {:.1f}, f3 = {:.1f}) = {:.1f} Hz at {:g} steps/period",
+                                  1.5 * f0_hz, f3_hz, f_cut, policy.steps_per_period)});
+  const double h = shortest_rail_element_m(structure);
+  if (speed_mps > 0.0 && std::isfinite(h))
+    c.bounds.push_back({"wheel travel", policy.max_travel_fraction_of_element * h / speed_mps,
+                        fmt::format("wheel travel {:g} x {:.3f} m element at {:.1f} m/s",
+                                    policy.max_travel_fraction_of_element, h, speed_mps)});
+  const double f_H = highest_contact_frequency_hz(train, contact);
+  if (f_H > 0.0)
+    c.bounds.push_back({"contact frequency", 1.0 / (policy.contact_steps_per_period * f_H),
+                        fmt::format("Hertz contact f_H = {:.1f} Hz at {:g} steps/period", f_H,
+                                    policy.contact_steps_per_period)});
+
+  const auto binding = std::min_element(c.bounds.begin(), c.bounds.end(),
+                                        [](const TimeStepBound& a, const TimeStepBound& b) { return a.dt_s < b.dt_s; });
+  c.required_dt_s = binding->dt_s;
+  c.binding = binding->name;
+  // Largest rung not above the requirement; a requirement that equals a
+  // rung up to round-off takes that rung.
+  while (std::ldexp(policy.dt_max_s, -c.ladder_k) > c.required_dt_s * (1.0 + 1e-12) && c.ladder_k < 60) ++c.ladder_k;
+  c.dt_s = std::ldexp(policy.dt_max_s, -c.ladder_k);
+
+  for (const TimeStepBound& b : c.bounds) c.reason += fmt::format("{} needs {:.2e} s; ", b.detail, b.dt_s);
+  c.reason += fmt::format("binding: {}; ladder {:.1e} s / 2^{} = {:.3e} s", c.binding, policy.dt_max_s, c.ladder_k,
+                          c.dt_s);
+  return c;
+}
+
+}  // namespace railvsi

@@ -1,0 +1,92 @@
+#pragma once
+// The time step of a job whose study does not fix dt_s (DESIGN.md "Fidelity
+// ladder"): the largest step on the ladder dt_max / 2^k that meets every
+// accuracy bound, so that jobs whose requirements fall in the same ladder
+// interval share one structure factorization.
+//
+// The planner is the scheduler's; this rule lives beside the code filter
+// because both start from the code frequency f_cut, and it depends on the
+// models only (it builds and tests without the study service).
+//
+// Bounds (each a largest admissible dt):
+//  1. code frequency: steps_per_period steps per period of
+//     f_cut = max(30 Hz, 1.5 f0, f3), the highest frequency the deck
+//     acceleration envelope keeps. At 20 steps per period HHT with
+//     alpha = -0.05 lengthens the period by 0.93 % (the trapezoidal rule,
+//     alpha = 0, by (omega dt)^2/12 = 0.82 %), dissipates 0.1 % of the
+//     amplitude per cycle (algorithmic damping ratio 0.017 %, against >= 0.5 %
+//     structural damping), and a sampled peak misses at most
+//     1 - cos(pi/20) = 1.2 % of a sine's amplitude. Lower modes get more
+//     steps and smaller errors (both go as dt^2).
+//  2. wheel travel: a wheel moves at most max_travel_fraction_of_element of
+//     the shortest rail element per step. Loads enter through the Hermite
+//     row of the element under each wheel at each step; 0.25 gives every
+//     element (every sleeper bay of a track model) four load positions, so
+//     the element- and sleeper-passing frequency v/h is sampled at half the
+//     Nyquist frequency instead of being aliased.
+//  3. contact frequency (multibody trains with a compliant contact law,
+//     linear or nonlinear Hertz): contact_steps_per_period steps per period
+//     of f_H = sqrt(k_H/m_w)/(2 pi), the wheel's mass m_w (its diagonal mass
+//     entry) on the Hertz spring linearized at its static load,
+//     k_H = 1.5 n (Q/n)^(1/3) / G. This is the wheel bouncing on a rigid
+//     rail: an upper bound of the wheel-on-track (P2) frequencies that govern
+//     unloading, which therefore get more steps than these 10 (10 steps at
+//     f_H: period error 3.6 %, amplitude loss 0.74 % per cycle at
+//     alpha = -0.05). The rail mass on the Hertz spring (P1, several hundred
+//     Hz with a track) is not resolved: HHT's dissipation damps it. A rigid
+//     contact has no frequency of its own: no bound.
+#include <string>
+#include <vector>
+
+#include "model/structure_model.hpp"
+#include "model/train.hpp"
+#include "simulation/scene.hpp"
+
+namespace railvsi {
+
+struct TimeStepPolicy {
+  // Top of the ladder. 2 ms is coarser than any deck needs (f_cut >= 30 Hz
+  // at 20 steps per period needs 1.67 ms) and its halvings are round
+  // numbers: 1, 0.5, 0.25, 0.125 ms.
+  double dt_max_s = 2.0e-3;
+  double steps_per_period = 20.0;               // at the code frequency f_cut
+  double max_travel_fraction_of_element = 0.25;  // of the shortest rail element, per step
+  double contact_steps_per_period = 10.0;        // at the Hertz contact frequency f_H
+};
+
+struct TimeStepBound {
+  std::string name;   // "code frequency", "wheel travel", "contact frequency"
+  double dt_s = 0.0;  // largest admissible step
+  std::string detail;  // "f_cut = max(30, 1.5 f0 = 7.5, f3 = 45.0) = 45.0 Hz at 20 steps/period"
+};
+
+struct TimeStepChoice {
+  double dt_s = 0.0;          // dt_max / 2^ladder_k
+  int ladder_k = 0;
+  double required_dt_s = 0.0;  // the smallest bound
+  std::string binding;         // name of that bound
+  std::vector<TimeStepBound> bounds;
+  // For the job record: every bound with its numbers, the binding one, the
+  // ladder rung, e.g. "f_cut = ... = 36.0 Hz at 20 steps/period needs
+  // 1.39e-03 s; wheel travel 0.25 x 0.600 m element at 83.3 m/s needs
+  // 1.80e-03 s; binding: code frequency; ladder 2.0e-03 s / 2^1 = 1.0e-03 s".
+  std::string reason;
+};
+
+// f0_hz, f3_hz: first bending and third frequency of the deck (0 when
+// unknown: f_cut is then 30 Hz or what the other is). contact: the scene's
+// contact options (ignored for moving forces). speed_mps >= 0. Throws
+// std::invalid_argument for negative or non-finite arguments or a policy
+// value <= 0 (they are computed, not user input: the study is validated
+// before planning).
+TimeStepChoice choose_time_step(const StructureModel& structure, const Train& train, double speed_mps,
+                                const ContactOptions& contact, double f0_hz, double f3_hz,
+                                const TimeStepPolicy& policy = {});
+
+// Shortest element of all rail lines, m.
+double shortest_rail_element_m(const StructureModel& structure);
+// Highest linearized Hertz frequency of the train's wheels, Hz; 0 for moving
+// forces or a rigid contact.
+double highest_contact_frequency_hz(const Train& train, const ContactOptions& contact);
+
+}  // namespace railvsi
