@@ -49,6 +49,7 @@ ContactOptions contact_options(const json& c) {
     throw InputError("/analysis/contact/unilateral", "the Hertz law is unilateral: it cannot pull the wheel");
   if (c.contains("G_m_per_N23")) o.hertz_G = c.at("G_m_per_N23").get<double>();
   o.wheels_per_contact = c.value("wheels_per_contact", o.wheels_per_contact);
+  if (c.contains("rail_lines")) o.rail_lines = c.at("rail_lines").get<std::vector<int>>();
   return o;
 }
 

@@ -24,7 +24,7 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
   P_ = nc > 0 ? statics.P : Vector();
   Q0_ = P_;
   f_s_ = Vector::Zero(ns);
-  moving_force_loads(start_x_m, f_s_);
+  add_moving_force_loads(scene, start_x_m, f_s_);
   rows_ = locate_contacts(*scene.structure, layout, start_x_m);
   add_rail_loads(rows_, P_, 1.0, f_s_);
   r_ = Vector::Zero(nc);
@@ -43,21 +43,11 @@ bool RunState::in_window(double front_x_m, const ContactSpec& c) const {
   return x >= window_start_m_ && x <= window_end_m_;
 }
 
-void RunState::moving_force_loads(double front_x_m, Vector& f) const {
-  const RailLine& rail = scene_.structure->rails().front();
-  for (const MovingForce& m : scene_.train.moving_forces) {
-    const auto row = rail.locate(TrainLayout::position_m(front_x_m, m.offset_m));
-    if (!row) continue;
-    for (int k = 0; k < 4; ++k)
-      if (row->dof[k] >= 0) f[row->dof[k]] -= row->weight[k] * m.load_N;
-  }
-}
-
 Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver, int& iterations) {
   const double x = front_x(t_new);
   // Loads known at t_{n+1}: moving forces and the irregularity under each wheel.
   f_new_.setZero(s_.u.size());
-  moving_force_loads(x, f_new_);
+  add_moving_force_loads(scene_, x, f_new_);
   rows_ = locate_contacts(*scene_.structure, layout_, x);
   for (Eigen::Index c = 0; c < r_.size(); ++c)
     r_[c] = scene_.irregularity ? scene_.irregularity->at(TrainLayout::position_m(x, layout_.contacts[c].offset_m)) : 0.0;

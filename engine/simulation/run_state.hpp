@@ -26,7 +26,6 @@ class RunState {
  private:
   double front_x(double t_s) const { return start_x_m_ + scene_.speed_mps * t_s; }
   bool in_window(double front_x_m, const ContactSpec& c) const;
-  void moving_force_loads(double front_x_m, Vector& f) const;
 
   const Scene& scene_;
   const TrainLayout& layout_;

@@ -3,6 +3,7 @@
 // options. Built by io/scene_loader from a JSON document or directly in code.
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "integration/hht.hpp"
 #include "model/irregularity.hpp"
@@ -24,6 +25,11 @@ struct ContactOptions {
   // Wheels sharing one contact of the model (2 for a plane model lumping
   // both rails): P = n * (delta/G)^(3/2).
   double wheels_per_contact = 2.0;
+  // Rail lines every wheel (and every moving force) bears on. A plane train
+  // on a 3D deck with two rails lists both: each wheelset then makes one
+  // contact per rail, sharing wheels_per_contact between them, and a moving
+  // force is split equally between the rails.
+  std::vector<int> rail_lines{0};
 };
 
 enum class SolverPath { kCondensed, kReference };

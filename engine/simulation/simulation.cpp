@@ -77,6 +77,16 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
   const double duration = an.duration_s.value_or(scene_.speed_mps > 0.0 ? default_duration_s(scene_, x0) : 0.0);
   if (!(duration > 0.0) || !std::isfinite(duration))
     throw InputError("/analysis/duration_s", "the run has no duration: give speed_kmh > 0 or analysis.duration_s");
+  const auto& rails = an.contact.rail_lines;
+  for (std::size_t i = 0; i < rails.size(); ++i)
+    if (rails[i] < 0 || rails[i] >= static_cast<int>(scene_.structure->rails().size()))
+      throw InputError(fmt::format("/analysis/contact/rail_lines/{}", i),
+                       fmt::format("rail line {} does not exist: the structure has {}", rails[i],
+                                   scene_.structure->rails().size()));
+  if (rails.size() > 1 && an.contact.law == ContactLaw::kRigid && !scene_.train.is_moving_forces())
+    throw InputError("/analysis/contact/rail_lines",
+                     "a rigid wheelset on several rails has an indeterminate load split where it runs "
+                     "on the rigid path: use a compliant law (hertz or linear-hertz)");
   auto setup = std::make_unique<SimulationSetup>(
       SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, 0.0});
   setup->statics = static_equilibrium(scene_, setup->layout, x0);

@@ -56,19 +56,29 @@ Vector static_wheel_loads_on_rigid_track(const VehicleModel& vehicle) {
   return lu.solve(rhs).tail(nw);
 }
 
+void add_moving_force_loads(const Scene& scene, double front_x_m, Vector& f) {
+  const auto& rails = scene.analysis.contact.rail_lines;
+  const double share = 1.0 / static_cast<double>(rails.size());
+  for (const MovingForce& m : scene.train.moving_forces)
+    for (int r : rails) {
+      const auto row = scene.structure->rails()[static_cast<std::size_t>(r)].locate(
+          TrainLayout::position_m(front_x_m, m.offset_m));
+      if (!row) continue;
+      for (int k = 0; k < 4; ++k)
+        if (row->dof[k] >= 0) f[row->dof[k]] -= share * row->weight[k] * m.load_N;
+    }
+}
+
 namespace {
+
+constexpr double kNominalLoad_N = 1.0e5;
 
 // Moving forces: the loads at t = 0, structure only.
 StaticState moving_force_statics(const Scene& scene, const CholmodOperator& op, double front_x_m) {
   const StructureModel& s = *scene.structure;
   StaticState st;
   Vector f = Vector::Zero(s.num_dofs());
-  for (const MovingForce& m : scene.train.moving_forces) {
-    const auto row = s.rails().front().locate(TrainLayout::position_m(front_x_m, m.offset_m));
-    Vector P(1);
-    P[0] = m.load_N;
-    add_rail_loads({row}, P, 1.0, f);
-  }
+  add_moving_force_loads(scene, front_x_m, f);
   auto ws = op.make_workspace();
   st.u_s = Vector::Zero(s.num_dofs());
   if (f.squaredNorm() > 0.0) (void)op.solve(f, st.u_s, *ws);
@@ -120,7 +130,10 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
   // Newton on z = [u_v; P]:
   //   K_v u_v - E^T P - F_g = 0
   //   -A_s P + r - E u_v - h(P) = 0   (h: compression of the law, 0 if rigid)
-  // The first iteration from z = 0 ignores h and is the rigid solution.
+  // The first iteration from z = 0 is linear: rigid contacts, or compliant
+  // ones as linear springs stiffened at a nominal 100 kN (a start with every
+  // load positive; it also splits a wheelset's load between two rails on a
+  // rigid path, where a rigid split is indeterminate).
   Vector z = Vector::Zero(nv + nc), R(nv + nc);
   const auto& laws = layout.contacts;
   for (int it = 0; it < 60; ++it) {
@@ -140,14 +153,22 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
       if (compliant) {
         R[nv + c] -= laws[c].law.compression(P[c]);
         J(nv + c, nv + c) -= laws[c].law.compliance(P[c]);
+      } else if (!laws[c].law.is_rigid()) {
+        const double nominal_compliance = laws[c].law.compression(kNominalLoad_N) / kNominalLoad_N;
+        R[nv + c] -= nominal_compliance * P[c];
+        J(nv + c, nv + c) -= nominal_compliance;
       }
     }
-    const Eigen::FullPivLU<DenseMatrix> lu(J);
+    // Equilibrate: stiffness rows (~1e6 N/m) and compliance rows (~1e-9 m/N)
+    // differ by 15 orders, which would fool the rank test.
+    Vector d(nv + nc);
+    for (Eigen::Index i = 0; i < d.size(); ++i) d[i] = J(i, i) != 0.0 ? 1.0 / std::sqrt(std::abs(J(i, i))) : 1.0;
+    const Eigen::FullPivLU<DenseMatrix> lu(d.asDiagonal() * J * d.asDiagonal());
     if (!lu.isInvertible())
       throw InputError("/train", "the train is not statically supported by its wheels (the static "
                                  "equilibrium matrix is singular: a vehicle DOF has no stiffness "
                                  "path to a wheel)");
-    Vector dz = lu.solve(-R);
+    const Vector dz = d.asDiagonal() * lu.solve(-(d.asDiagonal() * R)).eval();
     // Keep the loads compressive while the compliant iteration settles.
     double step = 1.0;
     if (compliant)

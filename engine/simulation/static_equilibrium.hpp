@@ -33,6 +33,10 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
 // InputError if the vehicle is not carried by its wheels.
 Vector static_wheel_loads_on_rigid_track(const VehicleModel& vehicle);
 
+// Adds the downward moving-force loads of the scene's train with its first
+// axle at front_x_m, split over ContactOptions::rail_lines.
+void add_moving_force_loads(const Scene& scene, double front_x_m, Vector& f);
+
 // Adds -scale * N_k^T P_k to f for every on-track load.
 void add_rail_loads(const std::vector<std::optional<RailContactRow>>& rows, const Vector& P,
                     double scale, Vector& f);

@@ -14,7 +14,8 @@ TrainLayout::TrainLayout(const Train& train, const ContactOptions& contact) {
     if (it == types.end()) types.push_back(model);
     const int vehicle = static_cast<int>(vehicles.size());
     vehicles.push_back({model, next_dof, tv.offset_m, type});
-    for (std::size_t w = 0; w < model->wheels().size(); ++w) {
+    for (std::size_t w = 0; w < model->wheels().size(); ++w)
+      for (int rail : contact.rail_lines) {
       const Wheel& wheel = model->wheels()[w];
       ContactSpec c;
       c.vehicle = vehicle;
@@ -22,16 +23,17 @@ TrainLayout::TrainLayout(const Train& train, const ContactOptions& contact) {
       c.global_dof = next_dof + wheel.dof;
       c.local_wheel = static_cast<int>(w);
       c.offset_m = tv.offset_m + wheel.offset_m;
-      c.rail_line = wheel.rail_line;
+      c.rail_line = rail;
+      c.rails_per_wheel = static_cast<int>(contact.rail_lines.size());
       c.law.law = contact.law;
       // Hertz cannot pull and a rigid contact cannot let go (see
       // contact_problem.hpp); the flag matters for the linearized law only.
       c.law.unilateral = contact.law == ContactLaw::kHertz ||
                          (contact.law == ContactLaw::kLinearHertz && contact.unilateral);
       c.law.G = hertz_constant(contact, wheel.radius_m);
-      c.law.n = contact.wheels_per_contact;
+      c.law.n = contact.wheels_per_contact / static_cast<double>(contact.rail_lines.size());
       contacts.push_back(c);
-    }
+      }
     next_dof += model->num_dofs();
   }
   num_vehicle_dofs = next_dof;
@@ -41,6 +43,7 @@ TrainLayout::TrainLayout(const Train& train, const ContactOptions& contact) {
 }
 
 std::string wheel_name(const ContactSpec& c) {
+  if (c.rails_per_wheel > 1) return fmt::format("v{}_w{}_r{}", c.vehicle + 1, c.local_wheel + 1, c.rail_line + 1);
   return fmt::format("v{}_w{}", c.vehicle + 1, c.local_wheel + 1);
 }
 

@@ -25,6 +25,7 @@ struct ContactSpec {
   int local_wheel = 0;
   double offset_m = 0.0;  // behind the train's first axle
   int rail_line = 0;
+  int rails_per_wheel = 1;
   ContactLawPoint law;
 };
 
