@@ -10,10 +10,9 @@ const std::vector<EnvelopeQuantity>& envelope_quantities() {
       {"deck_acceleration_mps2", Extreme::kMax,
        "max |vertical deck acceleration| after the EN 1990 A2.4.4.2 low-pass filter"},
       {"deck_acceleration_unfiltered_mps2", Extreme::kMax, "max |vertical deck acceleration|, all frequencies"},
-      {"wheel_static_load_N", Extreme::kMax, "static wheel load Q0"},
-      {"wheel_min_contact_force_N", Extreme::kMin, "smallest contact force in the evaluation window"},
-      {"wheel_unloading_ratio", Extreme::kMax, "(Q0 - Qmin)/Q0 in the evaluation window, 1 = contact lost"},
-      {"wheel_contact_loss_s", Extreme::kMax, "time without contact in the evaluation window"},
+      {"min_contact_force_N", Extreme::kMin, "smallest wheel contact force in the evaluation window"},
+      {"unloading_ratio", Extreme::kMax, "wheel unloading (Q0 - Qmin)/Q0 in the evaluation window, 1 = contact lost"},
+      {"contact_loss_s", Extreme::kMax, "time a wheel spent without contact in the evaluation window"},
       {"carbody_acceleration_mps2", Extreme::kMax, "max |car-body vertical acceleration| in the evaluation window"},
       {"newton_iterations", Extreme::kMax, "Newton iterations of the whole run"},
       {"max_newton_iterations_in_step", Extreme::kMax, "most Newton iterations in one step"},
@@ -41,13 +40,17 @@ std::vector<EnvelopeRow> envelope_rows(const JobEnvelopes& e) {
     add("deck_acceleration_unfiltered_mps2", p.name, p.max_abs_acceleration_unfiltered_mps2);
   add("deck_acceleration_unfiltered_mps2", "", e.max_abs_acceleration_unfiltered_mps2);
   if (!e.wheels.empty()) {
-    for (const WheelEnvelope& w : e.wheels) add("wheel_static_load_N", w.name, w.static_load_N);
-    for (const WheelEnvelope& w : e.wheels) add("wheel_min_contact_force_N", w.name, w.min_force_N);
-    add("wheel_min_contact_force_N", "", e.min_contact_force_N);
-    for (const WheelEnvelope& w : e.wheels) add("wheel_unloading_ratio", w.name, w.unloading_ratio);
-    add("wheel_unloading_ratio", "", e.max_unloading_ratio);
-    for (const WheelEnvelope& w : e.wheels) add("wheel_contact_loss_s", w.name, w.contact_loss_s);
-    add("wheel_contact_loss_s", "", e.max_contact_loss_s);
+    // Per wheel only for wheels inside the evaluation window: the others have no values.
+    const auto per_wheel = [&](std::string_view quantity, std::optional<double> WheelEnvelope::*field) {
+      for (const WheelEnvelope& w : e.wheels)
+        if (w.evaluated) add(quantity, w.name, w.*field);
+    };
+    per_wheel("min_contact_force_N", &WheelEnvelope::min_force_N);
+    add("min_contact_force_N", "", e.min_contact_force_N);
+    per_wheel("unloading_ratio", &WheelEnvelope::unloading_ratio);
+    add("unloading_ratio", "", e.max_unloading_ratio);
+    per_wheel("contact_loss_s", &WheelEnvelope::contact_loss_s);
+    add("contact_loss_s", "", e.max_contact_loss_s);
     add("carbody_acceleration_mps2", "", e.max_abs_carbody_acceleration_mps2);
   }
   add("newton_iterations", "", static_cast<double>(e.newton_iterations));

@@ -34,8 +34,9 @@ struct EnvelopeRow {
 };
 
 // Deck rows for every output point and overall; wheel and car-body rows
-// only for a train with wheels (moving forces have none); Newton
-// iterations. Values absent in the envelopes give rows without a value.
+// only for a train with wheels (moving forces have none), per wheel only
+// for the wheels inside the evaluation window; Newton iterations. Values
+// absent in the envelopes give rows without a value.
 std::vector<EnvelopeRow> envelope_rows(const JobEnvelopes& envelopes);
 
 }  // namespace railvsi
