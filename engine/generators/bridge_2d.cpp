@@ -70,8 +70,10 @@ void check_options(const Bridge2dOptions& o) {
       throw InputError("/structure/deck/first_frequency_hz",
                        "a continuous girder of unequal spans needs EI_Nm2: its first frequency is not the "
                        "simply supported frequency of its longest span, which first_frequency_hz stands for");
+  } else if (o.deck_EI_Nm2 == 0.0) {
+    throw InputError("/structure/deck", "give the bending stiffness EI_Nm2 or the first frequency first_frequency_hz");
   } else if (!(o.deck_EI_Nm2 > 0.0)) {
-    throw InputError("/structure/deck/EI_Nm2", "must be > 0 (or give first_frequency_hz instead)");
+    throw InputError("/structure/deck/EI_Nm2", "must be > 0");
   }
   if (!o.damping_en1991 && !(o.damping_ratio >= 0.0 && o.damping_ratio < 1.0))
     throw InputError("/structure/damping/ratio", "must be in [0, 1)");

@@ -62,6 +62,10 @@ Bridge2dOptions bridge_options(const json& s, const json& outputs, double min_ap
   o.deck_first_frequency_hz = s.at("deck").value("first_frequency_hz", 0.0);
   o.deck_mass_kg_per_m = s.at("deck").at("mass_kg_per_m").get<double>();
   const json& damping = s.at("damping");
+  // Checked here rather than by a oneOf in the schema: the message can say what to do.
+  if (damping.contains("en1991") == damping.contains("ratio"))
+    throw InputError("/structure/damping", "give exactly one of ratio (the damping ratio) and en1991 (the lower "
+                                           "bound of EN 1991-2 Table 6.6 for a bridge type)");
   if (damping.contains("en1991")) {
     const auto type = damping.at("en1991").at("bridge_type").get<std::string>();
     o.damping_en1991 = en1991_bridge_type_from_name(type);
