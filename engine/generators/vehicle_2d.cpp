@@ -51,7 +51,9 @@ std::shared_ptr<const VehicleModel> Multibody2d::build(std::string name) const {
                                               std::move(body_dofs));
 }
 
-std::shared_ptr<const VehicleModel> make_car_2d(const Car2dOptions& o) {
+namespace {
+
+void check_car_2d(const Car2dOptions& o) {
   const std::pair<const char*, double> positive[] = {
       {"/car_body/mass_kg", o.body_mass_kg},
       {"/car_body/pitch_inertia_kgm2", o.body_pitch_inertia_kgm2},
@@ -69,14 +71,23 @@ std::shared_ptr<const VehicleModel> make_car_2d(const Car2dOptions& o) {
   if (!(o.secondary.c_Ns_per_m >= 0.0)) throw InputError("/secondary/c_Ns_per_m", "must be >= 0");
   if (!(o.bogie_spacing_m > o.axle_spacing_m))
     throw InputError("/bogie_spacing_m", "must exceed axle_spacing_m");
+}
 
+// Bodies 0..n-1 on bogies 0..n: body i rests on bogies i and i+1. A car is
+// the case n = 1.
+std::shared_ptr<const VehicleModel> bodies_on_bogies(const Car2dOptions& o, int n) {
   Multibody2d mb;
   const double a = o.axle_spacing_m, lb = o.bogie_spacing_m;
-  const int body = mb.add_body(o.body_mass_kg, o.body_pitch_inertia_kgm2, 0.5 * a + 0.5 * lb, true);
-  mb.mark_body(body);
-  for (double bogie_x : {0.5 * a, 0.5 * a + lb}) {
+  std::vector<int> bodies;
+  for (int i = 0; i < n; ++i) {
+    bodies.push_back(mb.add_body(o.body_mass_kg, o.body_pitch_inertia_kgm2, 0.5 * a + (i + 0.5) * lb, true));
+    mb.mark_body(bodies.back());
+  }
+  for (int j = 0; j <= n; ++j) {
+    const double bogie_x = 0.5 * a + j * lb;
     const int bogie = mb.add_body(o.bogie_mass_kg, o.bogie_pitch_inertia_kgm2, bogie_x, true);
-    mb.connect(body, bogie, bogie_x, o.secondary);
+    for (int i : {j - 1, j})
+      if (i >= 0 && i < n) mb.connect(bodies[static_cast<std::size_t>(i)], bogie, bogie_x, o.secondary);
     for (double axle_x : {bogie_x - 0.5 * a, bogie_x + 0.5 * a}) {
       const int ws = mb.add_body(o.wheelset_mass_kg, 0.0, axle_x, false);
       mb.connect(bogie, ws, axle_x, o.primary);
@@ -84,6 +95,21 @@ std::shared_ptr<const VehicleModel> make_car_2d(const Car2dOptions& o) {
     }
   }
   return mb.build(o.name);
+}
+
+}  // namespace
+
+std::shared_ptr<const VehicleModel> make_car_2d(const Car2dOptions& o) {
+  check_car_2d(o);
+  return bodies_on_bogies(o, 1);
+}
+
+std::shared_ptr<const VehicleModel> make_articulated_2d(const Articulated2dOptions& o) {
+  if (o.bodies < 2)
+    throw InputError("/bodies", fmt::format("an articulated set has at least 2 bodies (got {}); use car-2d for one",
+                                            o.bodies));
+  check_car_2d(o.car);
+  return bodies_on_bogies(o.car, o.bodies);
 }
 
 }  // namespace railvsi

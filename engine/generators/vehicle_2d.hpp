@@ -36,6 +36,21 @@ struct Car2dOptions {
 // Throws InputError with paths relative to the car's JSON object.
 std::shared_ptr<const VehicleModel> make_car_2d(const Car2dOptions& options);
 
+// An articulated set: `bodies` car bodies in a row on bodies + 1 bogies,
+// each inner (Jacobs) bogie shared by the two bodies whose ends meet above
+// it. Every body, bogie and wheelset is as in `car`, with bogie_spacing_m the
+// distance between consecutive bogie centres (the body length between
+// articulations). Secondary values are per body end: each body rests on the
+// bogie at either end through one such spring-dashpot, so a shared bogie
+// carries two of them (one per body, both at the bogie centre). The bodies
+// are not coupled to each other directly. Every body is a body of interest.
+// Throws InputError with paths relative to the set's JSON object.
+struct Articulated2dOptions {
+  Car2dOptions car;
+  int bodies = 2;
+};
+std::shared_ptr<const VehicleModel> make_articulated_2d(const Articulated2dOptions& options);
+
 // A general planar multibody assembler (used by the templates above).
 class Multibody2d {
  public:

@@ -61,9 +61,7 @@ double speed_mps(const json& doc, const AnalysisOptions& analysis) {
 }
 
 Train scene_train(const json& train) {
-  return with_path_prefix("/train", [&] {
-    return train.is_string() ? load_library_train(train.get<std::string>()) : parse_train(train);
-  });
+  return with_path_prefix("/train", [&] { return parse_train_reference(train); });
 }
 
 std::shared_ptr<const Irregularity> scene_irregularity(const json& doc, const std::filesystem::path& base_dir) {

@@ -10,6 +10,7 @@
 #include <fmt/ranges.h>
 
 #include "core/input_error.hpp"
+#include "generators/hslm.hpp"
 #include "generators/vehicle_2d.hpp"
 #include "io/json_document.hpp"
 #include "io/schema_validator.hpp"
@@ -43,6 +44,15 @@ Car2dOptions car_2d_options(const json& car) {
   o.primary = spring_damper(car.at("primary"));
   o.secondary = spring_damper(car.at("secondary"));
   return o;
+}
+
+Articulated2dOptions articulated_2d_options(const json& set) {
+  return {car_2d_options(set), set.at("bodies").get<int>()};
+}
+
+std::shared_ptr<const VehicleModel> template_vehicle(const json& v) {
+  if (v.at("template").get<std::string>() == "articulated-2d") return make_articulated_2d(articulated_2d_options(v));
+  return make_car_2d(car_2d_options(v));
 }
 
 // A square matrix given as a list of rows; `path` is its JSON pointer.
@@ -88,7 +98,7 @@ class VehicleCatalog {
     auto& model = models_[definition.dump()];
     if (!model)
       model = with_path_prefix(path, [&] {
-        return car.contains("template") ? make_car_2d(car_2d_options(car)) : imported_vehicle(car);
+        return car.contains("template") ? template_vehicle(car) : imported_vehicle(car);
       });
     return model;
   }
@@ -157,6 +167,15 @@ std::vector<MovingForce> moving_forces(const json& list) {
   return forces;
 }
 
+Train hslm_a_train(const json& h, std::string name) {
+  HslmAOptions o;
+  o.intermediate_coaches = h.at("intermediate_coaches").get<int>();
+  o.coach_length_m = h.at("coach_length_m").get<double>();
+  o.bogie_axle_spacing_m = h.at("bogie_axle_spacing_m").get<double>();
+  o.axle_load_N = h.at("axle_load_N").get<double>();
+  return with_path_prefix("/hslm_a", [&] { return make_hslm_a(o, std::move(name)); });
+}
+
 }  // namespace
 
 std::filesystem::path train_library_dir() {
@@ -174,23 +193,58 @@ std::vector<std::string> library_train_names() {
   return names;
 }
 
-Train load_library_train(const std::string& name) {
+namespace {
+
+// The document of a library train and its file.
+std::pair<json, std::filesystem::path> library_document(const std::string& name) {
   // Only names listed in the library are opened: a name is never a path.
   const auto names = library_train_names();
   if (std::find(names.begin(), names.end(), name) == names.end())
     throw InputError("", fmt::format("unknown train '{}'; the library {} has: {}", name,
                                      train_library_dir().string(),
                                      names.empty() ? std::string("no trains") : fmt::format("{}", fmt::join(names, ", "))));
-  const auto file = train_library_dir() / (name + ".json");
-  return parse_train_document(read_json_file(file), file);
+  auto file = train_library_dir() / (name + ".json");
+  return {read_json_file(file), std::move(file)};
+}
+
+}  // namespace
+
+Train load_library_train(const std::string& name) {
+  const auto [doc, file] = library_document(name);
+  return parse_train_document(doc, file);
+}
+
+Train parse_train_reference(const json& train) {
+  if (train.is_string()) return load_library_train(train.get<std::string>());
+  if (!train.contains("library")) return parse_train(train);
+  const auto name = train.at("library").get<std::string>();
+  auto [doc, file] = with_path_prefix("/library", [&] { return library_document(name); });
+  if (train.contains("as")) {
+    const auto as = train.at("as").get<std::string>();
+    if (doc.is_object() && doc.contains("vehicles")) {
+      doc["as"] = as;
+    } else if (as == "multibody") {
+      throw InputError("/as", fmt::format("the library train '{}' is moving forces: it has no vehicles", name));
+    }
+  }
+  return parse_train_document(doc, file);
 }
 
 Train parse_train(const json& train) {
   Train t;
   t.name = train.at("name").get<std::string>();
-  if (train.contains("moving_forces")) {
-    if (train.contains("vehicles")) throw InputError("/vehicles", "give either moving_forces or vehicles, not both");
-    if (train.contains("as")) throw InputError("/as", "applies to vehicles only; moving_forces are moving forces already");
+  const char* given = nullptr;
+  for (const char* form : {"moving_forces", "hslm_a", "vehicles"}) {
+    if (!train.contains(form)) continue;
+    if (given != nullptr)
+      throw InputError(std::string("/") + form,
+                       fmt::format("give one of moving_forces, hslm_a and vehicles, not both {} and {}", given, form));
+    given = form;
+  }
+  if (train.contains("moving_forces") || train.contains("hslm_a")) {
+    if (train.contains("as"))
+      throw InputError("/as", fmt::format("applies to vehicles only; {} are moving forces already", given));
+    if (train.contains("hslm_a")) return hslm_a_train(train.at("hslm_a"), t.name);
     t.moving_forces = moving_forces(train.at("moving_forces"));
     return t;
   }

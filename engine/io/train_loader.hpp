@@ -1,6 +1,6 @@
 #pragma once
 // Trains from JSON: the library (jobs/trains/<name>.json), inline train
-// objects (moving forces or multibody cars), and train documents.
+// objects (moving forces, HSLM-A, or multibody vehicles), and train documents.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -20,6 +20,13 @@ std::vector<std::string> library_train_names();
 // caller's path) listing the available names; errors inside the library file
 // name that file.
 Train load_library_train(const std::string& name);
+
+// What a scene (or a study) gives as its train, already validated: a library
+// name, a library reference {"library": name, "as": ...}, or a train object.
+// InputError paths relative to it. "as" overrides how a library train of
+// vehicles is simulated; "multibody" for a train of moving forces is an
+// InputError at "/as".
+Train parse_train_reference(const nlohmann::json& train);
 
 // A validated train object; InputError paths relative to it.
 Train parse_train(const nlohmann::json& train);

@@ -93,6 +93,27 @@ TEST_F(InvalidInput, RejectsUnknownTrainNameListingTheLibrary) {
   EXPECT_NE(vsi("validate '" + scene.string() + "'").err.find("ICE3"), std::string::npos);
 }
 
+TEST_F(InvalidInput, RejectsHslmTrainsOutsideA1ToA10AtTheTrain) {
+  for (const char* name : {"HSLM-A0", "HSLM-A11"}) {
+    const auto scene = scene_with("/train", name);
+    expect_rejected(scene, "/train");
+    EXPECT_NE(vsi("validate '" + scene.string() + "'").err.find("HSLM-A10"), std::string::npos)
+        << "the message lists the library";
+  }
+}
+
+TEST_F(InvalidInput, RejectsBadLibraryReferencesAtTheirPaths) {
+  expect_rejected(scene_with("/train", json{{"library", "HSLM-A11"}}), "/train/library");
+  expect_rejected(scene_with("/train", json{{"library", "HSLM-A1"}, {"as", "multibody"}}), "/train/as");
+  expect_rejected(scene_with("/train", json{{"library", "KHST"}, {"as", "forces"}}), "/train/as");
+}
+
+TEST_F(InvalidInput, RejectsAnArticulatedSetOfOneBodyAtItsPath) {
+  json train = json::parse(read_text(std::filesystem::path(RAILVSI_SOURCE_DIR) / "jobs/trains/KHST.json"));
+  train["vehicles"][1]["bodies"] = 1;
+  expect_rejected(scene_with("/train", train), "/train/vehicles/1/bodies");
+}
+
 TEST_F(InvalidInput, RejectsMissingProfileFile) {
   const auto scene = scene_with("/irregularity", json{{"csv", "missing-profile.csv"}});
   expect_rejected(scene, "/irregularity/csv");
