@@ -19,8 +19,16 @@ struct SimulateArgs {
   std::optional<std::string> histories_dir;
 };
 
+struct InspectArgs {
+  std::string file;
+  int modes = 6;
+  std::string format = "text";  // "text" or "json"
+};
+
 int simulate_command(const SimulateArgs& args);
 int validate_command(const std::string& file);
+// Exit 1 when the modal analysis of a scene's structure fails.
+int inspect_command(const InspectArgs& args);
 
 // "error: <file>: <json path>: <message>" on stderr.
 void report_input_error(const InputError& e);

@@ -27,12 +27,23 @@ int run(int argc, char** argv) {
       "validate", "Check a scene, train or irregularity profile: schema, then every semantic check of a run");
   validate->add_option("file", validate_file, "Document (JSON)")->required();
 
+  InspectArgs inspect_args;
+  CLI::App* inspect = app.add_subcommand(
+      "inspect", "Report what a scene, train or irregularity profile holds: structure DOFs, damping, the lowest "
+                 "natural frequencies with their mode types, axles and static loads, profile statistics");
+  inspect->add_option("file", inspect_args.file, "Document (JSON)")->required();
+  inspect->add_option("--modes", inspect_args.modes, "Number of natural frequencies to compute (default 6)")
+      ->check(CLI::Range(1, 1000));
+  inspect->add_option("--format", inspect_args.format, "Output format: text (default) or json")
+      ->check(CLI::IsMember({"text", "json"}));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitInvalidInput;  // help and --version are successes
   }
   if (simulate->parsed()) return simulate_command(simulate_args);
+  if (inspect->parsed()) return inspect_command(inspect_args);
   return validate_command(validate_file);
 }
 

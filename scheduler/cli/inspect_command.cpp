@@ -1,0 +1,131 @@
+// vsi inspect: the models of a scene, train or irregularity document in
+// numbers an engineer checks before trusting them.
+#include <iostream>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "cli/commands.hpp"
+#include "cli/inspect_report.hpp"
+#include "io/document_kind.hpp"
+#include "io/irregularity_loader.hpp"
+#include "io/json_document.hpp"
+#include "io/scene_loader.hpp"
+#include "io/train_loader.hpp"
+
+namespace railvsi::cli {
+namespace {
+
+using nlohmann::ordered_json;
+
+ordered_json build_report(const std::filesystem::path& file, int modes) {
+  const nlohmann::json doc = read_json_file(file);
+  const DocumentKind kind = detect_document_kind(doc, file.string());
+  ordered_json report;
+  report["file"] = file.string();
+  report["document"] = std::string(document_kind_name(kind));
+  // Engine checks (a vehicle its wheels do not carry) are input errors of this file.
+  try {
+    switch (kind) {
+      case DocumentKind::kScene: {
+        const Scene scene = parse_scene(doc, file.parent_path(), file.string());
+        report["structure"] = structure_report(*scene.structure);
+        report["modal_analysis"] = modal_report(*scene.structure, modes);
+        report["train"] = train_report(scene.train);
+        report["speed_kmh"] = scene.speed_mps * 3.6;
+        report["irregularity"] = scene.irregularity ? irregularity_report(*scene.irregularity) : ordered_json(nullptr);
+        break;
+      }
+      case DocumentKind::kTrain: report["train"] = train_report(parse_train_document(doc, file)); break;
+      case DocumentKind::kIrregularity:
+        report["irregularity"] = irregularity_report(*parse_irregularity_document(doc, file));
+        break;
+    }
+  } catch (const InputError& e) {
+    throw e.with_file(file.string());
+  }
+  return report;
+}
+
+std::string optional_number(const ordered_json& v, const char* format_spec, double scale = 1.0) {
+  return v.is_number() ? fmt::format(fmt::runtime(format_spec), v.get<double>() * scale) : "unknown";
+}
+
+void print_structure(const ordered_json& s, std::ostream& out) {
+  out << fmt::format("structure ({}): {} DOFs = {} deck + {} track\n", s["source"].get<std::string>(),
+                     s["dofs"].get<int>(), s["deck_dofs"].get<int>(), s["track_dofs"].get<int>());
+  for (const auto& r : s["rail_lines"])
+    out << fmt::format("  rail line '{}': {} nodes, x from {:.3f} to {:.3f} m\n", r["name"].get<std::string>(),
+                       r["nodes"].get<int>(), r["start_m"].get<double>(), r["end_m"].get<double>());
+  out << fmt::format("  bridge: {:.3f} to {:.3f} m", s["bridge_start_m"].get<double>(), s["bridge_end_m"].get<double>());
+  if (!s["supports_m"].empty())
+    out << fmt::format(", supports at {} m", fmt::join(s["supports_m"].get<std::vector<double>>(), ", "));
+  out << '\n';
+  out << fmt::format("  damping: {} % ({})\n", optional_number(s["damping_ratio"], "{:.3f}", 100.0),
+                     s["damping_source"].get<std::string>());
+  for (const auto& p : s["output_points"])
+    out << fmt::format("  output point '{}' at x = {:.3f} m\n", p["name"].get<std::string>(), p["x_m"].get<double>());
+}
+
+void print_modes(const ordered_json& m, std::ostream& out) {
+  out << "natural frequencies of the structure alone (no train mass):\n";
+  if (m["status"] != "ok") {
+    out << fmt::format("  modal analysis failed ({}): {}\n", m["status"].get<std::string>(),
+                       m["message"].get<std::string>());
+    return;
+  }
+  out << "     n   frequency_hz  deck_energy  type\n";
+  for (const auto& mode : m["modes"])
+    out << fmt::format("  {:4d}  {:13.4f}  {:10.1f}%  {}\n", mode["n"].get<int>(), mode["frequency_hz"].get<double>(),
+                       100.0 * mode["deck_energy_fraction"].get<double>(), mode["type"].get<std::string>());
+}
+
+void print_train(const ordered_json& t, std::ostream& out) {
+  out << fmt::format("train '{}' ({}): {} axles over {:.3f} m (first to last), total static load {:.1f} kN\n",
+                     t["name"].get<std::string>(), t["model"].get<std::string>(), t["axles"].get<int>(),
+                     t["length_m"].get<double>(), t["total_static_load_N"].get<double>() / 1e3);
+  if (t.contains("vehicles"))
+    out << fmt::format("  {} vehicles, {} DOFs, total mass {:.1f} t\n", t["vehicles"].get<int>(),
+                       t["vehicle_dofs"].get<int>(), t["total_mass_kg"].get<double>() / 1e3);
+  out << "  axle    offset_m  static_load_kN\n";
+  int n = 0;
+  for (const auto& a : t["axle_list"])
+    out << fmt::format("  {:4d}  {:10.3f}  {:14.2f}{}\n", ++n, a["offset_m"].get<double>(),
+                       a["static_load_N"].get<double>() / 1e3,
+                       a.contains("vehicle") ? "  " + a["vehicle"].get<std::string>() : std::string());
+}
+
+void print_irregularity(const ordered_json& r, std::ostream& out) {
+  if (r.is_null()) {
+    out << "irregularity: none (perfect track)\n";
+    return;
+  }
+  out << fmt::format("irregularity '{}': {} samples, x from {:.3f} to {:.3f} m\n", r["source"].get<std::string>(),
+                     r["samples"].get<int>(), r["x_start_m"].get<double>(), r["x_end_m"].get<double>());
+  out << fmt::format("  r min {:.3f} mm, max {:.3f} mm, mean {} mm, RMS {} mm\n", r["min_m"].get<double>() * 1e3,
+                     r["max_m"].get<double>() * 1e3, optional_number(r["mean_m"], "{:.3f}", 1e3),
+                     optional_number(r["rms_m"], "{:.3f}", 1e3));
+}
+
+void print_text(const ordered_json& report, std::ostream& out) {
+  out << fmt::format("{} ({})\n", report["file"].get<std::string>(), report["document"].get<std::string>());
+  if (report.contains("structure")) print_structure(report["structure"], out);
+  if (report.contains("modal_analysis")) print_modes(report["modal_analysis"], out);
+  if (report.contains("train")) print_train(report["train"], out);
+  if (report.contains("speed_kmh")) out << fmt::format("speed: {:.1f} km/h\n", report["speed_kmh"].get<double>());
+  if (report.contains("irregularity")) print_irregularity(report["irregularity"], out);
+}
+
+}  // namespace
+
+int inspect_command(const InspectArgs& args) {
+  const ordered_json report = build_report(args.file, args.modes);
+  if (args.format == "json")
+    std::cout << report.dump(2) << '\n';
+  else
+    print_text(report, std::cout);
+  const bool modal_ok = !report.contains("modal_analysis") || report["modal_analysis"]["status"] == "ok";
+  return modal_ok ? kExitOk : kExitRuntimeFailure;
+}
+
+}  // namespace railvsi::cli

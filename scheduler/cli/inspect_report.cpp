@@ -1,0 +1,120 @@
+#include "cli/inspect_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "analysis/modal_analysis.hpp"
+#include "analysis/mode_classification.hpp"
+#include "simulation/static_equilibrium.hpp"
+
+namespace railvsi::cli {
+namespace {
+
+using nlohmann::ordered_json;
+
+ordered_json finite_or_null(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
+
+}  // namespace
+
+ordered_json structure_report(const StructureModel& s) {
+  const StructureInfo& info = s.info();
+  ordered_json rails = ordered_json::array();
+  for (const RailLine& r : s.rails())
+    rails.push_back({{"name", r.name}, {"nodes", r.x_m.size()}, {"start_m", r.start_m()}, {"end_m", r.end_m()}});
+  ordered_json outputs = ordered_json::array();
+  for (const OutputPoint& p : s.outputs()) outputs.push_back({{"name", p.name}, {"x_m", p.x_m}});
+  return {{"source", info.source},
+          {"dofs", s.num_dofs()},
+          {"deck_dofs", info.deck_dofs},
+          {"track_dofs", info.track_dofs},
+          {"rail_lines", rails},
+          {"bridge_start_m", info.bridge_start_m},
+          {"bridge_end_m", info.bridge_end_m},
+          {"supports_m", info.support_x_m},
+          {"damping_ratio", info.damping_ratio ? finite_or_null(*info.damping_ratio) : ordered_json(nullptr)},
+          {"damping_source", info.damping_source},
+          {"rayleigh_f1_estimate_hz", info.first_frequency_hz > 0.0 ? ordered_json(info.first_frequency_hz)
+                                                                     : ordered_json(nullptr)},
+          {"output_points", outputs}};
+}
+
+ordered_json modal_report(const StructureModel& s, int modes) {
+  ModalOptions options;
+  options.modes = modes;
+  const ModalResult r = modal_analysis(s, options);
+  ordered_json out;
+  out["status"] = std::string(r.status.name());
+  if (!r.status.ok()) {
+    out["message"] = r.status.message();
+    out["modes"] = ordered_json::array();
+    return out;
+  }
+  out["modes"] = ordered_json::array();
+  for (std::size_t k = 0; k < r.frequencies_hz.size(); ++k) {
+    const ModeType type = classify_mode(s, r.shapes.col(static_cast<Eigen::Index>(k)));
+    out["modes"].push_back({{"n", k + 1},
+                            {"frequency_hz", r.frequencies_hz[k]},
+                            {"type", type.description},
+                            {"deck_energy_fraction", type.deck_energy_fraction},
+                            {"half_waves_per_span", type.half_waves}});
+  }
+  return out;
+}
+
+ordered_json train_report(const Train& train) {
+  ordered_json axles = ordered_json::array();
+  double total_N = 0.0;
+  for (const MovingForce& f : train.moving_forces) {
+    axles.push_back({{"offset_m", f.offset_m}, {"static_load_N", f.load_N}});
+    total_N += f.load_N;
+  }
+  int vehicle_dofs = 0;
+  double mass_kg = 0.0;
+  for (const TrainVehicle& v : train.vehicles) {
+    const Vector loads = static_wheel_loads_on_rigid_track(*v.model);
+    const auto& wheels = v.model->wheels();
+    for (std::size_t w = 0; w < wheels.size(); ++w) {
+      axles.push_back({{"offset_m", v.offset_m + wheels[w].offset_m},
+                       {"static_load_N", loads[static_cast<Eigen::Index>(w)]},
+                       {"vehicle", v.model->name()}});
+      total_N += loads[static_cast<Eigen::Index>(w)];
+    }
+    vehicle_dofs += v.model->num_dofs();
+    mass_kg += v.model->total_mass_kg();
+  }
+  ordered_json out = {{"name", train.name},
+                      {"model", train.is_moving_forces() ? "moving-forces" : "multibody"},
+                      {"axles", train.num_axles()},
+                      {"length_m", train.length_m()},
+                      {"total_static_load_N", total_N}};
+  if (!train.is_moving_forces()) {
+    out["vehicles"] = train.vehicles.size();
+    out["vehicle_dofs"] = vehicle_dofs;
+    out["total_mass_kg"] = mass_kg;
+  }
+  out["axle_list"] = axles;
+  return out;
+}
+
+ordered_json irregularity_report(const Irregularity& irregularity) {
+  const auto& x = irregularity.x_m();
+  const auto& r = irregularity.r_m();
+  double integral_r = 0.0, integral_r2 = 0.0;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    const double h = x[i + 1] - x[i];
+    integral_r += 0.5 * h * (r[i] + r[i + 1]);
+    integral_r2 += 0.5 * h * (r[i] * r[i] + r[i + 1] * r[i + 1]);
+  }
+  const double length = x.back() - x.front();
+  const auto [min, max] = std::minmax_element(r.begin(), r.end());
+  return {{"source", irregularity.source()},
+          {"samples", x.size()},
+          {"x_start_m", x.front()},
+          {"x_end_m", x.back()},
+          {"min_m", *min},
+          {"max_m", *max},
+          {"mean_m", finite_or_null(integral_r / length)},
+          {"rms_m", finite_or_null(std::sqrt(integral_r2 / length))}};
+}
+
+}  // namespace railvsi::cli
