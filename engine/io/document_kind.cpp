@@ -20,13 +20,13 @@ struct KindInfo {
   DocumentKind kind;
   std::string_view name;
   std::string_view schema;
-  std::array<std::string_view, 3> keys;  // any of them tells the kind
+  std::array<std::string_view, 5> keys;  // any of them tells the kind ("" for none)
 };
 
 constexpr std::array<KindInfo, 3> kKinds{{
     {DocumentKind::kScene, "scene", "scene.schema.json", {"structure", "speed_kmh", "analysis"}},
     {DocumentKind::kTrain, "train", "train.schema.json", {"vehicles", "moving_forces", "hslm_a"}},
-    {DocumentKind::kIrregularity, "irregularity", "irregularity.schema.json", {"csv", "x_m", "r_m"}},
+    {DocumentKind::kIrregularity, "irregularity", "irregularity.schema.json", {"csv", "x_m", "r_m", "spectrum", "defects"}},
 }};
 
 const KindInfo& info(DocumentKind kind) {
@@ -59,7 +59,8 @@ DocumentKind detect_document_kind(const json& doc, const std::string& file) {
   throw InputError("/",
                    fmt::format("cannot tell what kind of document this is: name its schema in \"$schema\" ({}) or "
                                "use the keys of a scene (structure, train, speed_kmh, analysis), a train "
-                               "(vehicles, moving_forces or hslm_a) or an irregularity profile (csv, or x_m and r_m)",
+                               "(vehicles, moving_forces or hslm_a) or an irregularity profile (csv, x_m and r_m, "
+                               "spectrum or defects)",
                                known_schemas()),
                    file);
 }

@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "generators/track_defect.hpp"
+#include "generators/track_spectrum.hpp"
 #include "io/json_document.hpp"
 #include "io/schema_validator.hpp"
 #include "io/text_fields.hpp"
@@ -83,23 +85,74 @@ std::shared_ptr<const Irregularity> irregularity_from_csv(const std::filesystem:
   }
 }
 
+// The one base profile of the node ("csv", "x_m" or "spectrum"), if any.
+std::optional<std::string> base_key(const nlohmann::json& node) {
+  std::optional<std::string> key;
+  for (const char* k : {"csv", "x_m", "spectrum"}) {
+    if (!node.contains(k)) continue;
+    if (key) throw InputError("/" + std::string(k), fmt::format("give one profile: {} or {}, not both", *key, k));
+    key = k;
+  }
+  return key;
+}
+
+std::vector<TrackDefect> parse_defects(const nlohmann::json& node) {
+  std::vector<TrackDefect> defects;
+  for (const auto& d : node.value("defects", nlohmann::json::array()))
+    defects.push_back({d.at("type").get<std::string>() == "bump" ? DefectShape::kBump : DefectShape::kDip,
+                       d.at("x_m").get<double>(), d.at("length_m").get<double>(), d.at("depth_m").get<double>()});
+  return defects;
+}
+
+SpectrumSampling parse_sampling(const nlohmann::json& node) {
+  SpectrumSampling s;
+  s.seed = node.at("seed").get<std::uint64_t>();
+  s.wavelength_min_m = node.value("wavelength_min_m", s.wavelength_min_m);
+  s.wavelength_max_m = node.value("wavelength_max_m", s.wavelength_max_m);
+  s.components = node.value("components", s.components);
+  if (node.contains("sample_spacing_m")) s.sample_spacing_m = node.at("sample_spacing_m").get<double>();
+  return s;
+}
+
+// The track, and every defect on it.
+TrackRange covering(TrackRange track, const std::vector<TrackDefect>& defects) {
+  for (const TrackDefect& d : defects) {
+    track.start_m = std::min(track.start_m, d.x_m);
+    track.end_m = std::max(track.end_m, d.x_m + d.length_m);
+  }
+  return track;
+}
+
+std::shared_ptr<const Irregularity> base_profile(const nlohmann::json& node, const std::string& key,
+                                                 const std::filesystem::path& base_dir, TrackRange track) {
+  if (key == "csv") return irregularity_from_csv(resolve_relative(base_dir, node.at("csv").get<std::string>()));
+  if (key == "x_m")
+    return std::make_shared<const Irregularity>(node.at("x_m").get<std::vector<double>>(),
+                                                node.at("r_m").get<std::vector<double>>(), "inline");
+  const std::string name = node.at("spectrum").get<std::string>();
+  const TrackSpectrum* spectrum = find_track_spectrum(name);
+  if (!spectrum) throw InputError("/spectrum", fmt::format("unknown spectrum '{}'", name));
+  return std::make_shared<const Irregularity>(spectrum_profile(*spectrum, parse_sampling(node), track));
+}
+
 }  // namespace
 
 std::shared_ptr<const Irregularity> parse_irregularity(const nlohmann::json& node,
-                                                       const std::filesystem::path& base_dir) {
-  if (node.contains("csv")) {
-    if (node.contains("x_m") || node.contains("r_m"))
-      throw InputError("/x_m", "give either csv or x_m and r_m, not both");
-    return irregularity_from_csv(resolve_relative(base_dir, node.at("csv").get<std::string>()));
+                                                       const std::filesystem::path& base_dir, TrackRange track) {
+  const std::optional<std::string> key = base_key(node);
+  const std::vector<TrackDefect> defects = parse_defects(node);
+  const auto base = key ? base_profile(node, *key, base_dir, covering(track, defects)) : nullptr;
+  if (defects.empty()) {
+    if (!base) throw InputError("/", "give a profile (csv, x_m and r_m, or spectrum) or defects");
+    return base;
   }
-  return std::make_shared<const Irregularity>(node.at("x_m").get<std::vector<double>>(),
-                                              node.at("r_m").get<std::vector<double>>(), "inline");
+  return std::make_shared<const Irregularity>(with_defects(base.get(), defects));
 }
 
 std::shared_ptr<const Irregularity> parse_irregularity_document(const nlohmann::json& doc,
                                                                 const std::filesystem::path& file) {
   return parse_validated(doc, "irregularity.schema.json", file.string(),
-                         [&] { return parse_irregularity(doc, file.parent_path()); });
+                         [&] { return parse_irregularity(doc, file.parent_path(), kStandaloneProfileRange); });
 }
 
 }  // namespace railvsi

@@ -1,5 +1,6 @@
 #include "io/scene_loader.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
@@ -64,10 +65,23 @@ Train scene_train(const json& train) {
   return with_path_prefix("/train", [&] { return parse_train_reference(train); });
 }
 
-std::shared_ptr<const Irregularity> scene_irregularity(const json& doc, const std::filesystem::path& base_dir) {
+// Where the wheels run: the whole train behind the rail start (or behind an
+// explicit start), the rail line, and past its end until the last axle has
+// left the evaluation window. A generated profile covers all of it, so that no
+// wheel meets the step where a profile ends.
+TrackRange wheel_range(const Scene& scene) {
+  const RailLine& rail = scene.structure->rails().front();
+  const double reach_m = scene.train.length_m() + 10.0;
+  const double start_m = std::min(rail.start_m(), scene.start_x_m.value_or(rail.start_m())) - reach_m;
+  return {start_m, rail.end_m() + reach_m + scene.analysis.evaluation_margin_m};
+}
+
+// After the structure and the train: a spectrum is sampled over their wheel_range.
+std::shared_ptr<const Irregularity> scene_irregularity(const json& doc, const std::filesystem::path& base_dir,
+                                                       const Scene& scene) {
   const auto it = doc.find("irregularity");
   if (it == doc.end() || it->is_null()) return nullptr;
-  return with_path_prefix("/irregularity", [&] { return parse_irregularity(*it, base_dir); });
+  return with_path_prefix("/irregularity", [&] { return parse_irregularity(*it, base_dir, wheel_range(scene)); });
 }
 
 }  // namespace
@@ -96,8 +110,8 @@ Scene parse_scene(const json& doc, const std::filesystem::path& base_dir, const 
     if (doc.at("analysis").contains("start_x_m")) scene.start_x_m = doc.at("analysis").at("start_x_m").get<double>();
     scene.speed_mps = speed_mps(doc, scene.analysis);
     scene.train = scene_train(doc.at("train"));
-    scene.irregularity = scene_irregularity(doc, base_dir);
     scene.structure = parse_structure(doc.at("structure"), doc.value("outputs", json::object()), base_dir, scene.train);
+    scene.irregularity = scene_irregularity(doc, base_dir, scene);
     return scene;
   });
 }
