@@ -6,6 +6,8 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/generate_command.hpp"
+#include "cli/service_commands.hpp"
 
 namespace railvsi::cli {
 namespace {
@@ -37,6 +39,9 @@ int run(int argc, char** argv) {
   inspect->add_option("--format", inspect_args.format, "Output format: text (default) or json")
       ->check(CLI::IsMember({"text", "json"}));
 
+  ServiceCommands service(app);
+  GenerateCommand generate(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -44,6 +49,8 @@ int run(int argc, char** argv) {
   }
   if (simulate->parsed()) return simulate_command(simulate_args);
   if (inspect->parsed()) return inspect_command(inspect_args);
+  if (const auto code = service.run_parsed()) return *code;
+  if (const auto code = generate.run_parsed()) return *code;
   return validate_command(validate_file);
 }
 

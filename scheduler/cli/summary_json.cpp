@@ -29,7 +29,9 @@ ordered_json wheels(const RunSummary& s, bool moving_forces) {
           {"contact_loss_s", value(s.contact_loss_s)}};
 }
 
-ordered_json fidelity(const RunSummary& s) {
+}  // namespace
+
+ordered_json fidelity_json(const RunSummary& s) {
   return {{"model", s.model},
           {"contact_law", s.contact_law},
           {"unilateral", s.unilateral},
@@ -42,8 +44,6 @@ ordered_json fidelity(const RunSummary& s) {
           {"hht_beta", number(s.hht_beta)},
           {"hht_gamma", number(s.hht_gamma)}};
 }
-
-}  // namespace
 
 ordered_json summary_json(const Result& result, bool moving_forces) {
   const RunSummary& s = result.summary;
@@ -58,7 +58,7 @@ ordered_json summary_json(const Result& result, bool moving_forces) {
                 {"dt_s", number(s.dt_s)},
                 {"newton_iterations", s.newton_iterations},
                 {"wall_s", number(s.wall_s)},
-                {"fidelity", fidelity(s)}};
+                {"fidelity", fidelity_json(s)}};
   return out;
 }
 

@@ -11,4 +11,8 @@ namespace railvsi::cli {
 // "message" follows the status when the run failed.
 nlohmann::ordered_json summary_json(const Result& result, bool moving_forces);
 
+// The "fidelity" object of the summary: the model, contact law, solver
+// path, sizes and HHT parameters a run actually used.
+nlohmann::ordered_json fidelity_json(const RunSummary& summary);
+
 }  // namespace railvsi::cli

@@ -1,0 +1,26 @@
+#include "cli/service_store.hpp"
+
+#include <iostream>
+
+#include "queue/job_queue.hpp"
+#include "store/store_schema.hpp"
+
+namespace railvsi::cli {
+
+std::unique_ptr<scheduler::Database> open_store(const std::string& file) {
+  auto db = std::make_unique<scheduler::Database>(file);
+  scheduler::migrate(*db);
+  return db;
+}
+
+std::optional<std::string> find_study(scheduler::Database& db, const std::string& id_or_prefix) {
+  const std::string id = scheduler::resolve_study_id(db, id_or_prefix);
+  if (id.empty()) {
+    std::cerr << "error: no study " << id_or_prefix << " in " << db.file()
+              << (id_or_prefix.size() < 6 ? " (give at least 6 digits of the id)" : "") << '\n';
+    return std::nullopt;
+  }
+  return id;
+}
+
+}  // namespace railvsi::cli

@@ -1,0 +1,82 @@
+#include <unistd.h>
+
+#include <iostream>
+
+#include <spdlog/spdlog.h>
+
+#include "cli/commands.hpp"
+#include "cli/progress_display.hpp"
+#include "cli/service_commands.hpp"
+#include "cli/service_store.hpp"
+#include "query/study_report.hpp"
+#include "queue/job_queue.hpp"
+#include "study/study_plan.hpp"
+#include "workers/worker_pool.hpp"
+
+namespace railvsi::cli {
+namespace {
+
+// Expands and validates the whole study first: when anything is wrong,
+// InputError leaves here and nothing is enqueued.
+struct Submitted {
+  std::unique_ptr<scheduler::Database> db;
+  scheduler::SubmitResult result;
+};
+
+Submitted submit(const ServiceArgs& args) {
+  scheduler::ExpandOptions options;
+  options.allow_large = args.allow_large;
+  const scheduler::StudyPlan plan = scheduler::load_study(args.study_file, options);
+  Submitted s{open_store(args.db), {}};
+  s.result = scheduler::submit_study(*s.db, plan, args.max_attempts);
+  return s;
+}
+
+scheduler::WorkSummary work(const ServiceArgs& args) {
+  scheduler::WorkOptions options;
+  options.db_file = args.db;
+  options.threads = args.threads;
+  options.lease_s = args.lease_s;
+  options.cache_budget_bytes = static_cast<std::size_t>(args.cache_mb * 1024.0 * 1024.0);
+  ProgressDisplay display(::isatty(STDERR_FILENO) == 1);
+  const scheduler::WorkSummary s = scheduler::run_workers(
+      options, [&](const scheduler::StateCounts& c, double elapsed_s, bool final) { display.update(c, elapsed_s, final); });
+  spdlog::info("this worker: {} jobs done, {} failed in {}; factorizations {} ({:.2f} s), cache hits {}, evictions {}",
+               s.jobs_done, s.jobs_failed, format_duration(s.wall_s), s.cache.factorizations, s.cache.factorization_s,
+               s.cache.hits, s.cache.evictions);
+  if (s.lost_leases > 0) spdlog::warn("{} results dropped: their jobs were taken over or cancelled", s.lost_leases);
+  return s;
+}
+
+}  // namespace
+
+int submit_command(const ServiceArgs& args) {
+  const scheduler::SubmitResult r = submit(args).result;
+  std::cout << "study " << r.study_id << ": " << r.jobs << " jobs, " << r.new_jobs << " new\n";
+  return kExitOk;
+}
+
+int work_command(const ServiceArgs& args) {
+  open_store(args.db);  // create and migrate before the workers start
+  const scheduler::WorkSummary s = work(args);
+  return s.jobs_failed > 0 ? kExitStudyFailedJobs : kExitOk;
+}
+
+int run_command(const ServiceArgs& args) {
+  const Submitted submitted = submit(args);
+  const scheduler::SubmitResult& r = submitted.result;
+  scheduler::Database& db = *submitted.db;
+  spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id, r.jobs, r.new_jobs, args.db);
+  work(args);
+  const scheduler::StudyInfo info = scheduler::study_info(db, r.study_id);
+  std::cout << scheduler::format_table(info, scheduler::study_results(db, {r.study_id, {}, {}, {}, {}}));
+  const scheduler::StateCounts c = scheduler::state_counts(db, r.study_id);
+  if (c.failed > 0) {
+    std::cerr << "error: " << c.failed << " jobs of the study failed (vsi query --study " << r.study_id.substr(0, 12)
+              << " --format json shows why; vsi retry queues them again)\n";
+    return kExitStudyFailedJobs;
+  }
+  return kExitOk;
+}
+
+}  // namespace railvsi::cli

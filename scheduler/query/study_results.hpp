@@ -1,0 +1,51 @@
+#pragma once
+// What `vsi query` reads from the database: the jobs of a study with their
+// envelope values, filtered, in the order of the study (trains, speeds,
+// profiles).
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "store/sqlite.hpp"
+
+namespace railvsi::scheduler {
+
+struct QueryFilter {
+  std::string study_id;
+  std::optional<std::string> train;
+  std::optional<double> speed_min_kmh, speed_max_kmh;
+  std::optional<std::string> irregularity;
+};
+
+struct JobResult {
+  std::string id;
+  std::string train;
+  double speed_kmh = 0.0;
+  std::string irregularity;
+  std::string state;
+  std::string status;  // engine status, empty before a run
+  std::string error;
+  double dt_s = 0.0;
+  std::string dt_reason;
+  double cutoff_hz = 0.0;
+  std::optional<double> wall_s, loop_s;
+  std::string fidelity;  // JSON, empty before a run
+  // quantity -> location ("" for the whole job) -> value (nullopt: not produced)
+  std::map<std::string, std::map<std::string, std::optional<double>>> envelopes;
+  std::optional<double> overall(const std::string& quantity) const;
+};
+
+struct StudyInfo {
+  std::string id, name, file;
+  nlohmann::json checks = nlohmann::json::object();
+  std::int64_t job_count = 0;
+};
+
+// Throws std::runtime_error when the study is not in the database.
+StudyInfo study_info(Database& db, const std::string& study_id);
+std::vector<JobResult> study_results(Database& db, const QueryFilter& filter);
+
+}  // namespace railvsi::scheduler

@@ -1,0 +1,242 @@
+#include "queue/job_queue.hpp"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "core/unix_time.hpp"
+
+namespace railvsi::scheduler {
+
+SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts) {
+  SubmitResult result;
+  result.study_id = plan.id;
+  result.jobs = plan.jobs.size();
+  const double now = unix_now_s();
+  Transaction tx(db);
+  db.prepare("INSERT OR IGNORE INTO studies (id, name, file, document, checks, job_count, submitted_at) "
+             "VALUES (?, ?, ?, ?, ?, ?, ?)")
+      .bind(1, plan.id)
+      .bind(2, plan.name)
+      .bind(3, plan.file)
+      .bind(4, plan.document)
+      .bind(5, plan.checks.dump())
+      .bind(6, static_cast<std::int64_t>(plan.jobs.size()))
+      .bind(7, now)
+      .run();
+  result.new_study = db.changes() > 0;
+  db.prepare("INSERT OR IGNORE INTO cache_stats (study_id) VALUES (?)").bind(1, plan.id).run();
+  Statement insert_job = db.prepare(
+      "INSERT OR IGNORE INTO jobs (id, scene, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
+      "cutoff_hz, max_attempts, enqueued_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  Statement link = db.prepare("INSERT OR IGNORE INTO study_jobs (study_id, job_id, position) VALUES (?, ?, ?)");
+  std::int64_t position = 0;
+  for (const JobSpec& j : plan.jobs) {
+    insert_job.bind(1, j.id)
+        .bind(2, j.scene)
+        .bind(3, j.train)
+        .bind(4, j.speed_kmh)
+        .bind(5, j.irregularity)
+        .bind(6, j.operator_key)
+        .bind(7, j.dt_s)
+        .bind(8, j.dt_reason)
+        .bind(9, j.cutoff_hz)
+        .bind(10, max_attempts)
+        .bind(11, now)
+        .run();
+    result.new_jobs += static_cast<std::size_t>(db.changes());
+    link.bind(1, plan.id).bind(2, j.id).bind(3, position++).run();
+  }
+  tx.commit();
+  return result;
+}
+
+JobQueue::JobQueue(Database& db, std::string worker, double lease_s)
+    : db_(db), worker_(std::move(worker)), lease_s_(lease_s) {}
+
+std::optional<ClaimedJob> JobQueue::claim_row(const std::string& id, double now_s) {
+  db_.prepare("UPDATE jobs SET state = 'running', attempts = attempts + 1, worker = ?, lease_expires = ?, "
+              "started_at = ? WHERE id = ?")
+      .bind(1, worker_)
+      .bind(2, now_s + lease_s_)
+      .bind(3, now_s)
+      .bind(4, id)
+      .run();
+  Statement s = db_.prepare(
+      "SELECT id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts FROM jobs WHERE id = ?");
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return ClaimedJob{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5), s.real(6), s.real(7),
+                    static_cast<int>(s.int64(8))};
+}
+
+std::optional<ClaimedJob> JobQueue::claim(const std::string& preferred_key) {
+  Transaction tx(db_);
+  const double now = unix_now_s();
+  std::string id;
+  if (!preferred_key.empty()) {
+    Statement s = db_.prepare("SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? LIMIT 1");
+    if (s.bind(1, preferred_key).step()) id = s.text(0);
+  }
+  if (id.empty()) {
+    // The claim index orders queued jobs by operator key: workers drain one
+    // factorization's jobs before the next.
+    Statement s = db_.prepare("SELECT id FROM jobs WHERE state = 'queued' LIMIT 1");
+    if (s.step()) id = s.text(0);
+  }
+  while (id.empty()) {
+    // A running job whose lease expired: its worker died (or hung).
+    Statement s = db_.prepare(
+        "SELECT id, attempts, max_attempts, worker FROM jobs WHERE state = 'running' AND lease_expires < ? LIMIT 1");
+    if (!s.bind(1, now).step()) break;
+    if (s.int64(1) < s.int64(2)) {
+      id = s.text(0);
+      break;
+    }
+    db_.prepare("UPDATE jobs SET state = 'failed', lease_expires = NULL, finished_at = ?, error = ? WHERE id = ?")
+        .bind(1, now)
+        .bind(2, fmt::format("the lease expired {} times: the worker died or hung (last: {})", s.int64(1), s.text(3)))
+        .bind(3, s.text(0))
+        .run();
+  }
+  std::optional<ClaimedJob> job;
+  if (!id.empty()) job = claim_row(id, now);
+  tx.commit();
+  return job;
+}
+
+void JobQueue::heartbeat() {
+  const double now = unix_now_s();
+  Transaction tx(db_);
+  db_.prepare("UPDATE jobs SET lease_expires = ? WHERE state = 'running' AND worker = ?")
+      .bind(1, now + lease_s_)
+      .bind(2, worker_)
+      .run();
+  tx.commit();
+}
+
+namespace {
+
+bool still_ours(Database& db, const ClaimedJob& job, const std::string& worker) {
+  Statement s = db.prepare("SELECT state, worker FROM jobs WHERE id = ?");
+  if (!s.bind(1, job.id).step()) return false;
+  return s.text(0) == "running" && s.text(1) == worker;
+}
+
+}  // namespace
+
+bool JobQueue::complete(const ClaimedJob& job, const JobOutcome& outcome) {
+  Transaction tx(db_);
+  if (!still_ours(db_, job, worker_)) return false;
+  if (outcome.ok) {
+    Statement insert = db_.prepare("INSERT INTO envelopes (job_id, quantity, location, value) VALUES (?, ?, ?, ?)");
+    for (const EnvelopeRow& e : outcome.envelopes) {
+      insert.bind(1, job.id).bind(2, e.quantity).bind(3, e.location);
+      if (e.value) insert.bind(4, *e.value);
+      else insert.bind_null(4);
+      insert.run();
+    }
+  }
+  db_.prepare("UPDATE jobs SET state = ?, status = ?, error = ?, fidelity = ?, steps = ?, wall_s = ?, loop_s = ?, "
+              "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ? WHERE id = ?")
+      .bind(1, outcome.ok ? "done" : "failed")
+      .bind(2, outcome.status)
+      .bind(3, outcome.ok ? SqlValue(Null{}) : SqlValue(outcome.error))
+      .bind(4, outcome.fidelity)
+      .bind(5, static_cast<std::int64_t>(outcome.steps))
+      .bind(6, outcome.wall_s)
+      .bind(7, outcome.loop_s)
+      .bind(8, outcome.setup_s)
+      .bind(9, outcome.factorization_s)
+      .bind(10, unix_now_s())
+      .bind(11, job.id)
+      .run();
+  // WHERE true: SQLite's upsert after INSERT ... SELECT needs a WHERE clause.
+  db_.prepare("INSERT INTO cache_stats (study_id, jobs, factorizations, hits, factorization_s, evictions) "
+              "SELECT study_id, 1, ?, ?, ?, ? FROM study_jobs WHERE job_id = ? "
+              "ON CONFLICT (study_id) DO UPDATE SET jobs = jobs + 1, "
+              "factorizations = factorizations + excluded.factorizations, hits = hits + excluded.hits, "
+              "factorization_s = factorization_s + excluded.factorization_s, evictions = evictions + excluded.evictions")
+      .bind(1, outcome.factorized ? 1 : 0)
+      .bind(2, outcome.factorized ? 0 : 1)
+      .bind(3, outcome.factorization_s)
+      .bind(4, outcome.evictions)
+      .bind(5, job.id)
+      .run();
+  tx.commit();
+  return true;
+}
+
+bool JobQueue::release_after_error(const ClaimedJob& job, const std::string& error) {
+  Transaction tx(db_);
+  if (!still_ours(db_, job, worker_)) return false;
+  db_.prepare("UPDATE jobs SET state = CASE WHEN attempts >= max_attempts THEN 'failed' ELSE 'queued' END, "
+              "error = ?, worker = NULL, lease_expires = NULL, finished_at = ? WHERE id = ?")
+      .bind(1, error)
+      .bind(2, unix_now_s())
+      .bind(3, job.id)
+      .run();
+  tx.commit();
+  return true;
+}
+
+StateCounts state_counts(Database& db, const std::string& study_id) {
+  Statement s = study_id.empty()
+                    ? db.prepare("SELECT state, count(*) FROM jobs GROUP BY state")
+                    : db.prepare("SELECT j.state, count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+                                 "WHERE sj.study_id = ? GROUP BY j.state");
+  if (!study_id.empty()) s.bind(1, study_id);
+  StateCounts c;
+  while (s.step()) {
+    const std::string state = s.text(0);
+    const std::int64_t n = s.int64(1);
+    if (state == "queued") c.queued = n;
+    else if (state == "running") c.running = n;
+    else if (state == "done") c.done = n;
+    else if (state == "failed") c.failed = n;
+    else if (state == "cancelled") c.cancelled = n;
+  }
+  return c;
+}
+
+std::vector<std::string> study_ids(Database& db) {
+  Statement s = db.prepare("SELECT id FROM studies ORDER BY submitted_at, id");
+  std::vector<std::string> ids;
+  while (s.step()) ids.push_back(s.text(0));
+  return ids;
+}
+
+std::int64_t cancel_study(Database& db, const std::string& study_id) {
+  Transaction tx(db);
+  db.prepare("UPDATE jobs SET state = 'cancelled', lease_expires = NULL, finished_at = ? "
+             "WHERE state IN ('queued', 'running') AND id IN (SELECT job_id FROM study_jobs WHERE study_id = ?)")
+      .bind(1, unix_now_s())
+      .bind(2, study_id)
+      .run();
+  const std::int64_t n = db.changes();
+  tx.commit();
+  return n;
+}
+
+std::int64_t retry_study(Database& db, const std::string& study_id) {
+  Transaction tx(db);
+  db.prepare("UPDATE jobs SET state = 'queued', attempts = 0, worker = NULL, lease_expires = NULL, finished_at = NULL "
+             "WHERE state IN ('failed', 'cancelled') AND id IN (SELECT job_id FROM study_jobs WHERE study_id = ?)")
+      .bind(1, study_id)
+      .run();
+  const std::int64_t n = db.changes();
+  tx.commit();
+  return n;
+}
+
+std::string resolve_study_id(Database& db, const std::string& prefix) {
+  if (prefix.size() < 6) return {};
+  Statement s = db.prepare("SELECT id FROM studies WHERE substr(id, 1, ?) = ? LIMIT 2");
+  s.bind(1, static_cast<std::int64_t>(prefix.size())).bind(2, prefix);
+  std::string id;
+  if (s.step()) id = s.text(0);
+  if (s.step()) throw std::runtime_error(fmt::format("study id prefix {} is ambiguous: give more digits", prefix));
+  return id;
+}
+
+}  // namespace railvsi::scheduler

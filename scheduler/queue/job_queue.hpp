@@ -1,0 +1,103 @@
+#pragma once
+// The durable job queue in the study database. Every change of a job's state
+// is one SQLite transaction taken with BEGIN IMMEDIATE, so that any number
+// of threads (each with its own connection) and processes may share a file:
+// - claim: the next queued job (or one whose lease expired: its worker died)
+//   becomes 'running' under a lease owned by the worker;
+// - heartbeat: a live worker renews its leases;
+// - complete: the envelopes are stored and the job marked 'done' in one
+//   transaction, only if the worker still holds the job (a result is never
+//   lost nor stored twice).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "envelopes/envelope_rows.hpp"
+#include "store/sqlite.hpp"
+#include "study/study_plan.hpp"
+
+namespace railvsi::scheduler {
+
+struct SubmitResult {
+  std::string study_id;
+  std::size_t jobs = 0;        // jobs of the study
+  std::size_t new_jobs = 0;    // jobs not in the database before
+  bool new_study = false;
+};
+
+// Inserts the study and its jobs in one transaction; what is there already
+// stays as it is (re-submitting adds nothing).
+SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts = 3);
+
+struct ClaimedJob {
+  std::string id;
+  std::string scene;
+  std::string operator_key;
+  std::string train;
+  std::string irregularity;
+  double speed_kmh = 0.0;
+  double dt_s = 0.0;
+  double cutoff_hz = 0.0;
+  int attempt = 0;  // 1 for the first claim
+};
+
+// What a finished run leaves in the database.
+struct JobOutcome {
+  bool ok = true;               // false: a deterministic failure (the run's status, a setup error)
+  std::string status;           // engine status name
+  std::string error;            // for a failure
+  std::string fidelity;         // JSON
+  long steps = 0;
+  double wall_s = 0.0, loop_s = 0.0, setup_s = 0.0, factorization_s = 0.0;
+  bool factorized = false;      // the factorization cache missed and factorized for this job
+  int evictions = 0;            // entries the cache dropped to make room for it
+  std::vector<EnvelopeRow> envelopes;  // results/ envelope_rows(): quantity, location, value
+};
+
+struct StateCounts {
+  std::int64_t queued = 0, running = 0, done = 0, failed = 0, cancelled = 0;
+  std::int64_t total() const { return queued + running + done + failed + cancelled; }
+  std::int64_t unfinished() const { return queued + running; }
+};
+
+class JobQueue {
+ public:
+  // `worker` names the claimant in the jobs table (host:pid:thread).
+  JobQueue(Database& db, std::string worker, double lease_s = 60.0);
+
+  // A job whose lease has expired more than max_attempts times ends
+  // 'failed'. Prefers jobs with preferred_key (their factor is cached).
+  std::optional<ClaimedJob> claim(const std::string& preferred_key = {});
+  // Renews the lease of every job this worker holds.
+  void heartbeat();
+  // false (and nothing stored) when the job is no longer this worker's:
+  // its lease expired and another worker took it, or it was cancelled.
+  bool complete(const ClaimedJob& job, const JobOutcome& outcome);
+  // A transient failure (an exception that is not the scene's fault): the
+  // job returns to the queue while it has attempts left, else ends 'failed'.
+  bool release_after_error(const ClaimedJob& job, const std::string& error);
+
+  const std::string& worker() const { return worker_; }
+
+ private:
+  std::optional<ClaimedJob> claim_row(const std::string& id, double now_s);
+  Database& db_;
+  std::string worker_;
+  double lease_s_;
+};
+
+// Counts per state, for one study or (empty id) the whole database.
+StateCounts state_counts(Database& db, const std::string& study_id = {});
+// Study ids known to the database, oldest first.
+std::vector<std::string> study_ids(Database& db);
+// Cancels queued and running jobs of a study; returns how many.
+std::int64_t cancel_study(Database& db, const std::string& study_id);
+// Failed and cancelled jobs of a study go back to the queue with their
+// attempts reset; returns how many.
+std::int64_t retry_study(Database& db, const std::string& study_id);
+// Full id from a unique prefix (at least 6 hex digits); empty if none.
+// Throws std::runtime_error when the prefix is ambiguous.
+std::string resolve_study_id(Database& db, const std::string& prefix);
+
+}  // namespace railvsi::scheduler

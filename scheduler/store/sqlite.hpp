@@ -1,0 +1,110 @@
+#pragma once
+// Thin RAII wrappers for sqlite3* and sqlite3_stmt*. Values reach SQL only
+// through bound parameters: no user text is ever pasted into a statement.
+// One Database per thread (SQLite connections are not shared here).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <variant>
+
+struct sqlite3;
+struct sqlite3_stmt;
+
+namespace railvsi::scheduler {
+
+class SqliteError : public std::runtime_error {
+ public:
+  SqliteError(int code, const std::string& what) : std::runtime_error(what), code_(code) {}
+  int code() const { return code_; }
+
+ private:
+  int code_;
+};
+
+struct Null {};
+using SqlValue = std::variant<Null, std::int64_t, double, std::string>;
+
+class Statement;
+
+class Database {
+ public:
+  // Opens (creating) the file in WAL mode with a busy timeout, so that
+  // several processes and threads can share it.
+  explicit Database(const std::string& file, int busy_timeout_ms = 60000);
+  ~Database();
+  Database(const Database&) = delete;
+  Database& operator=(const Database&) = delete;
+
+  // Statements without parameters (schema, pragmas, BEGIN/COMMIT).
+  void exec(const std::string& sql);
+  Statement prepare(std::string_view sql);
+  std::int64_t changes() const;
+  const std::string& file() const { return file_; }
+  sqlite3* handle() const { return db_.get(); }
+
+ private:
+  struct Closer {
+    void operator()(sqlite3* db) const;
+  };
+  std::string file_;
+  std::unique_ptr<sqlite3, Closer> db_;
+};
+
+class Statement {
+ public:
+  Statement(sqlite3* db, std::string_view sql);
+  Statement(Statement&&) noexcept = default;
+  Statement& operator=(Statement&&) noexcept = default;
+
+  // Parameters are numbered from 1, as in SQLite.
+  Statement& bind(int index, std::int64_t value);
+  Statement& bind(int index, int value) { return bind(index, static_cast<std::int64_t>(value)); }
+  Statement& bind(int index, double value);
+  Statement& bind(int index, std::string_view text);
+  Statement& bind(int index, const char* text) { return bind(index, std::string_view(text)); }
+  Statement& bind(int index, const std::string& text) { return bind(index, std::string_view(text)); }
+  Statement& bind_null(int index);
+  Statement& bind(int index, const SqlValue& value);
+
+  // true while there is a row; throws SqliteError on failure.
+  bool step();
+  // Runs a statement that returns no rows.
+  void run();
+  void reset();
+
+  int columns() const;
+  bool is_null(int column) const;
+  std::int64_t int64(int column) const;
+  double real(int column) const;
+  std::string text(int column) const;
+  std::optional<double> optional_real(int column) const;
+  std::string column_name(int column) const;
+
+ private:
+  struct Finalizer {
+    void operator()(sqlite3_stmt* s) const;
+  };
+  sqlite3* db_;
+  std::unique_ptr<sqlite3_stmt, Finalizer> stmt_;
+};
+
+// BEGIN IMMEDIATE on construction (the write lock is taken at once, so two
+// workers cannot both read a job as free and then both claim it); ROLLBACK
+// unless commit() was called.
+class Transaction {
+ public:
+  explicit Transaction(Database& db);
+  ~Transaction();
+  Transaction(const Transaction&) = delete;
+  Transaction& operator=(const Transaction&) = delete;
+  void commit();
+
+ private:
+  Database& db_;
+  bool done_ = false;
+};
+
+}  // namespace railvsi::scheduler

@@ -1,0 +1,130 @@
+#include "store/store_schema.hpp"
+
+#include "core/unix_time.hpp"
+
+#include <stdexcept>
+#include <vector>
+
+#include <fmt/format.h>
+
+namespace railvsi::scheduler {
+namespace {
+
+struct Migration {
+  const char* description;
+  const char* sql;
+};
+
+// Never edit a released migration: add a new one.
+const std::vector<Migration>& migrations() {
+  static const std::vector<Migration> all = {
+      {"studies, jobs, study_jobs, envelopes, cache_stats; views study_envelopes and study_progress",
+       R"sql(
+CREATE TABLE studies (
+  id           TEXT PRIMARY KEY,      -- SHA-256 of the canonical study document
+  name         TEXT NOT NULL,         -- "name" of the study, else the file name
+  file         TEXT NOT NULL,         -- the study file as submitted
+  document     TEXT NOT NULL,         -- canonical JSON of the study
+  checks       TEXT NOT NULL,         -- JSON object of the study's "checks"
+  job_count    INTEGER NOT NULL,
+  submitted_at REAL NOT NULL          -- Unix time, s
+);
+CREATE TABLE jobs (
+  id              TEXT PRIMARY KEY,   -- SHA-256 of the canonical scene
+  scene           TEXT NOT NULL,      -- canonical scene JSON (what the worker runs)
+  train           TEXT NOT NULL,      -- train name
+  speed_kmh       REAL NOT NULL,
+  irregularity    TEXT NOT NULL,      -- profile label, 'none' for a perfect track
+  operator_key    TEXT NOT NULL,      -- SHA-256 of (structure model, dt, HHT, contact needs): jobs sharing a factorization
+  dt_s            REAL NOT NULL,
+  dt_reason       TEXT NOT NULL,
+  cutoff_hz       REAL NOT NULL,      -- low-pass cut-off of the deck acceleration envelope
+  state           TEXT NOT NULL DEFAULT 'queued'
+                  CHECK (state IN ('queued', 'running', 'done', 'failed', 'cancelled')),
+  attempts        INTEGER NOT NULL DEFAULT 0,
+  max_attempts    INTEGER NOT NULL DEFAULT 3,
+  worker          TEXT,               -- host:pid:thread of the last claim
+  lease_expires   REAL,               -- Unix time, s; a running job past it returns to the queue
+  error           TEXT,               -- why the job failed (last attempt)
+  status          TEXT,               -- engine status of the run: ok, diverged, no_convergence, invalid_input
+  fidelity        TEXT,               -- JSON: model, contact law, solver path, DOFs, HHT parameters
+  steps           INTEGER,
+  wall_s          REAL,               -- whole job: model, setup, time loop, envelopes
+  loop_s          REAL,               -- time loop only
+  setup_s         REAL,               -- static equilibrium (and factorization when not shared)
+  factorization_s REAL,               -- spent factorizing for this job, 0 on a cache hit
+  enqueued_at     REAL NOT NULL,
+  started_at      REAL,
+  finished_at     REAL
+);
+CREATE INDEX jobs_claim ON jobs (state, operator_key);
+CREATE INDEX jobs_lease ON jobs (state, lease_expires);
+CREATE TABLE study_jobs (
+  study_id TEXT NOT NULL REFERENCES studies (id),
+  job_id   TEXT NOT NULL REFERENCES jobs (id),
+  position INTEGER NOT NULL,          -- order of the job in the study: trains, then speeds, then profiles
+  PRIMARY KEY (study_id, job_id)
+) WITHOUT ROWID;
+CREATE INDEX study_jobs_job ON study_jobs (job_id);
+CREATE TABLE envelopes (
+  job_id   TEXT NOT NULL REFERENCES jobs (id),
+  quantity TEXT NOT NULL,             -- e.g. deck_acceleration_mps2 (unit in the name)
+  location TEXT NOT NULL,             -- output point, wheel or vehicle name; '' for the whole job
+  value    REAL,                      -- NULL when the run could not produce it (never NaN)
+  PRIMARY KEY (job_id, quantity, location)
+) WITHOUT ROWID;
+CREATE TABLE cache_stats (
+  study_id        TEXT PRIMARY KEY REFERENCES studies (id),
+  jobs            INTEGER NOT NULL DEFAULT 0,   -- jobs finished (done or failed after a run)
+  factorizations  INTEGER NOT NULL DEFAULT 0,
+  hits            INTEGER NOT NULL DEFAULT 0,
+  factorization_s REAL NOT NULL DEFAULT 0,
+  evictions       INTEGER NOT NULL DEFAULT 0
+);
+CREATE VIEW study_envelopes AS
+  SELECT sj.study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
+  FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id JOIN envelopes e ON e.job_id = j.id;
+CREATE VIEW study_progress AS
+  SELECT sj.study_id, j.state, count(*) AS jobs
+  FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id GROUP BY sj.study_id, j.state;
+)sql"},
+  };
+  return all;
+}
+
+int user_version(Database& db) {
+  Statement s = db.prepare("PRAGMA user_version");
+  s.step();
+  return static_cast<int>(s.int64(0));
+}
+
+}  // namespace
+
+void migrate(Database& db) {
+  static_assert(kStoreSchemaVersion > 0);
+  if (migrations().size() != static_cast<std::size_t>(kStoreSchemaVersion))
+    throw std::logic_error("kStoreSchemaVersion does not match the migrations");
+  if (user_version(db) == kStoreSchemaVersion) return;
+  Transaction tx(db);
+  const int version = user_version(db);  // again, under the write lock
+  if (version > kStoreSchemaVersion)
+    throw std::runtime_error(fmt::format("{} has schema version {}; this vsi knows up to {}: use a newer vsi",
+                                         db.file(), version, kStoreSchemaVersion));
+  if (version == 0)
+    db.exec("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER PRIMARY KEY, applied_at REAL NOT NULL, "
+            "description TEXT NOT NULL)");
+  for (int v = version; v < kStoreSchemaVersion; ++v) {
+    const Migration& m = migrations()[static_cast<std::size_t>(v)];
+    db.exec(m.sql);
+    db.prepare("INSERT INTO schema_version (version, applied_at, description) VALUES (?, ?, ?)")
+        .bind(1, v + 1)
+        .bind(2, unix_now_s())
+        .bind(3, m.description)
+        .run();
+    // PRAGMA takes no parameters; the value is our own integer.
+    db.exec(fmt::format("PRAGMA user_version = {}", v + 1));
+  }
+  tx.commit();
+}
+
+}  // namespace railvsi::scheduler

@@ -1,0 +1,16 @@
+#pragma once
+// The tables of the study database (one SQLite file: queue and results) and
+// their migrations. The version is PRAGMA user_version, and every applied
+// migration is also a row of schema_version, for people reading the file.
+#include "store/sqlite.hpp"
+
+namespace railvsi::scheduler {
+
+inline constexpr int kStoreSchemaVersion = 1;
+
+// Applies the missing migrations in one BEGIN IMMEDIATE transaction (safe
+// when several workers open a new file at once). Throws SqliteError, or
+// std::runtime_error for a file written by a newer vsi.
+void migrate(Database& db);
+
+}  // namespace railvsi::scheduler

@@ -1,0 +1,44 @@
+#include "study/structure_key.hpp"
+
+#include <cstdint>
+
+#include <fmt/format.h>
+
+#include "core/sha256.hpp"
+
+namespace railvsi::scheduler {
+namespace {
+
+void hash_matrix(Sha256& h, const SparseMatrix& A) {
+  SparseMatrix c = A;
+  c.makeCompressed();
+  const std::int64_t dims[3] = {c.rows(), c.cols(), c.nonZeros()};
+  h.update(dims, sizeof dims);
+  h.update(c.outerIndexPtr(), sizeof(int) * static_cast<std::size_t>(c.outerSize() + 1));
+  h.update(c.innerIndexPtr(), sizeof(int) * static_cast<std::size_t>(c.nonZeros()));
+  h.update(c.valuePtr(), sizeof(double) * static_cast<std::size_t>(c.nonZeros()));
+}
+
+}  // namespace
+
+std::string structure_model_hash(const StructureModel& structure) {
+  Sha256 h;
+  h.update("railvsi structure v1");
+  hash_matrix(h, structure.K());
+  hash_matrix(h, structure.M());
+  hash_matrix(h, structure.C());
+  const auto& rail = structure.rail_dofs();
+  const std::int64_t n = static_cast<std::int64_t>(rail.size());
+  h.update(&n, sizeof n);
+  h.update(rail.data(), sizeof(int) * rail.size());
+  return h.hex_digest();
+}
+
+std::string operator_key(const std::string& structure_hash, const AnalysisOptions& analysis, bool rail_flexibility) {
+  // Hex floats: exact, so equal doubles and only equal doubles share a key.
+  return sha256_hex(fmt::format("railvsi operator v1|{}|dt={:a}|alpha={:a}|beta={:a}|gamma={:a}|flex={}", structure_hash,
+                                analysis.dt_s, analysis.hht.alpha, analysis.hht.beta, analysis.hht.gamma,
+                                rail_flexibility ? 1 : 0));
+}
+
+}  // namespace railvsi::scheduler

@@ -1,0 +1,277 @@
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/input_error.hpp"
+#include "core/sha256.hpp"
+#include "io/json_document.hpp"
+#include "io/scene_loader.hpp"
+#include "io/schema_validator.hpp"
+#include "simulation/simulation.hpp"
+#include "study/canonical_json.hpp"
+#include "envelopes/code_filter.hpp"
+#include "planning/time_step_policy.hpp"
+#include "study/deck_frequencies.hpp"
+#include "study/speed_list.hpp"
+#include "study/structure_key.hpp"
+#include "study/study_plan.hpp"
+
+namespace railvsi::scheduler {
+namespace {
+
+using nlohmann::json;
+
+struct Profile {
+  json value;  // null: perfect track
+  std::string label;
+  std::string path;  // where its errors are reported in the study
+};
+
+bool starts_path(const std::string& path, std::string_view prefix) {
+  return path.starts_with(prefix) && (path.size() == prefix.size() || path[prefix.size()] == '/');
+}
+
+// An error found while building one scene of the study, placed in the study:
+// /train -> /trains/<i>, /irregularity -> /irregularities/<j>, /speed_kmh ->
+// /speeds_kmh. Errors of another document (a library train) pass as they are.
+InputError in_study(const InputError& e, const std::string& file, const std::string& train_path,
+                    const std::string& profile_path) {
+  if (!e.file().empty() && e.file() != file) return e;
+  const std::string& p = e.json_path();
+  std::string mapped = p;
+  if (starts_path(p, "/train")) mapped = train_path + p.substr(6);
+  else if (starts_path(p, "/irregularity")) mapped = profile_path + p.substr(13);
+  else if (starts_path(p, "/speed_kmh")) mapped = "/speeds_kmh" + p.substr(10);
+  return InputError(mapped, e.what(), file);
+}
+
+std::string train_label(const json& train) {
+  if (train.is_string()) return train.get<std::string>();
+  if (train.contains("library")) {
+    const std::string name = train.at("library").get<std::string>();
+    return train.contains("as") ? fmt::format("{} as {}", name, train.at("as").get<std::string>()) : name;
+  }
+  return train.at("name").get<std::string>();
+}
+
+std::string profile_label(const json& p, std::size_t index) {
+  if (p.is_null()) return "none";
+  std::string label;
+  if (p.contains("spectrum"))
+    label = fmt::format("{} seed {}", p.at("spectrum").get<std::string>(), p.at("seed").dump());
+  else if (p.contains("csv"))
+    label = p.at("csv").get<std::string>();
+  else if (p.contains("x_m"))
+    label = fmt::format("profile {}", index + 1);
+  if (p.contains("defects")) label += label.empty() ? fmt::format("defects {}", index + 1) : " + defects";
+  return label;
+}
+
+// Labels name rows of the result tables: make repeated ones unique.
+void make_unique(std::vector<std::string>& labels) {
+  std::map<std::string, int> seen;
+  for (const auto& l : labels) ++seen[l];
+  std::map<std::string, int> used;
+  for (auto& l : labels)
+    if (seen[l] > 1) l += fmt::format(" #{}", ++used[l]);
+}
+
+std::vector<Profile> study_profiles(const json& study) {
+  std::vector<Profile> profiles;
+  if (!study.contains("irregularities")) return {{json(nullptr), "none", "/irregularities"}};
+  const json& list = study.at("irregularities");
+  for (std::size_t j = 0; j < list.size(); ++j) {
+    const json& item = list[j];
+    const std::string path = child_path("/irregularities", j);
+    if (item.is_object() && item.contains("seeds")) {
+      if (!item.at("irregularity").contains("spectrum"))
+        throw InputError(path + "/irregularity", "seeds need a spectrum profile (\"spectrum\" and \"seed\")");
+      for (const json& seed : item.at("seeds")) {
+        json p = item.at("irregularity");
+        p["seed"] = seed;
+        profiles.push_back({p, profile_label(p, j), path + "/irregularity"});
+      }
+    } else {
+      profiles.push_back({item, profile_label(item, j), path});
+    }
+  }
+  std::vector<std::string> labels;
+  for (const auto& p : profiles) labels.push_back(p.label);
+  make_unique(labels);
+  for (std::size_t k = 0; k < profiles.size(); ++k) profiles[k].label = labels[k];
+  return profiles;
+}
+
+// Jobs may run on another machine or from another directory: file names
+// become absolute, resolved from the study's directory.
+void make_absolute(json& node, const char* key, const std::filesystem::path& base_dir) {
+  if (node.is_object() && node.contains(key) && node.at(key).is_string())
+    node[key] = resolve_relative(base_dir, node.at(key).get<std::string>()).lexically_normal().string();
+}
+
+void absolute_file_names(json& structure, std::vector<Profile>& profiles, const std::filesystem::path& base_dir) {
+  if (structure.contains("import"))
+    for (const char* key : {"K", "M", "C", "map"}) make_absolute(structure["import"], key, base_dir);
+  for (Profile& p : profiles) make_absolute(p.value, "csv", base_dir);
+}
+
+// What every job of one train shares: its structure (the train may size the
+// approach embankment), whose hash and cut-off are computed once.
+struct TrainFacts {
+  std::string structure_hash;
+  DeckFrequencies frequencies;
+  double cutoff_hz = 0.0;
+  bool rail_flexibility = false;
+  std::shared_ptr<const StructureModel> structure;
+  Scene first_scene;
+};
+
+struct JobTimeStep {
+  double dt_s = 0.0;
+  std::string reason;
+};
+
+// The study's dt_s, else the policy's rung of the ladder for this train,
+// structure and speed.
+JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequencies& f) {
+  if (dt_given) return {scene.analysis.dt_s, "given in the study (analysis.dt_s)"};
+  const TimeStepChoice c =
+      choose_time_step(*scene.structure, scene.train, scene.speed_mps, scene.analysis.contact, f.f0_hz, f.f3_hz);
+  return {c.dt_s, c.reason};
+}
+
+}  // namespace
+
+StudyPlan expand_study(const json& doc, const std::filesystem::path& base_dir, const std::string& file,
+                       const ExpandOptions& options) {
+  // The shared analysis schema requires dt_s; a study may leave it to the
+  // time-step policy, so a placeholder stands in for the schema check only.
+  const bool dt_given = doc.is_object() && doc.contains("analysis") && doc.at("analysis").is_object() &&
+                        doc.at("analysis").contains("dt_s");
+  {
+    json checked = doc;
+    if (!dt_given && checked.is_object() && checked.contains("analysis") && checked["analysis"].is_object())
+      checked["analysis"]["dt_s"] = 1.0;
+    SchemaValidator("study.schema.json").validate(checked, file);
+  }
+  const std::size_t max_jobs = options.allow_large ? SIZE_MAX : options.max_jobs;
+
+  StudyPlan plan;
+  plan.file = file;
+  plan.document = canonical_text(doc);
+  plan.id = sha256_hex(plan.document);
+  plan.name = doc.contains("name") ? doc.at("name").get<std::string>() : std::filesystem::path(file).filename().string();
+  if (doc.contains("checks")) plan.checks = doc.at("checks");
+
+  const json& trains = doc.at("trains");
+  std::vector<double> speeds;
+  try {
+    speeds = expand_speeds(doc.at("speeds_kmh"), max_jobs);
+  } catch (const InputError& e) {
+    throw e.with_file(file);
+  }
+  std::vector<Profile> profiles = study_profiles(doc);
+  const std::size_t count = trains.size() * speeds.size() * profiles.size();
+  if (count > max_jobs)
+    throw InputError("/speeds_kmh",
+                     fmt::format("the study expands into {} jobs ({} trains x {} speeds x {} profiles), more than {}; "
+                                 "pass --allow-large to submit it anyway",
+                                 count, trains.size(), speeds.size(), profiles.size(), max_jobs),
+                     file);
+
+  json base = json::object();
+  base["structure"] = doc.at("structure");
+  absolute_file_names(base["structure"], profiles, base_dir);
+  base["analysis"] = doc.at("analysis");
+  if (doc.contains("outputs")) base["outputs"] = doc.at("outputs");
+  const auto scene_doc = [&](const json& train, double speed_kmh, const json& profile, double dt_s) {
+    json scene = base;
+    scene["train"] = train;
+    scene["speed_kmh"] = speed_kmh;
+    scene["irregularity"] = profile;
+    scene["analysis"]["dt_s"] = dt_s;
+    return scene;
+  };
+  const auto parse = [&](const json& scene, const std::string& train_path, const std::string& profile_path) {
+    try {
+      return parse_scene(scene, base_dir, file);
+    } catch (const InputError& e) {
+      throw in_study(e, file, train_path, profile_path);
+    }
+  };
+
+  // Every train at the first speed over the first profile: the train, the
+  // structure it runs on and the engine's setup (a dry run, without the
+  // time loop). Then every other profile with the first train.
+  const double placeholder_dt_s = dt_given ? doc.at("analysis").at("dt_s").get<double>() : 1e-3;
+  std::vector<TrainFacts> facts(trains.size());
+  std::map<std::string, DeckFrequencies> frequencies_of_structure;
+  std::map<std::string, std::shared_ptr<const StructureOperator>> operators;
+  for (std::size_t i = 0; i < trains.size(); ++i) {
+    const std::string train_path = child_path("/trains", i);
+    TrainFacts& f = facts[i];
+    f.first_scene = parse(scene_doc(trains[i], speeds.front(), profiles.front().value, placeholder_dt_s), train_path,
+                          profiles.front().path);
+    f.structure = f.first_scene.structure;
+    f.structure_hash = structure_model_hash(*f.structure);
+    f.rail_flexibility = !f.first_scene.train.is_moving_forces();
+    auto [it, fresh] = frequencies_of_structure.try_emplace(f.structure_hash);
+    if (fresh) it->second = deck_frequencies(*f.structure);
+    f.frequencies = it->second;
+    f.cutoff_hz = code_cutoff_hz(f.frequencies.f0_hz, f.frequencies.f3_hz);
+    Scene dry = f.first_scene;
+    const JobTimeStep first_dt = job_time_step(dt_given, dry, f.frequencies);
+    dry.analysis.dt_s = first_dt.dt_s;
+    try {
+      auto& op = operators[operator_key(f.structure_hash, dry.analysis, f.rail_flexibility)];
+      if (!op) op = make_structure_operator(dry);
+      const Simulation setup(dry, op);
+    } catch (const InputError& e) {
+      throw in_study(e.with_file(file), file, train_path, profiles.front().path);
+    }
+  }
+  for (std::size_t j = 1; j < profiles.size(); ++j)
+    parse(scene_doc(trains[0], speeds.front(), profiles[j].value, placeholder_dt_s), child_path("/trains", 0),
+          profiles[j].path);
+
+  std::vector<std::string> train_labels;
+  for (const json& t : trains) train_labels.push_back(train_label(t));
+  make_unique(train_labels);
+
+  plan.jobs.reserve(count);
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < trains.size(); ++i) {
+    const TrainFacts& f = facts[i];
+    for (double speed_kmh : speeds) {
+      Scene at_speed = f.first_scene;
+      at_speed.speed_mps = speed_kmh / 3.6;
+      const JobTimeStep dt = job_time_step(dt_given, at_speed, f.frequencies);
+      at_speed.analysis.dt_s = dt.dt_s;
+      const std::string key = operator_key(f.structure_hash, at_speed.analysis, f.rail_flexibility);
+      for (const Profile& p : profiles) {
+        JobSpec job;
+        job.scene = canonical_text(scene_doc(trains[i], speed_kmh, p.value, dt.dt_s));
+        job.id = sha256_hex(job.scene);
+        if (!ids.insert(job.id).second) continue;  // the same scene listed twice is one job
+        job.train = train_labels[i];
+        job.speed_kmh = speed_kmh;
+        job.irregularity = p.label;
+        job.operator_key = key;
+        job.dt_s = dt.dt_s;
+        job.dt_reason = dt.reason;
+        job.cutoff_hz = f.cutoff_hz;
+        plan.jobs.push_back(std::move(job));
+      }
+    }
+  }
+  return plan;
+}
+
+StudyPlan load_study(const std::filesystem::path& file, const ExpandOptions& options) {
+  return expand_study(read_json_file(file), file.parent_path(), file.string(), options);
+}
+
+}  // namespace railvsi::scheduler

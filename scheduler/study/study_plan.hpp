@@ -1,0 +1,52 @@
+#pragma once
+// A study (schemas/study.schema.json) expanded into jobs: trains x speeds x
+// irregularity profiles (x seeds). Each job is one canonical scene; its id is
+// the SHA-256 of that text, so the same job submitted twice is one job.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace railvsi::scheduler {
+
+struct JobSpec {
+  std::string id;            // SHA-256 of scene
+  std::string scene;         // canonical scene JSON, file names absolute
+  std::string train;         // label of the train (its name)
+  double speed_kmh = 0.0;
+  std::string irregularity;  // label of the profile, "none" for a perfect track
+  // Jobs with the same key share one structure factorization: SHA-256 of the
+  // structure model's matrices and rail DOFs, dt, the HHT parameters and
+  // whether the rail flexibility is needed.
+  std::string operator_key;
+  double dt_s = 0.0;
+  std::string dt_reason;
+  double cutoff_hz = 0.0;  // deck acceleration low-pass cut-off of the code
+};
+
+struct StudyPlan {
+  std::string id;        // SHA-256 of the canonical study document
+  std::string name;
+  std::string file;
+  std::string document;  // canonical study JSON
+  nlohmann::json checks = nlohmann::json::object();
+  std::vector<JobSpec> jobs;
+};
+
+struct ExpandOptions {
+  std::size_t max_jobs = 100000;  // more is refused unless allow_large
+  bool allow_large = false;
+};
+
+// Validates the whole study before anything is returned: the schema, every
+// train, every profile, and a dry run of the engine's setup (factorization,
+// static equilibrium) for every train. Throws InputError naming the study
+// file (or the library file at fault) and the JSON path in the study, e.g.
+// /trains/2/vehicles/0/primary/k_N_per_m.
+StudyPlan expand_study(const nlohmann::json& doc, const std::filesystem::path& base_dir, const std::string& file,
+                       const ExpandOptions& options = {});
+StudyPlan load_study(const std::filesystem::path& file, const ExpandOptions& options = {});
+
+}  // namespace railvsi::scheduler

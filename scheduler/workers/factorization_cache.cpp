@@ -1,0 +1,80 @@
+#include "workers/factorization_cache.hpp"
+
+#include <chrono>
+
+#include "solver/cholmod_operator.hpp"
+
+namespace railvsi::scheduler {
+
+FactorizationCache::FactorizationCache(std::size_t budget_bytes) : budget_bytes_(budget_bytes) {}
+
+std::size_t FactorizationCache::estimated_bytes(const StructureOperator& op) {
+  std::size_t bytes = static_cast<std::size_t>(op.rail_flexibility().size()) * sizeof(double);
+  if (const auto* cholmod = dynamic_cast<const CholmodOperator*>(&op))
+    bytes += static_cast<std::size_t>(cholmod->factor_nonzeros()) * (sizeof(double) + sizeof(int));
+  else
+    bytes += static_cast<std::size_t>(op.num_dofs()) * sizeof(double);
+  return bytes;
+}
+
+int FactorizationCache::evict_to_fit(std::size_t incoming_bytes) {
+  int evicted = 0;
+  while (!lru_.empty() && used_bytes_ + incoming_bytes > budget_bytes_) {
+    const auto it = entries_.find(lru_.back());
+    used_bytes_ -= it->second.bytes;
+    entries_.erase(it);
+    lru_.pop_back();
+    ++evicted;
+  }
+  stats_.evictions += evicted;
+  return evicted;
+}
+
+CacheLookup FactorizationCache::get(const std::string& key,
+                                    const std::function<std::shared_ptr<const StructureOperator>()>& build) {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    if (const auto it = entries_.find(key); it != entries_.end()) {
+      lru_.splice(lru_.begin(), lru_, it->second.lru);
+      ++stats_.hits;
+      return {it->second.op, false, 0.0, 0};
+    }
+    if (!building_.count(key)) break;
+    built_.wait(lock);  // another thread factorizes this key
+  }
+  building_.insert(key);
+  lock.unlock();
+  CacheLookup result;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    result.op = build();
+  } catch (...) {
+    lock.lock();
+    building_.erase(key);
+    built_.notify_all();
+    throw;
+  }
+  result.factorized = true;
+  result.factorization_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::size_t bytes = estimated_bytes(*result.op);
+  lock.lock();
+  building_.erase(key);
+  ++stats_.factorizations;
+  stats_.factorization_s += result.factorization_s;
+  result.evictions = evict_to_fit(bytes);
+  // An operator larger than the whole budget is used but not kept.
+  if (bytes <= budget_bytes_) {
+    lru_.push_front(key);
+    entries_[key] = Entry{result.op, bytes, lru_.begin()};
+    used_bytes_ += bytes;
+  }
+  built_.notify_all();
+  return result;
+}
+
+CacheStats FactorizationCache::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+}  // namespace railvsi::scheduler

@@ -1,0 +1,68 @@
+#pragma once
+// Structure operators (K_bar factor and rail flexibility) shared by the
+// worker threads of one process, keyed by the job's operator key (structure
+// hash, dt, HHT parameters, rail flexibility). Least recently used entries
+// are dropped to stay within a memory budget; an operator still in use by a
+// running job lives on in that job's shared_ptr. Concurrent requests for the
+// same key factorize once: the others wait for it.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <list>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <condition_variable>
+#include <set>
+#include <string>
+
+#include "solver/structure_operator.hpp"
+
+namespace railvsi::scheduler {
+
+struct CacheStats {
+  std::int64_t factorizations = 0;
+  std::int64_t hits = 0;
+  std::int64_t evictions = 0;
+  double factorization_s = 0.0;
+};
+
+struct CacheLookup {
+  std::shared_ptr<const StructureOperator> op;
+  bool factorized = false;  // this call built it
+  double factorization_s = 0.0;
+  int evictions = 0;        // entries dropped to make room for it
+};
+
+class FactorizationCache {
+ public:
+  explicit FactorizationCache(std::size_t budget_bytes = std::size_t{2} << 30);
+
+  // The operator of `key`, built by `build` when absent (exceptions of
+  // build propagate to this caller; a waiting caller then builds itself).
+  CacheLookup get(const std::string& key, const std::function<std::shared_ptr<const StructureOperator>()>& build);
+  CacheStats stats() const;
+
+  // Estimated memory of an operator: the CHOLMOD factor and the rail
+  // flexibility block.
+  static std::size_t estimated_bytes(const StructureOperator& op);
+
+ private:
+  struct Entry {
+    std::shared_ptr<const StructureOperator> op;
+    std::size_t bytes = 0;
+    std::list<std::string>::iterator lru;
+  };
+  int evict_to_fit(std::size_t incoming_bytes);  // with mutex_ held
+
+  std::size_t budget_bytes_;
+  mutable std::mutex mutex_;
+  std::condition_variable built_;
+  std::map<std::string, Entry> entries_;
+  std::list<std::string> lru_;  // front: most recently used
+  std::set<std::string> building_;  // keys being factorized
+  std::size_t used_bytes_ = 0;
+  CacheStats stats_;
+};
+
+}  // namespace railvsi::scheduler

@@ -1,0 +1,41 @@
+#pragma once
+// `vsi work`: worker threads, each with its own database connection, claim
+// jobs until the database has none queued or running, and share one
+// factorization cache. A heartbeat thread renews the leases of the jobs in
+// hand, so that only the jobs of a dead worker return to the queue.
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "queue/job_queue.hpp"
+#include "workers/factorization_cache.hpp"
+
+namespace railvsi::scheduler {
+
+struct WorkOptions {
+  std::string db_file = "vsi-results.sqlite";
+  int threads = 1;
+  double lease_s = 60.0;
+  std::size_t cache_budget_bytes = std::size_t{2} << 30;
+  // How often the progress callback is called, s.
+  double progress_interval_s = 0.5;
+};
+
+struct WorkSummary {
+  std::int64_t jobs_done = 0;     // by this process
+  std::int64_t jobs_failed = 0;   // by this process
+  std::int64_t lost_leases = 0;   // results dropped: the job was taken over or cancelled
+  double wall_s = 0.0;
+  CacheStats cache;
+};
+
+// Called from the calling thread while the workers run, then once at the end.
+using ProgressCallback = std::function<void(const StateCounts& counts, double elapsed_s, bool final)>;
+
+// OPENBLAS_NUM_THREADS=1 and the BLAS itself single-threaded: parallelism
+// is across jobs. Call before any BLAS call (vsi calls it in main).
+void single_threaded_blas();
+
+WorkSummary run_workers(const WorkOptions& options, const ProgressCallback& progress = {});
+
+}  // namespace railvsi::scheduler

@@ -1,0 +1,163 @@
+// A study expands into trains x speeds x profiles (x seeds) jobs with ids
+// that depend only on what each scene means; a study with any error
+// produces no job and names the JSON path of the error.
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "core/input_error.hpp"
+#include "core/sha256.hpp"
+#include "scheduler_test_support.hpp"
+#include "study/canonical_json.hpp"
+#include "study/study_plan.hpp"
+
+namespace railvsi::test {
+namespace {
+
+using nlohmann::json;
+using scheduler::expand_study;
+using scheduler::StudyPlan;
+
+StudyPlan expand(const json& doc, const scheduler::ExpandOptions& options = {}) {
+  return expand_study(doc, std::filesystem::temp_directory_path(), "study.json", options);
+}
+
+// The InputError of expanding `doc`, or a failure when there is none.
+InputError expansion_error(const json& doc, const scheduler::ExpandOptions& options = {}) {
+  try {
+    expand(doc, options);
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "the study was accepted";
+  return InputError("", "");
+}
+
+TEST(StudyExpansion, JobCountIsTrainsTimesSpeedsTimesProfilesAndSeeds) {
+  json doc = tiny_study();  // 2 trains, speeds 100..300 step 50: 5 speeds
+  doc["irregularities"] = json::parse(R"([null,
+      {"irregularity": {"spectrum": "german-low", "seed": 0}, "seeds": [1, 2, 3]},
+      {"x_m": [0, 5, 10], "r_m": [0, 0.001, 0]}])");
+  const StudyPlan plan = expand(doc);
+  EXPECT_EQ(plan.jobs.size(), 2u * 5u * 5u);
+  std::set<std::string> ids, labels;
+  for (const auto& j : plan.jobs) {
+    ids.insert(j.id);
+    labels.insert(j.irregularity);
+  }
+  EXPECT_EQ(ids.size(), plan.jobs.size()) << "job ids must be distinct";
+  EXPECT_EQ(labels, (std::set<std::string>{"none", "german-low seed 1", "german-low seed 2", "german-low seed 3",
+                                            "profile 3"}));
+}
+
+TEST(StudyExpansion, SpeedRangeIncludesBothEndsWithoutRoundOff) {
+  json doc = tiny_study();
+  doc["trains"] = json::array({doc["trains"][0]});
+  doc["speeds_kmh"] = {{"from", 100}, {"to", 100.3}, {"step", 0.1}};
+  const StudyPlan plan = expand(doc);
+  ASSERT_EQ(plan.jobs.size(), 4u);
+  EXPECT_EQ(plan.jobs[3].speed_kmh, 100.3);  // 100 + 3 * 0.1 = 100.30000000000001 before rounding
+  doc["speeds_kmh"] = json::array({120, 180.5});
+  const StudyPlan listed = expand(doc);
+  ASSERT_EQ(listed.jobs.size(), 2u);
+  EXPECT_EQ(listed.jobs[1].speed_kmh, 180.5);
+}
+
+TEST(StudyExpansion, IdsAreHashesOfCanonicalScenesAndStableUnderReformatting) {
+  const StudyPlan a = expand(tiny_study());
+  // The same study written differently: keys in another order, 1.0e-3 as
+  // 0.001, 10 as 10.0.
+  json b_doc = json::parse(tiny_study().dump());
+  b_doc["analysis"] = json::parse(R"({"dt_s": 0.001})");
+  b_doc["structure"]["spans_m"] = json::array({10.0});
+  const StudyPlan b = expand(b_doc);
+  ASSERT_EQ(a.jobs.size(), b.jobs.size());
+  EXPECT_EQ(a.id, b.id);
+  for (std::size_t k = 0; k < a.jobs.size(); ++k) {
+    EXPECT_EQ(a.jobs[k].id, b.jobs[k].id);
+    EXPECT_EQ(a.jobs[k].id, scheduler::sha256_hex(a.jobs[k].scene));
+    EXPECT_EQ(a.jobs[k].scene, scheduler::canonical_text(json::parse(a.jobs[k].scene)));
+  }
+  // A different study has a different id.
+  json c_doc = tiny_study();
+  c_doc["name"] = "other";
+  EXPECT_NE(expand(c_doc).id, a.id);
+}
+
+TEST(StudyExpansion, CanonicalTextSortsKeysAndNormalizesNumbers) {
+  EXPECT_EQ(scheduler::canonical_text(json::parse(R"({"b": 1.0, "a": [2.50, -0.0, 1e2, 0.1]})")),
+            R"({"a":[2.5,0,100,0.1],"b":1})");
+}
+
+TEST(StudyExpansion, BadTrainStiffnessIsReportedAtItsPathInTheStudy) {
+  json doc = tiny_study();
+  doc["trains"].push_back({{"name", "bad"}, {"vehicles", json::array({car(-1.0)})}});
+  const InputError e = expansion_error(doc);
+  EXPECT_EQ(e.json_path(), "/trains/2/vehicles/0/primary/k_N_per_m");
+  EXPECT_EQ(e.file(), "study.json");
+}
+
+TEST(StudyExpansion, UnknownLibraryTrainIsReportedAtItsIndex) {
+  json doc = tiny_study();
+  doc["trains"].push_back("NO-SUCH-TRAIN");
+  const InputError e = expansion_error(doc);
+  EXPECT_EQ(e.json_path(), "/trains/2");
+  EXPECT_NE(std::string(e.what()).find("NO-SUCH-TRAIN"), std::string::npos) << e.what();
+}
+
+TEST(StudyExpansion, BadProfileIsReportedAtItsIndex) {
+  json doc = tiny_study();
+  doc["irregularities"] = json::parse(R"([null, {"x_m": [0, 5, 4], "r_m": [0, 0.001, 0]}])");
+  const InputError e = expansion_error(doc);
+  EXPECT_TRUE(e.json_path().starts_with("/irregularities/1")) << e.json_path() << ": " << e.what();
+}
+
+TEST(StudyExpansion, SeedsNeedASpectrum) {
+  json doc = tiny_study();
+  doc["irregularities"] = json::parse(R"([{"irregularity": {"x_m": [0, 5], "r_m": [0, 0]}, "seeds": [1]}])");
+  EXPECT_EQ(expansion_error(doc).json_path(), "/irregularities/0/irregularity");
+}
+
+TEST(StudyExpansion, EmptySpeedRangeIsRefused) {
+  json doc = tiny_study();
+  doc["speeds_kmh"] = {{"from", 300}, {"to", 200}, {"step", 10}};
+  EXPECT_EQ(expansion_error(doc).json_path(), "/speeds_kmh/to");
+}
+
+TEST(StudyExpansion, MoreThanTheJobLimitIsRefusedUnlessAllowed) {
+  json doc = tiny_study();  // 2 trains x 5 speeds = 10 jobs
+  scheduler::ExpandOptions small;
+  small.max_jobs = 9;
+  const InputError e = expansion_error(doc, small);
+  EXPECT_NE(std::string(e.what()).find("--allow-large"), std::string::npos) << e.what();
+  small.allow_large = true;
+  EXPECT_EQ(expand(doc, small).jobs.size(), 10u);
+  // The default limit is 100,000: refused before anything is expanded.
+  doc["speeds_kmh"] = {{"from", 1}, {"to", 50001}, {"step", 1}};
+  EXPECT_EQ(expansion_error(doc).json_path(), "/speeds_kmh");
+}
+
+TEST(StudyExpansion, SchemaErrorsNameTheirPath) {
+  json doc = tiny_study();
+  doc["speeds_kmh"] = {{"from", 100}, {"to", 200}, {"step", 0}};
+  EXPECT_EQ(expansion_error(doc).json_path(), "/speeds_kmh/step");
+  doc = tiny_study();
+  doc["checks"] = {{"max_unloading_ratio", 1.5}};
+  EXPECT_EQ(expansion_error(doc).json_path(), "/checks/max_unloading_ratio");
+}
+
+TEST(StudyExpansion, JobsWithoutDtGetTheTimeStepPolicysRungAndReason) {
+  json doc = tiny_study();
+  doc["analysis"].erase("dt_s");
+  const StudyPlan plan = expand(doc);
+  for (const auto& j : plan.jobs) {
+    // A rung of the ladder 2 ms / 2^k.
+    const double k = std::log2(2.0e-3 / j.dt_s);
+    EXPECT_NEAR(k, std::round(k), 1e-9) << j.dt_s;
+    EXPECT_NE(j.dt_reason.find("ladder"), std::string::npos) << j.dt_reason;
+    EXPECT_EQ(json::parse(j.scene)["analysis"]["dt_s"].get<double>(), j.dt_s);
+  }
+}
+
+}  // namespace
+}  // namespace railvsi::test

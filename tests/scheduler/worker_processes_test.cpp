@@ -1,0 +1,192 @@
+// The real vsi binary as users run it: several worker processes on one
+// database, a worker killed with SIGKILL in the middle of a study, the
+// factorization cache, and the exit codes of the service commands.
+#include <regex>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "scheduler_test_support.hpp"
+
+namespace railvsi::test {
+namespace {
+
+using nlohmann::json;
+using scheduler::Database;
+
+// 2 trains x 21 speeds, a few thousand steps each.
+json sweep_study() {
+  json doc = tiny_study();
+  doc["speeds_kmh"] = {{"from", 100}, {"to", 300}, {"step", 10}};
+  doc["analysis"]["dt_s"] = 2.0e-4;
+  return doc;
+}
+
+std::string study_id_of(const VsiResult& submit) {
+  std::smatch m;
+  const std::regex id("study ([0-9a-f]{64}): ([0-9]+) jobs");
+  EXPECT_TRUE(std::regex_search(submit.out, m, id)) << submit.out << submit.err;
+  return m.size() > 1 ? m[1].str() : std::string();
+}
+
+std::int64_t done_jobs(const std::filesystem::path& db_file) {
+  Database db(db_file.string());
+  return count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done'");
+}
+
+class WorkerProcesses : public ServiceTest {};
+
+TEST_F(WorkerProcesses, TwoProcessesWithTwoThreadsRunEveryJobExactlyOnce) {
+  const auto study = write_json("sweep.json", sweep_study());
+  const std::string db_file = (dir_ / "shared.sqlite").string();
+  const VsiResult submitted = vsi({"submit", study.string(), "--db", db_file});
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.err;
+  auto a = start_vsi({"work", "--db", db_file, "--threads", "2"}, "a");
+  auto b = start_vsi({"work", "--db", db_file, "--threads", "2"}, "b");
+  EXPECT_EQ(a->wait(), 0) << read_text(dir_ / "a.err");
+  EXPECT_EQ(b->wait(), 0) << read_text(dir_ / "b.err");
+
+  Database db(db_file);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs"), 42);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done'"), 42);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE attempts != 1"), 0) << "a job was claimed twice";
+  // Per job: displacement, filtered and unfiltered acceleration at 2 points
+  // and overall (3 x 3), Newton iterations and the most in a step.
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 42 * 11);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM (SELECT job_id FROM envelopes GROUP BY job_id HAVING count(*) != 11)"),
+            0);
+  // Each process says how many jobs it finished: together, every job once.
+  std::int64_t reported = 0;
+  for (const char* tag : {"a", "b"}) {
+    std::smatch m;
+    const std::string err = read_text(dir_ / (std::string(tag) + ".err"));
+    ASSERT_TRUE(std::regex_search(err, m, std::regex("this worker: ([0-9]+) jobs done"))) << err;
+    reported += std::stoll(m[1].str());
+  }
+  EXPECT_EQ(reported, 42);
+}
+
+TEST_F(WorkerProcesses, KilledWorkerIsReplacedAndTheEnvelopesEqualAnUninterruptedRun) {
+  const auto study = write_json("sweep.json", sweep_study());
+  const auto interrupted = dir_ / "interrupted.sqlite", reference = dir_ / "reference.sqlite";
+  const VsiResult submitted = vsi({"submit", study.string(), "--db", interrupted.string()});
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.err;
+  const std::string id = study_id_of(submitted);
+
+  auto victim = start_vsi({"work", "--db", interrupted.string(), "--threads", "1", "--lease-s", "1"}, "victim");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (done_jobs(interrupted) < 3 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  victim->kill9();
+  EXPECT_EQ(victim->wait(), -SIGKILL);
+  const std::int64_t done_before = done_jobs(interrupted);
+  ASSERT_GE(done_before, 3);
+  ASSERT_LT(done_before, 42) << "the worker finished before it was killed: make the jobs longer";
+
+  const VsiResult resumed = vsi({"work", "--db", interrupted.string(), "--threads", "2", "--lease-s", "1"}, "resumed");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(done_jobs(interrupted), 42);
+
+  ASSERT_EQ(vsi({"run", study.string(), "--db", reference.string(), "--threads", "1"}, "reference").exit_code, 0);
+  const VsiResult a = vsi({"query", "--db", interrupted.string(), "--study", id, "--format", "csv"}, "qa");
+  const VsiResult b = vsi({"query", "--db", reference.string(), "--study", id, "--format", "csv"}, "qb");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_EQ(std::count(a.out.begin(), a.out.end(), '\n'), 1 + 42 * 11);
+  EXPECT_EQ(a.out, b.out) << "envelopes of the resumed study differ from an uninterrupted run";
+
+  Database db(interrupted.string());
+  scheduler::Statement check = db.prepare("PRAGMA integrity_check");
+  ASSERT_TRUE(check.step());
+  EXPECT_EQ(check.text(0), "ok");
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM (SELECT job_id FROM envelopes GROUP BY job_id HAVING count(*) != 11)"),
+            0);
+}
+
+TEST_F(WorkerProcesses, FactorizationsEqualTheDistinctStructureStepKeys) {
+  json doc = tiny_study();
+  doc["analysis"].erase("dt_s");  // the time-step policy chooses per train and speed
+  doc["trains"].push_back(one_car_train());
+  doc["speeds_kmh"] = json::array({150, 250});
+  const auto study = write_json("mixed.json", doc);
+  const std::string db_file = (dir_ / "mixed.sqlite").string();
+  const VsiResult run = vsi({"run", study.string(), "--db", db_file, "--threads", "2"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+
+  Database db(db_file);
+  // One structure: a key is a time step and whether the train has wheels
+  // (they need the rail flexibility block).
+  std::set<std::pair<double, bool>> keys;
+  scheduler::Statement s = db.prepare("SELECT dt_s, train FROM jobs");
+  while (s.step()) keys.insert({s.real(0), s.text(1) == "one coach"});
+  EXPECT_GE(keys.size(), 2u);
+  EXPECT_EQ(count_rows(db, "SELECT count(DISTINCT operator_key) FROM jobs"), static_cast<std::int64_t>(keys.size()));
+  EXPECT_EQ(count_rows(db, "SELECT factorizations FROM cache_stats"), static_cast<std::int64_t>(keys.size()));
+  EXPECT_EQ(count_rows(db, "SELECT hits FROM cache_stats"), 6 - static_cast<std::int64_t>(keys.size()));
+}
+
+TEST_F(WorkerProcesses, InvalidStudyEnqueuesNothingAndNamesThePath) {
+  json doc = tiny_study();
+  doc["trains"].push_back({{"name", "bad"}, {"vehicles", json::array({car(2.4e6), car(-5.0)})}});
+  const auto study = write_json("bad.json", doc);
+  const auto db_file = dir_ / "bad.sqlite";
+  for (const char* command : {"submit", "run"}) {
+    const VsiResult r = vsi({command, study.string(), "--db", db_file.string()});
+    EXPECT_EQ(r.exit_code, 2) << command;
+    EXPECT_EQ(r.out, "");
+    EXPECT_NE(r.err.find("error: " + study.string() + ": /trains/2/vehicles/1/primary/k_N_per_m: "), std::string::npos)
+        << r.err;
+  }
+  if (std::filesystem::exists(db_file)) {
+    Database db(db_file.string());
+    EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs"), 0);
+  }
+}
+
+TEST_F(WorkerProcesses, RunExitsWithThreeWhenJobsFailAndShowsWhy) {
+  json doc = tiny_study();
+  doc["trains"] = json::array({one_car_train()});
+  doc["speeds_kmh"] = json::array({200});
+  doc["analysis"]["max_newton_iterations"] = 1;  // the Hertz contact needs more: no_convergence
+  doc["analysis"]["dt_s"] = 5.0e-4;
+  const auto study = write_json("failing.json", doc);
+  const std::string db_file = (dir_ / "f.sqlite").string();
+  const VsiResult run = vsi({"run", study.string(), "--db", db_file});
+  EXPECT_EQ(run.exit_code, 3) << run.err;
+  EXPECT_NE(run.out.find("failed (no_convergence)"), std::string::npos) << run.out;
+  Database db(db_file);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'failed' AND error != ''"), 1);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 0) << "a failed run is not a result";
+}
+
+TEST_F(WorkerProcesses, StatusQueryCancelAndRetryFromTheCommandLine) {
+  const auto study = write_json("tiny.json", tiny_study());
+  const std::string db_file = (dir_ / "t.sqlite").string();
+  const VsiResult submitted = vsi({"submit", study.string(), "--db", db_file});
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.err;
+  const std::string id = study_id_of(submitted);
+  EXPECT_NE(submitted.out.find(": 10 jobs, 10 new"), std::string::npos) << submitted.out;
+  EXPECT_NE(vsi({"submit", study.string(), "--db", db_file}).out.find(": 10 jobs, 0 new"), std::string::npos);
+
+  const VsiResult cancel = vsi({"cancel", "--db", db_file, "--study", id.substr(0, 10)});
+  EXPECT_EQ(cancel.exit_code, 0) << cancel.err;
+  EXPECT_NE(cancel.out.find("10 jobs cancelled"), std::string::npos) << cancel.out;
+  EXPECT_EQ(vsi({"work", "--db", db_file}).exit_code, 0);
+  EXPECT_EQ(done_jobs(db_file), 0);
+  EXPECT_NE(vsi({"retry", "--db", db_file, "--study", id}).out.find("10 jobs queued again"), std::string::npos);
+  EXPECT_EQ(vsi({"work", "--db", db_file, "--threads", "2"}).exit_code, 0);
+  EXPECT_EQ(done_jobs(db_file), 10);
+
+  const VsiResult status = vsi({"status", "--db", db_file});
+  EXPECT_NE(status.out.find("10 done, 0 failed"), std::string::npos) << status.out;
+  const VsiResult table = vsi({"query", "--db", db_file, "--study", id, "--train", "one axle", "--speed-min", "150"});
+  EXPECT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.out.find("4 jobs shown"), std::string::npos) << table.out;
+  const VsiResult json_out = vsi({"query", "--db", db_file, "--study", id, "--format", "json"});
+  const json parsed = json::parse(json_out.out);
+  EXPECT_EQ(parsed["jobs"].size(), 10u);
+  EXPECT_EQ(vsi({"query", "--db", db_file, "--study", "ffffffffff"}).exit_code, 2);
+}
+
+}  // namespace
+}  // namespace railvsi::test
