@@ -29,6 +29,8 @@ class ShiftInvertOp {
   const Status& status() const { return status_; }
 
   void set_shift(double sigma) {
+    if (sigma == sigma_ && (factor_ || !status_.ok())) return;  // a retry with the same shift
+    sigma_ = sigma;
     const SparseMatrix A = K_ - sigma * M_;
     cholmod_sparse view = cholmod_view_symmetric(A);
     cholmod_common* c = common_->get();
@@ -85,6 +87,7 @@ class ShiftInvertOp {
   mutable cholmod_dense* Y_ = nullptr;
   mutable cholmod_dense* E_ = nullptr;
   Status status_;
+  double sigma_ = 0.0;
 };
 
 }  // namespace
@@ -98,34 +101,43 @@ ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const M
                      fmt::format("cannot compute {} modes of a model with {} DOFs", options.modes, n)};
     return result;
   }
-  // Lanczos basis: twice the modes plus a margin converges quickly.
-  const Eigen::Index ncv = std::min<Eigen::Index>(n, std::max<Eigen::Index>(2 * nev + 1, 20));
-  ShiftInvertOp op(K, M);
+  ShiftInvertOp op(K, M);  // factorized once, at the first solver's set_shift
   Spectra::SparseSymMatProd<double> mass(M);
-  Spectra::SymGEigsShiftSolver<ShiftInvertOp, Spectra::SparseSymMatProd<double>, Spectra::GEigsMode::ShiftInvert>
-      solver(op, mass, nev, ncv, options.shift_rad2_per_s2);
-  if (!op.status().ok()) {
-    result.status = op.status();
-    return result;
+  // A track on embankments has hundreds of nearly equal sleeper-on-ballast
+  // modes. Lanczos converges slowly when the edge of the wanted set falls
+  // into such a cluster: more eigenpairs than asked (and a basis twice as
+  // large) converge much faster, and a miss is retried with twice as many.
+  Eigen::Index wanted = std::min<Eigen::Index>(n - 1, std::max<Eigen::Index>(2 * nev, options.min_lanczos_pairs));
+  for (;;) {
+    const Eigen::Index ncv = std::min<Eigen::Index>(n, 2 * wanted + 1);
+    Spectra::SymGEigsShiftSolver<ShiftInvertOp, Spectra::SparseSymMatProd<double>, Spectra::GEigsMode::ShiftInvert>
+        solver(op, mass, wanted, ncv, options.shift_rad2_per_s2);
+    if (!op.status().ok()) {
+      result.status = op.status();
+      return result;
+    }
+    solver.init();
+    // Largest |1/(lambda - sigma)| are the eigenvalues nearest the shift;
+    // reported in ascending lambda.
+    solver.compute(Spectra::SortRule::LargestMagn, options.max_iterations, options.tolerance,
+                   Spectra::SortRule::SmallestAlge);
+    if (solver.info() == Spectra::CompInfo::Successful) {
+      const Vector lambda = solver.eigenvalues().head(nev);
+      result.shapes = solver.eigenvectors().leftCols(nev);
+      for (Eigen::Index k = 0; k < nev; ++k) {
+        // A rigid-body mode comes out as a tiny negative lambda: frequency 0.
+        result.frequencies_hz.push_back(std::sqrt(std::max(lambda[k], 0.0)) / (2.0 * std::numbers::pi));
+        auto phi = result.shapes.col(k);
+        phi /= std::sqrt(phi.dot(M * phi));
+      }
+      return result;
+    }
+    if (wanted >= std::min<Eigen::Index>(n - 1, options.max_lanczos_pairs)) break;
+    wanted = std::min<Eigen::Index>({n - 1, 2 * wanted, options.max_lanczos_pairs});
   }
-  solver.init();
-  // Largest |1/(lambda - sigma)| are the eigenvalues nearest the shift;
-  // reported in ascending lambda.
-  solver.compute(Spectra::SortRule::LargestMagn, options.max_iterations, options.tolerance,
-                 Spectra::SortRule::SmallestAlge);
-  if (solver.info() != Spectra::CompInfo::Successful) {
-    result.status = {StatusCode::kNoConvergence,
-                     fmt::format("the eigenvalue iteration did not converge in {} iterations", options.max_iterations)};
-    return result;
-  }
-  const Vector lambda = solver.eigenvalues();
-  result.shapes = solver.eigenvectors();
-  for (Eigen::Index k = 0; k < lambda.size(); ++k) {
-    // A rigid-body mode comes out as a tiny negative lambda: frequency 0.
-    result.frequencies_hz.push_back(std::sqrt(std::max(lambda[k], 0.0)) / (2.0 * std::numbers::pi));
-    auto phi = result.shapes.col(k);
-    phi /= std::sqrt(phi.dot(M * phi));
-  }
+  result.status = {StatusCode::kNoConvergence,
+                   fmt::format("the eigenvalue iteration did not converge ({} iterations with up to {} eigenpairs)",
+                               options.max_iterations, wanted)};
   return result;
 }
 

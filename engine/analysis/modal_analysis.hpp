@@ -18,6 +18,11 @@ struct ModalOptions {
   // constrained (or merely semi-definite) K and positive definite M.
   double shift_rad2_per_s2 = -1.0;
   int max_iterations = 1000;
+  // Eigenpairs the Lanczos iteration converges (the lowest `modes` of them
+  // are returned): at least this many and twice the modes, doubled after a
+  // failure up to max_lanczos_pairs. See modal_analysis.cpp for why.
+  int min_lanczos_pairs = 40;
+  int max_lanczos_pairs = 320;
   double tolerance = 1e-10;
 };
 

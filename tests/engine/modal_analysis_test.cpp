@@ -128,6 +128,30 @@ TEST(ModalAnalysis, ViaductWithTrackHasDeckModesNearTheSpanFrequencyLoweredByThe
   }
 }
 
+TEST(ModalAnalysis, ClusterOfEmbankmentTrackModesDoesNotStopConvergence) {
+  // Nine deck modes (1, 2, 3 half-waves in three spans) below ~45 Hz, then
+  // hundreds of nearly equal sleeper-on-ballast modes: the twelve lowest
+  // must converge although the last ones lie inside that cluster. The
+  // viaduct-ice3 example (approach 203.3 m): with a Lanczos basis of
+  // 2 * 12 + 1 vectors this did not converge in 1000 iterations.
+  Bridge2dOptions o = deck({25.0, 25.0, 25.0}, 7.124e10, 18000.0);
+  o.track = TrackOptions{};
+  o.track->approach_m = 203.3;
+  const auto s = make_bridge_2d(o);
+  ModalOptions options;
+  options.modes = 12;
+  const ModalResult r = modal_analysis(*s, options);
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  ASSERT_EQ(r.frequencies_hz.size(), 12u);
+  for (int k = 0; k < 9; ++k) {
+    const ModeType type = classify_mode(*s, r.shapes.col(k));
+    EXPECT_TRUE(type.deck) << "mode " << k + 1;
+    for (const int h : type.half_waves) EXPECT_TRUE(h == 0 || h == k / 3 + 1) << "mode " << k + 1 << ": " << type.description;
+  }
+  for (int k = 9; k < 12; ++k) EXPECT_EQ(classify_mode(*s, r.shapes.col(k)).description, "track") << "mode " << k + 1;
+  for (int k = 1; k < 12; ++k) EXPECT_GE(r.frequencies_hz[k], r.frequencies_hz[k - 1]);
+}
+
 TEST(ModalAnalysis, TrackModesAreNamedTrackWhenTheDeckIsFarStiffer) {
   // A deck at ~190 Hz: the lowest modes are the track's on its embankments.
   Bridge2dOptions o = deck({10.0}, 1.0e13, 10000.0);
