@@ -1,6 +1,6 @@
 #include "study/deck_frequencies.hpp"
 
-#include <vector>
+#include <algorithm>
 
 #include "analysis/modal_analysis.hpp"
 #include "analysis/mode_classification.hpp"
@@ -8,18 +8,25 @@
 namespace railvsi::scheduler {
 
 DeckFrequencies deck_frequencies(const StructureModel& structure) {
-  // Enough modes to find three of the deck among those of the track.
+  // A few spans' first, second and third bending modes, with track modes
+  // in between.
   ModalOptions options;
-  options.modes = 12;
+  options.modes = 24;
   const ModalResult modes = modal_analysis(structure, options);
-  std::vector<double> deck_hz;
-  if (modes.status.ok())
-    for (std::size_t k = 0; k < modes.frequencies_hz.size() && deck_hz.size() < 3; ++k)
-      if (classify_mode(structure, modes.shapes.col(static_cast<Eigen::Index>(k))).deck)
-        deck_hz.push_back(modes.frequencies_hz[k]);
   DeckFrequencies f;
-  if (!deck_hz.empty()) f.f0_hz = deck_hz[0];
-  if (deck_hz.size() >= 3) f.f3_hz = deck_hz[2];
+  if (!modes.status.ok()) return f;
+  for (std::size_t k = 0; k < modes.frequencies_hz.size(); ++k) {
+    const ModeType type = classify_mode(structure, modes.shapes.col(static_cast<Eigen::Index>(k)));
+    if (!type.deck) continue;
+    if (f.f0_hz == 0.0) f.f0_hz = modes.frequencies_hz[k];
+    const int half_waves = type.half_waves.empty() ? 0 : *std::max_element(type.half_waves.begin(), type.half_waves.end());
+    if (half_waves >= 3) {
+      f.f3_hz = modes.frequencies_hz[k];
+      break;
+    }
+  }
+  // Not found among the modes computed: unknown (0), the code frequency is
+  // then max(30 Hz, 1.5 f0).
   return f;
 }
 

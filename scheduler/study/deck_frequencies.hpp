@@ -1,7 +1,11 @@
 #pragma once
-// f0 and f3 of a structure for the code: the first and third deck bending
-// frequencies (EN 1990 A2.4.4.2.1 keeps frequencies up to max(30 Hz, 1.5 f0,
-// f3)), from the modal analysis, skipping track modes.
+// f0 and f3 of a structure for the code filter: EN 1990 A2.4.4.2.1 keeps
+// frequencies up to the greater of 30 Hz, 1.5 times the fundamental
+// frequency of the member and the frequency of its third mode. For a span
+// (the member of a bridge of simply supported spans) the third mode is its
+// third bending mode, three half-waves: f3 is the lowest deck mode with
+// three or more half-waves in a span, found among the modes of the whole
+// structure with the track modes skipped.
 #include "model/structure_model.hpp"
 
 namespace railvsi::scheduler {

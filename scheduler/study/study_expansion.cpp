@@ -63,7 +63,7 @@ std::string profile_label(const json& p, std::size_t index) {
   if (p.contains("spectrum"))
     label = fmt::format("{} seed {}", p.at("spectrum").get<std::string>(), p.at("seed").dump());
   else if (p.contains("csv"))
-    label = p.at("csv").get<std::string>();
+    label = std::filesystem::path(p.at("csv").get<std::string>()).filename().string();
   else if (p.contains("x_m"))
     label = fmt::format("profile {}", index + 1);
   if (p.contains("defects")) label += label.empty() ? fmt::format("defects {}", index + 1) : " + defects";

@@ -177,6 +177,9 @@ TEST_F(WorkerProcesses, StatusQueryCancelAndRetryFromTheCommandLine) {
   EXPECT_EQ(vsi({"work", "--db", db_file, "--threads", "2"}).exit_code, 0);
   EXPECT_EQ(done_jobs(db_file), 10);
 
+  const VsiResult validated = vsi({"validate", study.string()});
+  EXPECT_EQ(validated.exit_code, 0) << validated.err;
+  EXPECT_NE(validated.out.find("ok (study, 10 jobs)"), std::string::npos) << validated.out;
   const VsiResult status = vsi({"status", "--db", db_file});
   EXPECT_NE(status.out.find("10 done, 0 failed"), std::string::npos) << status.out;
   const VsiResult table = vsi({"query", "--db", db_file, "--study", id, "--train", "one axle", "--speed-min", "150"});
