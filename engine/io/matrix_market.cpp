@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <fstream>
+#include <memory>
+#include <stdexcept>
 #include <sstream>
 #include <vector>
 
@@ -96,6 +99,31 @@ SparseMatrix read_matrix_market(const std::filesystem::path& file, const std::st
   SparseMatrix A(static_cast<int>(rows), static_cast<int>(cols));
   A.setFromTriplets(triplets.begin(), triplets.end());
   return A;
+}
+
+void write_matrix_market(const std::filesystem::path& file, const SparseMatrix& A, bool symmetric) {
+  const auto written = [symmetric](Eigen::Index row, Eigen::Index col) { return !symmetric || row >= col; };
+  long count = 0;
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it) count += written(it.row(), it.col()) ? 1 : 0;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(file.c_str(), "wb"), &std::fclose);
+  if (!out) throw std::runtime_error(fmt::format("cannot write {}", file.string()));
+  fmt::memory_buffer buffer;
+  const auto flush = [&] {
+    if (std::fwrite(buffer.data(), 1, buffer.size(), out.get()) != buffer.size())
+      throw std::runtime_error(fmt::format("cannot write {}", file.string()));
+    buffer.clear();
+  };
+  fmt::format_to(std::back_inserter(buffer), "%%MatrixMarket matrix coordinate real {}\n% written by railvsi\n{} {} {}\n",
+                 symmetric ? "symmetric" : "general", A.rows(), A.cols(), count);
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+      if (written(it.row(), it.col()))
+        fmt::format_to(std::back_inserter(buffer), "{} {} {:.17g}\n", it.row() + 1, it.col() + 1, it.value());
+    if (buffer.size() > (1u << 20)) flush();
+  }
+  flush();
+  if (std::fflush(out.get()) != 0) throw std::runtime_error(fmt::format("cannot write {}", file.string()));
 }
 
 }  // namespace railvsi

@@ -1,0 +1,126 @@
+#include "cli/generate_command.hpp"
+
+#include <cmath>
+#include <iostream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "core/input_error.hpp"
+#include "generators/deck_3d.hpp"
+#include "io/structure_export.hpp"
+
+namespace railvsi::cli {
+namespace {
+
+using nlohmann::ordered_json;
+
+// The generator's option paths as the command-line options that set them.
+InputError as_option_error(const InputError& e) {
+  const std::string& path = e.json_path();
+  for (const auto& [prefix, option] : {std::pair{"/target_dofs", "--dofs"}, std::pair{"/spans_m", "--spans"},
+                                       std::pair{"/approach_m", "--approach"}})
+    if (path.starts_with(prefix)) return InputError(option, e.what());
+  return e;
+}
+
+ordered_json rail_lines_json(const StructureModel& model) {
+  ordered_json lines = ordered_json::array();
+  for (std::size_t r = 0; r < model.rails().size(); ++r) lines.push_back(r);
+  return lines;
+}
+
+// HSLM-A1 as moving forces over the whole passage; half the load on each rail.
+ordered_json moving_force_scene(const StructureModel& model, const std::string& summary) {
+  return {{"$schema", "scene.schema.json"},
+          {"description", fmt::format("HSLM-A1 (EN 1991-2 Annex E, library train) as moving forces at 300 km/h over "
+                                      "the generated deck ({}); each axle load is split equally between the rails.",
+                                      summary)},
+          {"structure", {{"import", structure_import_json(model)}}},
+          {"train", "HSLM-A1"},
+          {"speed_kmh", 300},
+          {"irregularity", nullptr},
+          {"analysis", {{"dt_s", 1.0e-3}, {"contact", {{"rail_lines", rail_lines_json(model)}}}}}};
+}
+
+// The paper's run: KHST at 120 m/s, dt = 2.5e-4 s, 2,000 steps, HHT alpha = -0.05.
+ordered_json multibody_scene(const StructureModel& model, const std::string& summary) {
+  return {{"$schema", "scene.schema.json"},
+          {"description",
+           fmt::format("The seed-scale run of the paper (reference/DATA.md, 'The paper's example'): the 46-axle "
+                       "library train KHST (a KHST-like model, see jobs/trains/KHST.json) at 120 m/s (432 km/h), "
+                       "dt = 2.5e-4 s, 2,000 steps, HHT alpha = -0.05, nonlinear Hertz contact, each wheelset on "
+                       "both rails, over the generated deck ({}). The train starts wholly on the approach track.",
+                       summary)},
+          {"structure", {{"import", structure_import_json(model)}}},
+          {"train", "KHST"},
+          {"speed_kmh", 432},
+          {"irregularity", nullptr},
+          {"analysis",
+           {{"dt_s", 2.5e-4},
+            {"hht_alpha", -0.05},
+            {"duration_s", 0.5},
+            {"contact", {{"law", "hertz"}, {"rail_lines", rail_lines_json(model)}}}}}};
+}
+
+}  // namespace
+
+GenerateCommand::GenerateCommand(CLI::App& app) {
+  generate_ = app.add_subcommand("generate", "Write a generated structure as Matrix Market files and a rail map, "
+                                             "with example scenes");
+  generate_->require_subcommand(1);
+  CLI::App* deck = generate_->add_subcommand(
+      "deck-3d", "Simply supported spans of solid concrete (8-node hexahedra) with two rails on pads, refined to a "
+                 "number of DOFs; writes K.mtx, M.mtx, C.mtx, map.json, moving-forces.json, multibody.json");
+  deck->add_option("--dofs", args_.dofs, "Total DOFs (deck and rails) the mesh is refined to, within 5 %")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  deck->add_option("--out", args_.out_dir, "Directory for the files (created if needed)")->required();
+  deck->add_option("--spans", args_.spans_m, "Span lengths in m, comma-separated")->delimiter(',')->capture_default_str();
+  deck->add_option("--approach", args_.approach_m, "Track on rigid ground before the bridge in m (holds the train "
+                                                  "at the start)")
+      ->capture_default_str();
+}
+
+std::optional<int> GenerateCommand::run_parsed() const {
+  if (!generate_->parsed()) return std::nullopt;
+  return generate_deck_3d_command(args_);
+}
+
+int generate_deck_3d_command(const GenerateArgs& args) {
+  Deck3dOptions o;
+  o.target_dofs = static_cast<int>(std::min<long>(args.dofs, 1L << 30));
+  o.spans_m = args.spans_m;
+  o.approach_m = args.approach_m;
+  const Deck3d deck = [&] {
+    try {
+      return make_deck_3d(o);
+    } catch (const InputError& e) {
+      throw as_option_error(e);
+    }
+  }();
+  const StructureModel& model = *deck.model;
+  const std::string summary =
+      fmt::format("{} DOFs: {} spans of {} m x {} m solid concrete, {} x {} x {} hexahedra per span, two rails on pads",
+                  model.num_dofs(), o.spans_m.size(), o.width_m, o.depth_m, deck.mesh.nx.front(), deck.mesh.ny,
+                  deck.mesh.nz);
+  std::vector<FileToWrite> files = structure_files(model);
+  for (const auto& [name, scene] : {std::pair{"moving-forces.json", moving_force_scene(model, summary)},
+                                    std::pair{"multibody.json", multibody_scene(model, summary)}})
+    files.push_back({name, [text = scene.dump(2) + "\n"](const auto& file) { write_text_file(file, text); }});
+  write_files_together(args.out_dir, files);
+
+  ordered_json out = {{"dofs", model.num_dofs()},
+                      {"target_dofs", args.dofs},
+                      {"deck_dofs", model.info().deck_dofs},
+                      {"rail_dofs", model.info().track_dofs},
+                      {"mesh", {{"nx", deck.mesh.nx}, {"ny", deck.mesh.ny}, {"nz", deck.mesh.nz}}},
+                      {"first_frequency_hz", model.info().first_frequency_hz},
+                      {"files", ordered_json::array()}};
+  for (const FileToWrite& f : files) out["files"].push_back(f.name);
+  std::cout << out.dump(2) << '\n';
+  return kExitOk;
+}
+
+}  // namespace railvsi::cli

@@ -1,0 +1,35 @@
+#pragma once
+// `vsi generate deck-3d`: writes a generated 3D structure as the files of the
+// import path, with two example scenes that run on it.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace railvsi::cli {
+
+struct GenerateArgs {
+  long dofs = 230000;
+  std::string out_dir;
+  std::vector<double> spans_m{25.0, 25.0, 25.0};
+  double approach_m = 400.0;
+};
+
+class GenerateCommand {
+ public:
+  // Adds "generate" (with its subcommand "deck-3d") to app.
+  explicit GenerateCommand(CLI::App& app);
+  // After app.parse(): the exit code when "generate" was parsed, else nullopt.
+  std::optional<int> run_parsed() const;
+
+ private:
+  GenerateArgs args_;
+  CLI::App* generate_ = nullptr;
+};
+
+// Writes K.mtx, M.mtx, C.mtx, map.json, moving-forces.json and
+// multibody.json into args.out_dir and prints a JSON summary on stdout.
+int generate_deck_3d_command(const GenerateArgs& args);
+
+}  // namespace railvsi::cli

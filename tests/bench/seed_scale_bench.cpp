@@ -1,0 +1,99 @@
+// Seed-scale benchmark (the paper's example at its size; README,
+// "Performance"): a generated 3D deck of 233,292 DOFs (the paper's count),
+// the 46-axle KHST of the train library at 120 m/s, dt = 2.5e-4 s, 2,000
+// steps, HHT alpha = -0.05, nonlinear Hertz, each wheelset on both rails.
+// It takes tens of minutes and a few GB: run by hand, never in CI:
+//   OPENBLAS_NUM_THREADS=1 build/tests/bench/seed_scale_bench
+// Times are also given as a ratio to a floor measured in the same process,
+// one structure solve with the cached factor:
+//   overhead = (wall - setup) / (steps x t_solve)   (2.0 is the floor)
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include <chrono>
+
+#include "generators/deck_3d.hpp"
+#include "io/train_loader.hpp"
+#include "simulation/simulation.hpp"
+#include "solver/cholmod_operator.hpp"
+
+namespace railvsi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+// Mean time of one solve; few repetitions, a solve takes ~0.3 s at this size.
+double seconds_per_solve(const StructureOperator& op, int reps) {
+  auto ws = op.make_workspace();
+  Vector b = Vector::Ones(op.num_dofs()), x;
+  const auto t0 = Clock::now();
+  for (int i = 0; i < reps; ++i) {
+    (void)op.solve(b, x, *ws);
+    b[i % b.size()] += 1e-3 * x[0];  // keep the loop honest
+  }
+  return seconds_since(t0) / reps;
+}
+
+void BM_SeedScaleKhst(benchmark::State& state) {
+  Result r;
+  double generate_s = 0.0, operator_s = 0.0, t_solve = 0.0;
+  std::shared_ptr<const CholmodOperator> op;
+  for (auto _ : state) {
+    auto t0 = Clock::now();
+    Deck3dOptions o;
+    o.target_dofs = 233292;
+    Scene scene;
+    scene.structure = make_deck_3d(o).model;
+    generate_s = seconds_since(t0);
+    scene.train = load_library_train("KHST");
+    scene.speed_mps = 120.0;
+    scene.analysis.dt_s = 2.5e-4;
+    scene.analysis.hht = HhtParameters::from_alpha(-0.05);
+    scene.analysis.contact.law = ContactLaw::kHertz;
+    scene.analysis.contact.rail_lines = {0, 1};
+    scene.analysis.duration_s = 2000 * 2.5e-4;
+    t0 = Clock::now();
+    op = std::dynamic_pointer_cast<const CholmodOperator>(make_structure_operator(scene));
+    operator_s = seconds_since(t0);
+    r = Simulation(scene, op).run();
+    state.PauseTiming();
+    t_solve = seconds_per_solve(*op, 20);
+    state.ResumeTiming();
+  }
+  if (!r.status.ok()) state.SkipWithError(r.status.message().c_str());
+  const RunSummary& s = r.summary;
+  const double steps = static_cast<double>(s.steps), loop_s = s.wall_s - s.setup_s;
+  state.counters["dofs"] = s.structure_dofs;
+  state.counters["vehicle_dofs"] = s.vehicle_dofs;
+  state.counters["contacts"] = s.contacts;
+  state.counters["generate_s"] = generate_s;
+  state.counters["factorization_s"] = op ? op->factorization_s() : 0.0;
+  state.counters["flexibility_s"] = op ? op->flexibility_s() : 0.0;
+  state.counters["operator_s"] = operator_s;
+  state.counters["statics_s"] = s.setup_s;  // static equilibrium, with its own factor of K
+  state.counters["factor_nnz"] = op ? op->factor_nonzeros() : 0.0;
+  state.counters["factor_MB"] = op ? 8.0 * op->factor_nonzeros() / 1e6 : 0.0;  // values only
+  state.counters["peak_rss_MB"] = peak_rss_mb();
+  state.counters["steps"] = steps;
+  state.counters["s_per_step"] = loop_s / steps;
+  state.counters["newton_per_step"] = static_cast<double>(s.newton_iterations) / steps;
+  state.counters["solve_s"] = t_solve;
+  state.counters["overhead"] = loop_s / (steps * t_solve);
+  state.counters["total_s"] = generate_s + operator_s + s.wall_s;
+  state.counters["max_deck_acc"] = s.max_abs_acceleration_mps2;
+  state.counters["max_unloading"] = s.max_unloading_ratio;
+}
+BENCHMARK(BM_SeedScaleKhst)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
+}  // namespace railvsi
+
+BENCHMARK_MAIN();

@@ -1,0 +1,84 @@
+// `vsi generate deck-3d`: the files of the import path at the requested
+// size, read back equal to the generated model, and the two example scenes
+// running on them through `vsi simulate`. Small sizes only: the seed scale
+// (233,292 DOFs) is tests/bench/seed_scale_bench.cpp.
+#include "generators/deck_3d.hpp"
+#include "io/matrix_market.hpp"
+#include "vsi_test_support.hpp"
+
+namespace railvsi::test {
+namespace {
+
+using nlohmann::json;
+
+class Generate : public VsiCliTest {
+ protected:
+  std::filesystem::path out() const { return dir_ / "deck"; }
+  VsiRun generate(const std::string& extra) const {
+    return vsi("generate deck-3d --out '" + out().string() + "' " + extra);
+  }
+  // A generated scene cut to `duration_s`, written beside it (the matrices
+  // are named relative to the scene file).
+  VsiRun simulate_shortened(const std::string& scene_name, double duration_s) const {
+    json scene = json::parse(read_text(out() / scene_name));
+    scene["analysis"]["duration_s"] = duration_s;
+    const auto file = out() / ("short-" + scene_name);
+    std::ofstream(file) << scene.dump(2);
+    return vsi("simulate '" + file.string() + "'");
+  }
+};
+
+TEST_F(Generate, Deck3dWritesTheImportFilesAtTheRequestedSize) {
+  const VsiRun run = generate("--dofs 5000");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json summary = json::parse(run.out);
+  EXPECT_NEAR(summary["dofs"].get<double>(), 5000.0, 250.0);
+  for (const char* name : {"K.mtx", "M.mtx", "C.mtx", "map.json", "moving-forces.json", "multibody.json"})
+    EXPECT_TRUE(std::filesystem::exists(out() / name)) << name;
+
+  // The same options in memory: the files hold the same matrices, to the bit.
+  Deck3dOptions o;
+  o.target_dofs = 5000;
+  const auto model = make_deck_3d(o).model;
+  EXPECT_EQ(summary["dofs"].get<int>(), model->num_dofs());
+  const std::pair<const char*, const SparseMatrix*> matrices[] = {
+      {"K.mtx", &model->K()}, {"M.mtx", &model->M()}, {"C.mtx", &model->C()}};
+  for (const auto& [name, expected] : matrices) {
+    const SparseMatrix read = read_matrix_market(out() / name, "/");
+    ASSERT_EQ(read.rows(), expected->rows()) << name;
+    EXPECT_EQ(SparseMatrix(read - *expected).coeffs().abs().maxCoeff(), 0.0) << name;
+  }
+  const json map = json::parse(read_text(out() / "map.json"));
+  ASSERT_EQ(map["rail_lines"].size(), 2u);
+  EXPECT_EQ(map["rail_lines"][1]["dof_v"].get<std::vector<int>>().size(), model->rails()[1].x_m.size());
+  EXPECT_EQ(map["output_points"].size(), 3u);
+  EXPECT_EQ(map["bridge_end_m"], 75.0);
+}
+
+TEST_F(Generate, Deck3dScenesRunWithEachAxleOnBothRails) {
+  ASSERT_EQ(generate("--dofs 5000 --spans 20,25").exit_code, 0);
+  const VsiRun forces = simulate_shortened("moving-forces.json", 0.05);
+  ASSERT_EQ(forces.exit_code, 0) << forces.err;
+  EXPECT_EQ(json::parse(forces.out)["status"], "ok");
+
+  // 0.1 s: the first axles come within the evaluation margin of the bridge.
+  const VsiRun multibody = simulate_shortened("multibody.json", 0.1);
+  ASSERT_EQ(multibody.exit_code, 0) << multibody.err;
+  const json summary = json::parse(multibody.out);
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_EQ(summary["run"]["steps"], 400);  // 0.1 s at 2.5e-4 s
+  EXPECT_EQ(summary["run"]["fidelity"]["contacts"], 92) << "KHST: 46 axles, each on two rails";
+  EXPECT_EQ(summary["deck"]["points"].size(), 2u);
+  EXPECT_GT(summary["wheels"]["min_contact_force_N"].get<double>(), 0.0);
+}
+
+TEST_F(Generate, Deck3dRefusesASizeTheRailsAloneExceedAndWritesNothing) {
+  const VsiRun run = generate("--dofs 1000");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.out, "");
+  EXPECT_NE(run.err.find("error: --dofs: 1000 DOFs cannot be reached"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(out()));
+}
+
+}  // namespace
+}  // namespace railvsi::test
