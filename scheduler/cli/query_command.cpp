@@ -24,20 +24,22 @@ int query_command(const ServiceArgs& args) {
   return kExitOk;
 }
 
-int cancel_command(const ServiceArgs& args) {
+namespace {
+
+// A change to the jobs of --study: prints "study <id>: <n> <what>".
+int change_study(const ServiceArgs& args, std::int64_t (*change)(scheduler::Database&, const std::string&),
+                 const char* what) {
   const auto db = open_store(args.db);
   const auto id = find_study(*db, args.study_id);
   if (!id) return kExitInvalidInput;
-  std::cout << "study " << *id << ": " << scheduler::cancel_study(*db, *id) << " jobs cancelled\n";
+  std::cout << "study " << *id << ": " << change(*db, *id) << " " << what << "\n";
   return kExitOk;
 }
 
-int retry_command(const ServiceArgs& args) {
-  const auto db = open_store(args.db);
-  const auto id = find_study(*db, args.study_id);
-  if (!id) return kExitInvalidInput;
-  std::cout << "study " << *id << ": " << scheduler::retry_study(*db, *id) << " jobs queued again\n";
-  return kExitOk;
-}
+}  // namespace
+
+int cancel_command(const ServiceArgs& args) { return change_study(args, scheduler::cancel_study, "jobs cancelled"); }
+
+int retry_command(const ServiceArgs& args) { return change_study(args, scheduler::retry_study, "jobs queued again"); }
 
 }  // namespace railvsi::cli

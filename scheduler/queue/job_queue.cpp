@@ -206,27 +206,33 @@ std::vector<std::string> study_ids(Database& db) {
   return ids;
 }
 
-std::int64_t cancel_study(Database& db, const std::string& study_id) {
+namespace {
+
+// One UPDATE of the jobs of a study: ?1 is the study id, ?2 the time now.
+std::int64_t update_jobs_of_study(Database& db, std::string_view sql, const std::string& study_id) {
   Transaction tx(db);
-  db.prepare("UPDATE jobs SET state = 'cancelled', lease_expires = NULL, finished_at = ? "
-             "WHERE state IN ('queued', 'running') AND id IN (SELECT job_id FROM study_jobs WHERE study_id = ?)")
-      .bind(1, unix_now_s())
-      .bind(2, study_id)
-      .run();
+  db.prepare(sql).bind(1, study_id).bind(2, unix_now_s()).run();
   const std::int64_t n = db.changes();
   tx.commit();
   return n;
 }
 
+}  // namespace
+
+std::int64_t cancel_study(Database& db, const std::string& study_id) {
+  return update_jobs_of_study(
+      db,
+      "UPDATE jobs SET state = 'cancelled', lease_expires = NULL, finished_at = ?2 "
+      "WHERE state IN ('queued', 'running') AND id IN (SELECT job_id FROM study_jobs WHERE study_id = ?1)",
+      study_id);
+}
+
 std::int64_t retry_study(Database& db, const std::string& study_id) {
-  Transaction tx(db);
-  db.prepare("UPDATE jobs SET state = 'queued', attempts = 0, worker = NULL, lease_expires = NULL, finished_at = NULL "
-             "WHERE state IN ('failed', 'cancelled') AND id IN (SELECT job_id FROM study_jobs WHERE study_id = ?)")
-      .bind(1, study_id)
-      .run();
-  const std::int64_t n = db.changes();
-  tx.commit();
-  return n;
+  return update_jobs_of_study(
+      db,
+      "UPDATE jobs SET state = 'queued', attempts = 0, worker = NULL, lease_expires = NULL, finished_at = NULL, "
+      "enqueued_at = ?2 WHERE state IN ('failed', 'cancelled') AND id IN (SELECT job_id FROM study_jobs WHERE study_id = ?1)",
+      study_id);
 }
 
 std::string resolve_study_id(Database& db, const std::string& prefix) {
