@@ -29,6 +29,17 @@ class CholmodWorkspace final : public SolveWorkspace {
   }
 };
 
+// A simplicial LDL' factor accepts an indefinite matrix (negative D); the
+// structure must be positive definite, so check D as LL' would have.
+size_t first_nonpositive_pivot(const cholmod_factor& L) {
+  if (L.is_super || L.is_ll || L.xtype != CHOLMOD_REAL) return L.n;
+  const int* p = static_cast<const int*>(L.p);
+  const double* x = static_cast<const double*>(L.x);
+  for (size_t j = 0; j < L.n; ++j)
+    if (!(x[p[j]] > 0.0)) return j;
+  return L.n;
+}
+
 }  // namespace
 
 CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMatrixFactors& factors,
@@ -48,8 +59,9 @@ CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMat
                                                                     CholmodFactorDeleter{c});
   if (!factor_) throw InputError("/structure", "CHOLMOD could not analyse the structure matrix");
   const int ok = cholmod_factorize(&view, factor_.get(), c);
-  if (!ok || c->status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n) {
-    const auto minor = factor_->minor;
+  if (!ok || c->status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n ||
+      first_nonpositive_pivot(*factor_) < factor_->n) {
+    const auto minor = std::min(factor_->minor, first_nonpositive_pivot(*factor_));
     const int* perm = static_cast<const int*>(factor_->Perm);
     const long dof = (perm && minor < factor_->n) ? perm[minor] : static_cast<long>(minor);
     throw InputError("/structure",

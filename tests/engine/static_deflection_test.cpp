@@ -1,7 +1,9 @@
 // Static deflection of the generated beam against closed forms.
 #include <gtest/gtest.h>
 
+#include "core/input_error.hpp"
 #include "generators/bridge_2d.hpp"
+#include "solver/cholmod_operator.hpp"
 #include "simulation/simulation.hpp"
 #include "simulation/static_equilibrium.hpp"
 
@@ -42,6 +44,26 @@ TEST(StaticDeflection, OffNodeLoadMatchesBeamFormula) {
   const double expected = -P * a * (3.0 * L * L - 4.0 * a * a) / (48.0 * EI);
   // Hermite interpolation of the load is consistent, not exact, between nodes.
   EXPECT_NEAR(st.u_s[dof] / expected, 1.0, 1e-3);
+}
+
+}  // namespace
+}  // namespace railvsi
+
+namespace railvsi {
+namespace {
+
+// A negative bearing spring makes the stiffness indefinite without making it
+// singular; the factorization must refuse it whichever CHOLMOD factor form
+// (simplicial LDL' or supernodal LL') it chose.
+TEST(StructureFactorization, RejectsAnIndefiniteStiffness) {
+  Bridge2dOptions o = simple_beam(10.0, 1e9, 1000.0);
+  o.bearing_k_N_per_m = 1.0;  // positive to pass the generator's checks...
+  auto model = make_bridge_2d(o);
+  SparseMatrix K = model->K();
+  K.coeffRef(0, 0) -= 1e13;  // ...then a large negative spring on DOF 0
+  const StructureModel bad(K, model->M(), model->C(), model->rails(), model->outputs(), model->info());
+  EXPECT_THROW(CholmodOperator(bad, EffectiveMatrixFactors{0.0, 0.0, 1.0}, CholmodOperatorOptions{false, 64}),
+               InputError);
 }
 
 }  // namespace
