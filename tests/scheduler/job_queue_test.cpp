@@ -60,13 +60,13 @@ TEST_F(JobQueueTest, ExpiredLeaseReturnsTheJobAndCountsAttempts) {
   doc["trains"] = json::array({doc["trains"][0]});
   doc["speeds_kmh"] = json::array({100});
   submit_study(*db_, plan(doc), /*max_attempts=*/2);
-  JobQueue dead(*db_, "dead", /*lease_s=*/0.05);
+  JobQueue dead(*db_, "dead", /*lease_s=*/1.0);
   const auto first = dead.claim();
   ASSERT_TRUE(first);
   EXPECT_EQ(first->attempt, 1);
   JobQueue live(*db_, "live", 60.0);
   EXPECT_FALSE(live.claim()) << "a job under a valid lease is not claimable";
-  std::this_thread::sleep_for(std::chrono::milliseconds(120));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));
   const auto second = live.claim();
   ASSERT_TRUE(second) << "the expired lease returns the job";
   EXPECT_EQ(second->id, first->id);
