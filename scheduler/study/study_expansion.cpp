@@ -147,16 +147,8 @@ JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequenci
 
 StudyPlan expand_study(const json& doc, const std::filesystem::path& base_dir, const std::string& file,
                        const ExpandOptions& options) {
-  // The shared analysis schema requires dt_s; a study may leave it to the
-  // time-step policy, so a placeholder stands in for the schema check only.
-  const bool dt_given = doc.is_object() && doc.contains("analysis") && doc.at("analysis").is_object() &&
-                        doc.at("analysis").contains("dt_s");
-  {
-    json checked = doc;
-    if (!dt_given && checked.is_object() && checked.contains("analysis") && checked["analysis"].is_object())
-      checked["analysis"]["dt_s"] = 1.0;
-    SchemaValidator("study.schema.json").validate(checked, file);
-  }
+  SchemaValidator("study.schema.json").validate(doc, file);
+  const bool dt_given = doc.at("analysis").contains("dt_s");
   const std::size_t max_jobs = options.allow_large ? SIZE_MAX : options.max_jobs;
 
   StudyPlan plan;
