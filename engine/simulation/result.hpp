@@ -37,6 +37,19 @@ struct WheelSummary {
   bool evaluated = false;        // false: never inside the evaluation window
 };
 
+// Which model a run actually used: recorded with every result.
+struct FidelityRecord {
+  std::string model;          // "moving-forces", "interaction"
+  std::string contact_law;    // "none", "rigid", "linear-hertz", "hertz"
+  bool unilateral = false;
+  std::string solver_path;    // "condensed", "reference"
+  std::string structure_backend;
+  int structure_dofs = 0;
+  int vehicle_dofs = 0;
+  int contacts = 0;
+  double hht_alpha = 0.0, hht_beta = 0.0, hht_gamma = 0.0;
+};
+
 struct RunSummary {
   std::vector<PointSummary> points;
   double max_abs_displacement_m = 0.0;
@@ -55,16 +68,7 @@ struct RunSummary {
   int max_newton_iterations_in_step = 0;
   double wall_s = 0.0;
   double setup_s = 0.0;  // factorization, flexibility, static equilibrium
-  // Fidelity actually used.
-  std::string model;          // "moving-forces" or "interaction"
-  std::string contact_law;    // "none", "rigid", "linear-hertz", "hertz"
-  bool unilateral = false;
-  std::string solver_path;    // "condensed" or "reference"
-  std::string structure_backend;
-  int structure_dofs = 0;
-  int vehicle_dofs = 0;
-  int contacts = 0;
-  double hht_alpha = 0.0, hht_beta = 0.0, hht_gamma = 0.0;
+  FidelityRecord fidelity;
 };
 
 struct Result {

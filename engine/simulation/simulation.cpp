@@ -119,24 +119,24 @@ Result Simulation::run() const {
   std::unique_ptr<StepSolver> solver;
   if (an.solver == SolverPath::kReference) {
     solver = make_reference_step_solver(*sc.structure, structure_factors(h), layout, h, so);
-    sum.structure_backend = "umfpack-bordered";
+    sum.fidelity.structure_backend = "umfpack-bordered";
   } else {
     solver = make_condensed_step_solver(op_, layout, make_vehicle_operators(layout, h), so);
-    sum.structure_backend = op_->backend_name();
+    sum.fidelity.structure_backend = op_->backend_name();
   }
 
   // Fidelity record.
   const bool mf = sc.train.is_moving_forces();
-  sum.model = mf ? "moving-forces" : "interaction";
-  sum.contact_law = mf ? "none" : law_name(an.contact.law);
-  sum.unilateral = !mf && !layout.contacts.empty() && layout.contacts.front().law.unilateral;
-  sum.solver_path = an.solver == SolverPath::kReference ? "reference" : "condensed";
-  sum.structure_dofs = sc.structure->num_dofs();
-  sum.vehicle_dofs = layout.num_vehicle_dofs;
-  sum.contacts = static_cast<int>(layout.contacts.size());
-  sum.hht_alpha = h.alpha;
-  sum.hht_beta = h.beta;
-  sum.hht_gamma = h.gamma;
+  sum.fidelity.model = mf ? "moving-forces" : "interaction";
+  sum.fidelity.contact_law = mf ? "none" : law_name(an.contact.law);
+  sum.fidelity.unilateral = !mf && !layout.contacts.empty() && layout.contacts.front().law.unilateral;
+  sum.fidelity.solver_path = an.solver == SolverPath::kReference ? "reference" : "condensed";
+  sum.fidelity.structure_dofs = sc.structure->num_dofs();
+  sum.fidelity.vehicle_dofs = layout.num_vehicle_dofs;
+  sum.fidelity.contacts = static_cast<int>(layout.contacts.size());
+  sum.fidelity.hht_alpha = h.alpha;
+  sum.fidelity.hht_beta = h.beta;
+  sum.fidelity.hht_gamma = h.gamma;
   sum.dt_s = an.dt_s;
   sum.static_wheel_load_N.assign(statics.P.data(), statics.P.data() + statics.P.size());
 

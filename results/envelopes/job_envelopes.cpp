@@ -69,11 +69,6 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
-FidelityRecord fidelity_of(const RunSummary& s) {
-  return {s.model,          s.contact_law,  s.unilateral, s.solver_path, s.structure_backend, s.structure_dofs,
-          s.vehicle_dofs,   s.contacts,     s.hht_alpha,  s.hht_beta,    s.hht_gamma};
-}
-
 }  // namespace
 
 JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_stride, double cutoff_hz) {
@@ -136,7 +131,7 @@ JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_st
   e.max_newton_iterations_in_step = s.max_newton_iterations_in_step;
   e.wall_s = std::isfinite(s.wall_s) ? s.wall_s : 0.0;
   e.setup_s = std::isfinite(s.setup_s) ? s.setup_s : 0.0;
-  e.fidelity = fidelity_of(s);
+  e.fidelity = s.fidelity;
   return e;
 }
 

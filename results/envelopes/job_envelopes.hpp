@@ -40,17 +40,6 @@ struct WheelEnvelope {
 };
 
 // The model the run used (RunSummary), recorded with each job.
-struct FidelityRecord {
-  std::string model;        // "moving-forces", "interaction"
-  std::string contact_law;  // "none", "rigid", "linear-hertz", "hertz"
-  bool unilateral = false;
-  std::string solver_path;
-  std::string structure_backend;
-  int structure_dofs = 0;
-  int vehicle_dofs = 0;
-  int contacts = 0;
-  double hht_alpha = 0.0, hht_beta = 0.0, hht_gamma = 0.0;
-};
 
 struct JobEnvelopes {
   std::string status = "ok";  // Status::name() of the run, or "diverged" for a non-finite value

@@ -31,7 +31,7 @@ ordered_json wheels(const RunSummary& s, bool moving_forces) {
 
 }  // namespace
 
-ordered_json fidelity_json(const RunSummary& s) {
+ordered_json fidelity_json(const FidelityRecord& s) {
   return {{"model", s.model},
           {"contact_law", s.contact_law},
           {"unilateral", s.unilateral},
@@ -58,7 +58,7 @@ ordered_json summary_json(const Result& result, bool moving_forces) {
                 {"dt_s", number(s.dt_s)},
                 {"newton_iterations", s.newton_iterations},
                 {"wall_s", number(s.wall_s)},
-                {"fidelity", fidelity_json(s)}};
+                {"fidelity", fidelity_json(s.fidelity)}};
   return out;
 }
 

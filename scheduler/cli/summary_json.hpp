@@ -13,6 +13,6 @@ nlohmann::ordered_json summary_json(const Result& result, bool moving_forces);
 
 // The "fidelity" object of the summary: the model, contact law, solver
 // path, sizes and HHT parameters a run actually used.
-nlohmann::ordered_json fidelity_json(const RunSummary& summary);
+nlohmann::ordered_json fidelity_json(const FidelityRecord& fidelity);
 
 }  // namespace railvsi::cli

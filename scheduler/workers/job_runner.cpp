@@ -26,7 +26,7 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache) {
     const Simulation simulation(scene, lookup.op);
     const Result result = simulation.run();
     const RunSummary& s = result.summary;
-    out.fidelity = cli::fidelity_json(s).dump();
+    out.fidelity = cli::fidelity_json(s.fidelity).dump();
     out.steps = s.steps;
     out.setup_s = s.setup_s + lookup.factorization_s;
     out.loop_s = s.wall_s - s.setup_s;

@@ -79,9 +79,9 @@ void BM_Ice3Viaduct300(benchmark::State& state) {
   state.counters["setup_s"] = s.setup_s;
   state.counters["steps"] = static_cast<double>(s.steps);
   state.counters["newton_per_step"] = static_cast<double>(s.newton_iterations) / static_cast<double>(s.steps);
-  state.counters["structure_dofs"] = s.structure_dofs;
-  state.counters["vehicle_dofs"] = s.vehicle_dofs;
-  state.counters["contacts"] = s.contacts;
+  state.counters["structure_dofs"] = s.fidelity.structure_dofs;
+  state.counters["vehicle_dofs"] = s.fidelity.vehicle_dofs;
+  state.counters["contacts"] = s.fidelity.contacts;
   state.counters["solve_us"] = t_solve * 1e6;
   state.counters["overhead"] = (s.wall_s - s.setup_s) / (static_cast<double>(s.steps) * t_solve);
   state.counters["max_unloading"] = s.max_unloading_ratio;

@@ -71,9 +71,9 @@ void BM_SeedScaleKhst(benchmark::State& state) {
   if (!r.status.ok()) state.SkipWithError(r.status.message().c_str());
   const RunSummary& s = r.summary;
   const double steps = static_cast<double>(s.steps), loop_s = s.wall_s - s.setup_s;
-  state.counters["dofs"] = s.structure_dofs;
-  state.counters["vehicle_dofs"] = s.vehicle_dofs;
-  state.counters["contacts"] = s.contacts;
+  state.counters["dofs"] = s.fidelity.structure_dofs;
+  state.counters["vehicle_dofs"] = s.fidelity.vehicle_dofs;
+  state.counters["contacts"] = s.fidelity.contacts;
   state.counters["generate_s"] = generate_s;
   state.counters["factorization_s"] = op ? op->factorization_s() : 0.0;
   state.counters["flexibility_s"] = op ? op->flexibility_s() : 0.0;

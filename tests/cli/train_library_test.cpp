@@ -34,7 +34,7 @@ void expect_finite_ok_run(const json& train, const std::string& model) {
   SCOPED_TRACE(train.dump());
   const Result r = Simulation(short_run_scene(train)).run();
   ASSERT_TRUE(r.status.ok()) << r.status.message();
-  EXPECT_EQ(r.summary.model, model);
+  EXPECT_EQ(r.summary.fidelity.model, model);
   EXPECT_EQ(r.summary.steps, 200);
   EXPECT_TRUE(std::isfinite(r.summary.max_abs_displacement_m));
   EXPECT_GT(r.summary.max_abs_displacement_m, 0.0) << "the first axles are on the deck";

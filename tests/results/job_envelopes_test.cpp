@@ -32,9 +32,9 @@ Result synthetic_run() {
   s.dt_s = kDt;
   s.newton_iterations = 16123;
   s.max_newton_iterations_in_step = 4;
-  s.model = "interaction";
-  s.contact_law = "hertz";
-  s.unilateral = true;
+  s.fidelity.model = "interaction";
+  s.fidelity.contact_law = "hertz";
+  s.fidelity.unilateral = true;
   Histories& h = r.histories;
   h.point_names = {"p1", "p2"};
   h.deck_acceleration_mps2.resize(2);
