@@ -1,12 +1,11 @@
 #include "cli/histories_csv.hpp"
 
-#include <fstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <unistd.h>
+
+#include "io/file_set_writer.hpp"
 
 namespace railvsi::cli {
 namespace {
@@ -28,23 +27,6 @@ std::string csv_table(const std::vector<double>& t_s, const std::vector<Column>&
   return out;
 }
 
-// Written to a temporary file in the same directory, then renamed: a reader
-// never sees half a file, even if vsi is killed while writing.
-void write_file_atomically(const std::filesystem::path& file, const std::string& content) {
-  std::filesystem::path tmp = file;
-  tmp += fmt::format(".tmp-{}", ::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << content;
-    out.close();
-    if (!out) {
-      std::filesystem::remove(tmp);
-      throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-    }
-  }
-  std::filesystem::rename(tmp, file);
-}
-
 std::vector<Column> named_columns(const std::vector<std::string>& names, const std::vector<std::vector<double>>& series,
                                   const std::string& suffix) {
   std::vector<Column> columns;
@@ -54,19 +36,26 @@ std::vector<Column> named_columns(const std::vector<std::string>& names, const s
 
 }  // namespace
 
+// The three files appear together or not at all, even if vsi is killed
+// while writing.
 void write_histories(const Histories& h, const std::filesystem::path& dir) {
-  std::filesystem::create_directories(dir);
   std::vector<Column> deck;
   for (std::size_t p = 0; p < h.point_names.size(); ++p) {
     deck.push_back({h.point_names[p] + "_displacement_m", &h.deck_displacement_m.at(p)});
     deck.push_back({h.point_names[p] + "_acceleration_mps2", &h.deck_acceleration_mps2.at(p)});
   }
-  write_file_atomically(dir / "deck.csv", csv_table(h.t_s, deck));
+  const auto table_file = [&h](std::string name, std::vector<Column> columns) {
+    return FileToWrite{std::move(name), [&h, columns = std::move(columns)](const std::filesystem::path& file) {
+                         write_text_file(file, csv_table(h.t_s, columns));
+                       }};
+  };
+  std::vector<FileToWrite> files{table_file("deck.csv", std::move(deck))};
   if (!h.wheel_names.empty())
-    write_file_atomically(dir / "contact_forces.csv", csv_table(h.t_s, named_columns(h.wheel_names, h.contact_force_N, "_N")));
+    files.push_back(table_file("contact_forces.csv", named_columns(h.wheel_names, h.contact_force_N, "_N")));
   if (!h.body_names.empty())
-    write_file_atomically(dir / "carbody.csv",
-                          csv_table(h.t_s, named_columns(h.body_names, h.carbody_acceleration_mps2, "_acceleration_mps2")));
+    files.push_back(
+        table_file("carbody.csv", named_columns(h.body_names, h.carbody_acceleration_mps2, "_acceleration_mps2")));
+  write_files_together(dir, files);
 }
 
 }  // namespace railvsi::cli

@@ -8,6 +8,7 @@
 #include <chrono>
 
 #include "simulation/simulation.hpp"
+#include "solve_floor.hpp"
 #include "test_scenes.hpp"
 
 namespace railvsi {
@@ -37,17 +38,6 @@ Scene ice3_on_viaduct() {
   return s;
 }
 
-double seconds_per_solve(const StructureOperator& op) {
-  auto ws = op.make_workspace();
-  Vector b = Vector::Ones(op.num_dofs()), x;
-  const int reps = 2000;
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int i = 0; i < reps; ++i) {
-    (void)op.solve(b, x, *ws);
-    b[i % b.size()] += 1e-3 * x[0];  // keep the loop honest
-  }
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / reps;
-}
 
 void BM_StructureSolve(benchmark::State& state) {
   const Scene scene = ice3_on_viaduct();
@@ -70,7 +60,7 @@ void BM_Ice3Viaduct300(benchmark::State& state) {
     r = Simulation(scene).run();
     state.PauseTiming();
     const auto op = make_structure_operator(scene);
-    t_solve = seconds_per_solve(*op);
+    t_solve = bench::seconds_per_solve(*op, 2000);
     state.ResumeTiming();
   }
   if (!r.status.ok()) state.SkipWithError(r.status.message().c_str());

@@ -15,6 +15,7 @@
 #include "generators/deck_3d.hpp"
 #include "io/train_loader.hpp"
 #include "simulation/simulation.hpp"
+#include "solve_floor.hpp"
 #include "solver/cholmod_operator.hpp"
 
 namespace railvsi {
@@ -30,17 +31,6 @@ double peak_rss_mb() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
-// Mean time of one solve; few repetitions, a solve takes ~0.3 s at this size.
-double seconds_per_solve(const StructureOperator& op, int reps) {
-  auto ws = op.make_workspace();
-  Vector b = Vector::Ones(op.num_dofs()), x;
-  const auto t0 = Clock::now();
-  for (int i = 0; i < reps; ++i) {
-    (void)op.solve(b, x, *ws);
-    b[i % b.size()] += 1e-3 * x[0];  // keep the loop honest
-  }
-  return seconds_since(t0) / reps;
-}
 
 void BM_SeedScaleKhst(benchmark::State& state) {
   Result r;
@@ -65,7 +55,7 @@ void BM_SeedScaleKhst(benchmark::State& state) {
     operator_s = seconds_since(t0);
     r = Simulation(scene, op).run();
     state.PauseTiming();
-    t_solve = seconds_per_solve(*op, 20);
+    t_solve = bench::seconds_per_solve(*op, 20);
     state.ResumeTiming();
   }
   if (!r.status.ok()) state.SkipWithError(r.status.message().c_str());
