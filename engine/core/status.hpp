@@ -8,7 +8,9 @@
 
 namespace railvsi {
 
-enum class StatusCode { kOk, kDiverged, kNoConvergence, kInvalidInput };
+// kUnstable: the run monitor saw growth, chatter or an energy blow-up; the
+// numbers are not a result even if every step converged.
+enum class StatusCode { kOk, kDiverged, kNoConvergence, kInvalidInput, kUnstable };
 
 class Status {
  public:
@@ -26,6 +28,7 @@ class Status {
       case StatusCode::kDiverged: return "diverged";
       case StatusCode::kNoConvergence: return "no_convergence";
       case StatusCode::kInvalidInput: return "invalid_input";
+      case StatusCode::kUnstable: return "unstable";
     }
     return "unknown";
   }

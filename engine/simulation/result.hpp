@@ -2,6 +2,8 @@
 // What a run returns: a status, a summary, and the time histories at the
 // requested points. A failed run keeps what it computed up to the failure
 // for diagnosis, but its status says it is not a result.
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +52,17 @@ struct FidelityRecord {
   double hht_alpha = 0.0, hht_beta = 0.0, hht_gamma = 0.0;
 };
 
+// Something a user must know about a run that still has a result (status ok)
+// or that explains a non-ok status. `code` is stable (documented in the
+// README); the optional fields locate it.
+struct RunWarning {
+  std::string code;     // e.g. "dt_above_policy", "contact_chatter"
+  std::string message;  // one sentence for a person
+  std::optional<double> t_s;     // when it was first seen
+  std::optional<int> wheel;      // index into RunSummary::wheels
+  std::optional<double> factor;  // e.g. dt over the policy's dt
+};
+
 struct RunSummary {
   std::vector<PointSummary> points;
   double max_abs_displacement_m = 0.0;
@@ -69,6 +82,11 @@ struct RunSummary {
   double wall_s = 0.0;
   double setup_s = 0.0;  // factorization, flexibility, static equilibrium
   FidelityRecord fidelity;
+  // Run health: warnings, and the energy balance residual (work of external
+  // and contact forces against kinetic + strain + damping + HHT-dissipated
+  // energy, relative); NaN when not computed.
+  std::vector<RunWarning> warnings;
+  double energy_residual = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct Result {

@@ -31,6 +31,18 @@ ordered_json wheels(const RunSummary& s, bool moving_forces) {
 
 }  // namespace
 
+ordered_json warnings_json(const std::vector<RunWarning>& warnings) {
+  ordered_json out = ordered_json::array();
+  for (const RunWarning& w : warnings) {
+    ordered_json item = {{"code", w.code}, {"message", w.message}};
+    if (w.t_s) item["t_s"] = number(*w.t_s);
+    if (w.wheel) item["wheel"] = *w.wheel;
+    if (w.factor) item["factor"] = number(*w.factor);
+    out.push_back(std::move(item));
+  }
+  return out;
+}
+
 ordered_json fidelity_json(const FidelityRecord& s) {
   return {{"model", s.model},
           {"contact_law", s.contact_law},
@@ -58,6 +70,8 @@ ordered_json summary_json(const Result& result, bool moving_forces) {
                 {"dt_s", number(s.dt_s)},
                 {"newton_iterations", s.newton_iterations},
                 {"wall_s", number(s.wall_s)},
+                {"energy_residual", number(s.energy_residual)},
+                {"warnings", warnings_json(s.warnings)},
                 {"fidelity", fidelity_json(s.fidelity)}};
   return out;
 }

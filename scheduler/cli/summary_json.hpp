@@ -15,4 +15,7 @@ nlohmann::ordered_json summary_json(const Result& result, bool moving_forces);
 // path, sizes and HHT parameters a run actually used.
 nlohmann::ordered_json fidelity_json(const FidelityRecord& fidelity);
 
+// The "warnings" array of the summary: [{code, message, t_s?, wheel?, factor?}].
+nlohmann::ordered_json warnings_json(const std::vector<RunWarning>& warnings);
+
 }  // namespace railvsi::cli

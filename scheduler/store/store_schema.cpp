@@ -88,6 +88,10 @@ CREATE VIEW study_progress AS
   SELECT sj.study_id, j.state, count(*) AS jobs
   FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id GROUP BY sj.study_id, j.state;
 )sql"},
+      {"jobs.warnings: run-health warnings of the run (JSON array of {code, message, ...})",
+       R"sql(
+ALTER TABLE jobs ADD COLUMN warnings TEXT;  -- JSON array; NULL before the run
+)sql"},
   };
   return all;
 }
