@@ -12,6 +12,8 @@ enum ExitCode : int {
   kExitRuntimeFailure = 1,  // the run diverged or did not converge
   kExitInvalidInput = 2,    // bad input or usage
   kExitStudyFailedJobs = 3,
+  kExitCheckFailed = 4,      // --fail-on-exceeded: a check failed
+  kExitCheckIncomplete = 5,  // --fail-on-exceeded: a check has cases without a value
 };
 
 struct SimulateArgs {

@@ -7,6 +7,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/generate_command.hpp"
+#include "cli/report_command.hpp"
 #include "cli/service_commands.hpp"
 
 namespace railvsi::cli {
@@ -41,6 +42,7 @@ int run(int argc, char** argv) {
 
   ServiceCommands service(app);
   GenerateCommand generate(app);
+  ReportCommand report(app);
 
   try {
     app.parse(argc, argv);
@@ -51,6 +53,7 @@ int run(int argc, char** argv) {
   if (inspect->parsed()) return inspect_command(inspect_args);
   if (const auto code = service.run_parsed()) return *code;
   if (const auto code = generate.run_parsed()) return *code;
+  if (const auto code = report.run_parsed()) return *code;
   return validate_command(validate_file);
 }
 

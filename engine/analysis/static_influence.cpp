@@ -1,0 +1,146 @@
+#include "analysis/static_influence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "core/input_error.hpp"
+#include "solver/cholmod_operator.hpp"
+
+namespace railvsi {
+namespace {
+
+constexpr int kGridPerElement = 8;
+
+// Maximum of f on [a, b] by golden-section search, started from the best
+// sample of a grid search: f is piecewise cubic, so the sampled maximum is
+// close and the search only polishes it.
+std::pair<double, double> refine_maximum(const std::function<double(double)>& f, double a, double b) {
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  double x1 = b - g * (b - a), x2 = a + g * (b - a);
+  double f1 = f(x1), f2 = f(x2);
+  for (int it = 0; it < 60 && b - a > 1e-9; ++it) {
+    if (f1 < f2) {
+      a = x1; x1 = x2; f1 = f2; x2 = a + g * (b - a); f2 = f(x2);
+    } else {
+      b = x2; x2 = x1; f2 = f1; x1 = b - g * (b - a); f1 = f(x1);
+    }
+  }
+  return f1 > f2 ? std::pair{x1, f1} : std::pair{x2, f2};
+}
+
+// Grid search over [a, b] at `step`, then refinement around the best sample.
+std::pair<double, double> maximize(const std::function<double(double)>& f, double a, double b, double step) {
+  double best_x = a, best_f = -std::numeric_limits<double>::infinity();
+  const long n = static_cast<long>(std::ceil((b - a) / step));
+  for (long i = 0; i <= n; ++i) {
+    const double x = std::min(b, a + static_cast<double>(i) * step);
+    const double v = f(x);
+    if (v > best_f) { best_f = v; best_x = x; }
+  }
+  const auto refined = refine_maximum(f, std::max(a, best_x - step), std::min(b, best_x + step));
+  return refined.second > best_f ? refined : std::pair{best_x, best_f};
+}
+
+// Two-point Gauss integral of max(f, 0) on [a, b]: exact for the cubic
+// pieces of an influence line that do not change sign inside [a, b].
+double positive_gauss(const std::function<double(double)>& f, double a, double b) {
+  const double c = 0.5 * (a + b), h = 0.5 * (b - a), s = h / std::sqrt(3.0);
+  return h * (std::max(f(c - s), 0.0) + std::max(f(c + s), 0.0));
+}
+
+}  // namespace
+
+StaticInfluence::StaticInfluence(const StructureModel& structure, std::vector<int> rail_lines)
+    : structure_(structure), rail_lines_(std::move(rail_lines)) {
+  if (rail_lines_.empty()) rail_lines_ = {0};
+  for (int r : rail_lines_)
+    if (r < 0 || r >= static_cast<int>(structure_.rails().size()))
+      throw InputError("/analysis/contact/rail_lines", fmt::format("rail line {} does not exist", r));
+  CholmodOperatorOptions options;
+  options.rail_flexibility = false;
+  const CholmodOperator op(structure_, EffectiveMatrixFactors{0.0, 0.0, 1.0}, options);
+  auto ws = op.make_workspace();
+  for (const OutputPoint& p : structure_.outputs()) {
+    Vector e = Vector::Zero(structure_.num_dofs());
+    if (p.dof >= 0) e[p.dof] = 1.0;
+    Vector g = Vector::Zero(structure_.num_dofs());
+    const Status st = op.solve(e, g, *ws);
+    if (!st.ok()) throw InputError("/structure", "static influence line: " + st.message());
+    influence_.push_back(std::move(g));
+  }
+
+  // Grid for the cumulative positive area: each element of the first rail
+  // line cut in kGridPerElement pieces.
+  const RailLine& rail = structure_.rails()[static_cast<std::size_t>(rail_lines_.front())];
+  for (std::size_t i = 0; i + 1 < rail.x_m.size(); ++i)
+    for (int j = 0; j < kGridPerElement; ++j)
+      grid_x_m_.push_back(rail.x_m[i] + (rail.x_m[i + 1] - rail.x_m[i]) * j / kGridPerElement);
+  grid_x_m_.push_back(rail.x_m.back());
+  for (int k = 0; k < num_points(); ++k) {
+    const auto h = [&](double x) { return unit_deflection(k, x); };
+    std::vector<double> area(grid_x_m_.size(), 0.0);
+    for (std::size_t i = 1; i < grid_x_m_.size(); ++i)
+      area[i] = area[i - 1] + positive_gauss(h, grid_x_m_[i - 1], grid_x_m_[i]);
+    grid_area_.push_back(std::move(area));
+  }
+}
+
+double StaticInfluence::unit_deflection(int k, double x_m) const {
+  const Vector& g = influence_[static_cast<std::size_t>(k)];
+  const double share = 1.0 / static_cast<double>(rail_lines_.size());
+  double w = 0.0;
+  for (int r : rail_lines_) {
+    const auto row = structure_.rails()[static_cast<std::size_t>(r)].locate(x_m);
+    if (!row) continue;
+    for (int i = 0; i < 4; ++i)
+      if (row->dof[i] >= 0) w += share * row->weight[i] * g[row->dof[i]];
+  }
+  return w;
+}
+
+double StaticInfluence::rails_start_m() const { return grid_x_m_.front(); }
+double StaticInfluence::rails_end_m() const { return grid_x_m_.back(); }
+
+double StaticInfluence::positive_area_to(int k, double x_m) const {
+  const auto& area = grid_area_[static_cast<std::size_t>(k)];
+  if (x_m <= grid_x_m_.front()) return 0.0;
+  if (x_m >= grid_x_m_.back()) return area.back();
+  const auto it = std::upper_bound(grid_x_m_.begin(), grid_x_m_.end(), x_m);
+  const std::size_t i = static_cast<std::size_t>(it - grid_x_m_.begin()) - 1;
+  const auto h = [&](double x) { return unit_deflection(k, x); };
+  return area[i] + positive_gauss(h, grid_x_m_[i], x_m);
+}
+
+StaticEnvelope StaticInfluence::train_envelope(int k, const std::vector<MovingForce>& axles) const {
+  double length = 0.0;
+  for (const MovingForce& a : axles) length = std::max(length, a.offset_m);
+  const auto magnitude = [&](double front_x) {
+    double w = 0.0;
+    for (const MovingForce& a : axles) w += a.load_N * unit_deflection(k, front_x - a.offset_m);
+    return std::abs(w);
+  };
+  const double step = (grid_x_m_[1] - grid_x_m_[0]);
+  const auto [x, value] = maximize(magnitude, rails_start_m(), rails_end_m() + length, step);
+  return {value, x};
+}
+
+LoadModel71Result StaticInfluence::lm71(int k, const LoadModel71& lm) const {
+  const double group_m = lm.point_spacing_m * (lm.point_loads - 1);
+  const double total_area = grid_area_[static_cast<std::size_t>(k)].back();
+  const auto deflection = [&](double a) {
+    double w = 0.0;
+    for (int j = 0; j < lm.point_loads; ++j) w += lm.point_load_N * unit_deflection(k, a + j * lm.point_spacing_m);
+    const double window = positive_area_to(k, a + group_m + lm.clear_distance_m) -
+                          positive_area_to(k, a - lm.clear_distance_m);
+    return w + lm.distributed_N_per_m * (total_area - window);
+  };
+  const double step = (grid_x_m_[1] - grid_x_m_[0]);
+  const auto [a, value] = maximize(deflection, rails_start_m() - group_m, rails_end_m(), step);
+  return {value, a};
+}
+
+}  // namespace railvsi

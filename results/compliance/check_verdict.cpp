@@ -1,0 +1,49 @@
+#include "compliance/check_verdict.hpp"
+
+#include <cmath>
+
+namespace railvsi {
+
+const char* verdict_name(Verdict v) {
+  switch (v) {
+    case Verdict::kPass: return "PASS";
+    case Verdict::kFail: return "FAIL";
+    case Verdict::kIncomplete: return "INCOMPLETE";
+    case Verdict::kNotEvaluated: return "NOT EVALUATED";
+  }
+  return "NOT EVALUATED";
+}
+
+CheckResult evaluate_upper_limit(CheckResult check, const std::vector<CheckCase>& cases) {
+  check.cases = static_cast<int>(cases.size());
+  check.missing = 0;
+  check.governing.reset();
+  bool exceeded = false;
+  for (const CheckCase& c : cases) {
+    if (!c.value || !std::isfinite(*c.value)) {
+      ++check.missing;
+      continue;
+    }
+    if (*c.value > check.limit) exceeded = true;
+    if (!check.governing || *c.value > *check.governing->value) check.governing = c;
+  }
+  if (cases.empty())
+    check.verdict = Verdict::kIncomplete;
+  else
+    check.verdict = exceeded ? Verdict::kFail : check.missing > 0 ? Verdict::kIncomplete : Verdict::kPass;
+  return check;
+}
+
+Verdict overall_verdict(const std::vector<CheckResult>& checks) {
+  bool any = false, incomplete = false;
+  for (const CheckResult& c : checks) {
+    if (c.verdict == Verdict::kNotEvaluated) continue;
+    any = true;
+    if (c.verdict == Verdict::kFail) return Verdict::kFail;
+    if (c.verdict == Verdict::kIncomplete) incomplete = true;
+  }
+  if (!any) return Verdict::kNotEvaluated;
+  return incomplete ? Verdict::kIncomplete : Verdict::kPass;
+}
+
+}  // namespace railvsi

@@ -1,0 +1,140 @@
+#include "report/compliance_report.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace railvsi {
+namespace {
+
+constexpr const char* kStyle = R"css(
+@page { size: A4; margin: 15mm; }
+body { font-family: "DejaVu Sans", "Liberation Sans", Arial, sans-serif; font-size: 10pt; color: #111;
+       max-width: 190mm; margin: 0 auto; }
+h1 { font-size: 16pt; margin-bottom: 2pt; }
+h2 { font-size: 13pt; border-bottom: 1px solid #999; margin-top: 18pt; }
+h3 { font-size: 11pt; margin-bottom: 4pt; }
+table { border-collapse: collapse; margin: 6pt 0; width: 100%; }
+th, td { border: 1px solid #bbb; padding: 2pt 4pt; text-align: left; vertical-align: top; }
+th { background: #f0f0f0; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+.verdict { font-weight: bold; padding: 1pt 4pt; border-radius: 2pt; }
+.PASS { background: #d8f0d8; color: #145214; }
+.FAIL { background: #f8d0d0; color: #8a1010; }
+.INCOMPLETE { background: #fbe8b8; color: #6b4a00; }
+.NOT-EVALUATED { background: #e8e8e8; color: #444; }
+.overall { font-size: 13pt; margin: 8pt 0; }
+.unverified { color: #8a5a00; font-style: italic; }
+figure { margin: 8pt 0; page-break-inside: avoid; break-inside: avoid; }
+figcaption { font-size: 9pt; color: #333; }
+svg.plot { font-family: inherit; }
+svg .plot-title { font-size: 12px; font-weight: bold; }
+svg .tick, svg .legend { font-size: 10px; }
+svg .axis { font-size: 11px; }
+pre { font-size: 8pt; background: #f7f7f7; border: 1px solid #ddd; padding: 4pt; white-space: pre-wrap;
+      word-break: break-all; }
+.small { font-size: 8.5pt; color: #444; }
+)css";
+
+std::string esc(const std::string& s) { return html_escape(s); }
+
+std::string verdict_span(Verdict v) {
+  std::string cls = verdict_name(v);
+  for (char& c : cls)
+    if (c == ' ') c = '-';
+  return fmt::format("<span class=\"verdict {}\">{}</span>", cls, verdict_name(v));
+}
+
+std::string value_text(double v) { return fmt::format("{:.4g}", v); }
+
+std::string checks_table(const ComplianceReport& r) {
+  std::string out =
+      "<table class=\"checks\"><tr><th>check</th><th>clause</th><th>limit</th><th>governing value</th>"
+      "<th>train</th><th>km/h</th><th>profile</th><th>cases (missing)</th><th>verdict</th></tr>\n";
+  for (const CheckResult& c : r.checks) {
+    const std::string limit =
+        c.verdict == Verdict::kNotEvaluated && c.limit == 0.0
+            ? std::string("-")
+            : value_text(c.limit) + " " + esc(c.unit) +
+                  (c.limit_verified ? "" : " <span class=\"unverified\">(unverified)</span>");
+    std::string gov = "-", train = "-", speed = "-", profile = "-";
+    if (c.governing && c.governing->value) {
+      gov = value_text(*c.governing->value) + " " + esc(c.unit);
+      train = esc(c.governing->train);
+      speed = std::isfinite(c.governing->speed_kmh) ? fmt::format("{:g}", c.governing->speed_kmh) : "-";
+      profile = esc(c.governing->irregularity);
+    }
+    out += fmt::format(
+        "<tr data-check=\"{}\"><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
+        "<td>{}</td><td class=\"num\">{}</td><td>{}</td><td class=\"num\">{} ({})</td><td>{}</td></tr>\n",
+        esc(c.id), esc(c.title), esc(c.clause), limit, gov, train, speed, profile, c.cases, c.missing,
+        verdict_span(c.verdict));
+    if (!c.note.empty())
+      out += fmt::format("<tr><td></td><td colspan=\"8\" class=\"small\">{}</td></tr>\n", esc(c.note));
+  }
+  return out + "</table>\n";
+}
+
+std::string figure(const ReportFigure& f) {
+  return "<figure>\n" + render_svg(f.plot) + "<figcaption>" + esc(f.caption) + "</figcaption>\n</figure>\n";
+}
+
+}  // namespace
+
+std::string render_html(const ComplianceReport& r) {
+  std::string out = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  out += "<title>Compliance report: " + esc(r.study_name) + "</title>\n<style>" + std::string(kStyle) +
+         "</style>\n</head>\n<body>\n";
+  out += "<h1>Dynamic analysis of a railway bridge: compliance report</h1>\n";
+  out += fmt::format("<p>Study <b>{}</b> <span class=\"small\">({})</span><br>railvsi {}<br>"
+                     "<span class=\"small\" id=\"date\">Generated {}</span></p>\n",
+                     esc(r.study_name), esc(r.study_id), esc(r.version), esc(r.date));
+
+  out += "<h2 id=\"verdicts\">1. Verdicts</h2>\n";
+  out += "<p class=\"overall\">Overall: " + verdict_span(r.overall) + "</p>\n";
+  out += "<p class=\"small\">A check FAILS as soon as one case exceeds its limit; it is INCOMPLETE when no case "
+         "exceeds but some case has no value (cancelled, failed or not run); it PASSES only when every case has a "
+         "value within the limit. Limits marked unverified were not confirmed in the standard's text.</p>\n";
+  out += checks_table(r);
+  for (const std::string& n : r.notes) out += "<p class=\"small\">" + esc(n) + "</p>\n";
+
+  out += "<h2 id=\"speed-plots\">2. Response against speed</h2>\n";
+  if (r.check_figures.empty()) out += "<p>No checked quantity has a value.</p>\n";
+  for (const ReportFigure& f : r.check_figures) out += figure(f);
+
+  out += "<h2 id=\"histories\">3. Governing cases</h2>\n";
+  if (r.governing_cases.empty()) out += "<p>No governing case (no check has a value).</p>\n";
+  for (const GoverningCase& g : r.governing_cases) {
+    out += "<h3>" + esc(g.heading) + "</h3>\n";
+    if (g.status != "ok") out += "<p>Re-run status: <b>" + esc(g.status) + "</b></p>\n";
+    for (const ReportFigure& f : g.figures) out += figure(f);
+  }
+
+  out += "<h2 id=\"model\">4. Model</h2>\n<table class=\"model\">\n";
+  for (const ReportRow& row : r.model)
+    out += "<tr><th>" + esc(row.key) + "</th><td>" + esc(row.value) + "</td></tr>\n";
+  out += "</table>\n<h3>Models and time steps used</h3>\n<table class=\"rungs\"><tr><th>model</th><th>time step and "
+         "why</th><th>jobs</th></tr>\n";
+  for (const RungGroup& g : r.rungs)
+    out += fmt::format("<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td></tr>\n", esc(g.rung), esc(g.dt), g.jobs);
+  out += "</table>\n<h3>Jobs without a clean result</h3>\n";
+  if (r.issues.empty()) {
+    out += "<p>Every job finished with status ok and no warning.</p>\n";
+  } else {
+    out += "<table class=\"issues\"><tr><th>case</th><th>state</th><th>detail</th></tr>\n";
+    for (const JobIssue& i : r.issues)
+      out += "<tr><td>" + esc(i.job) + "</td><td>" + esc(i.state) + "</td><td>" + esc(i.detail) + "</td></tr>\n";
+    out += "</table>\n";
+  }
+
+  out += "<h2 id=\"inputs\">5. Inputs</h2>\n<h3>Trains</h3>\n<table class=\"trains\"><tr><th>train</th>"
+         "<th>source</th></tr>\n";
+  for (const LibraryTrain& t : r.trains)
+    out += "<tr><td>" + esc(t.name) + "</td><td>" + esc(t.source) + "</td></tr>\n";
+  out += "</table>\n<h3>Study document</h3>\n<p class=\"small\">File " + esc(r.study_file) +
+         "; its id is the SHA-256 of this canonical document.</p>\n<pre>" + esc(r.study_document) + "</pre>\n";
+  out += "</body>\n</html>\n";
+  return out;
+}
+
+}  // namespace railvsi

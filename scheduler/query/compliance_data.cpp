@@ -1,0 +1,579 @@
+#include "query/compliance_data.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <set>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "analysis/static_influence.hpp"
+#include "compliance/code_values.hpp"
+#include "envelopes/code_filter.hpp"
+#include "io/json_document.hpp"
+#include "io/scene_loader.hpp"
+#include "io/train_loader.hpp"
+#include "query/study_results.hpp"
+#include "simulation/simulation.hpp"
+#include "simulation/static_equilibrium.hpp"
+#include "study/deck_frequencies.hpp"
+
+namespace railvsi::scheduler {
+namespace {
+
+using nlohmann::json;
+
+std::string case_label(const JobResult& j) {
+  return fmt::format("{} at {:g} km/h, {}", j.train, j.speed_kmh, j.irregularity);
+}
+
+// A stored job's scene, loaded as the worker loaded it.
+Scene load_job_scene(Database& db, const std::string& job_id) {
+  Statement s = db.prepare("SELECT scene FROM jobs WHERE id = ?");
+  if (!s.bind(1, job_id).step()) throw std::runtime_error("job " + job_id + " is not in the database");
+  const std::string name = "job " + job_id.substr(0, 12);
+  return parse_scene(parse_json_text(s.text(0), name), "/", name);
+}
+
+// Axle loads of a train: its moving forces, or each wheel's static load on
+// a rigid, level track (what "as": "moving_forces" gives).
+std::vector<MovingForce> axle_loads(const Train& train) {
+  if (train.is_moving_forces()) return train.moving_forces;
+  std::vector<MovingForce> out;
+  for (const TrainVehicle& v : train.vehicles) {
+    const Vector loads = static_wheel_loads_on_rigid_track(*v.model);
+    for (std::size_t w = 0; w < v.model->wheels().size(); ++w)
+      out.push_back({v.offset_m + v.model->wheels()[w].offset_m, loads[static_cast<Eigen::Index>(w)]});
+  }
+  return out;
+}
+
+// Largest value per speed over the profiles of one train (the envelope a
+// designer plots against speed), in the order of increasing speed.
+std::vector<std::pair<double, double>> per_speed_maximum(const std::vector<const JobResult*>& jobs,
+                                                         const std::string& quantity) {
+  std::map<double, double> by_speed;
+  for (const JobResult* j : jobs) {
+    const auto v = j->overall(quantity);
+    auto [it, fresh] = by_speed.try_emplace(j->speed_kmh, v ? *v : std::nan(""));
+    if (!fresh && v && (std::isnan(it->second) || *v > it->second)) it->second = *v;
+  }
+  return {by_speed.begin(), by_speed.end()};
+}
+
+struct TrainInfo {
+  std::string name;
+  std::string source;                 // description and sources of a library file
+  std::optional<double> coach_length_m;  // HSLM-A: D, for the resonance speeds
+};
+
+// What the study's train list says about each train (by the label the jobs
+// carry: a library name, or the name of an inline train).
+std::map<std::string, TrainInfo> train_infos(const json& study) {
+  std::map<std::string, TrainInfo> out;
+  for (const json& t : study.value("trains", json::array())) {
+    json file;
+    std::string name;
+    if (t.is_string() || (t.is_object() && t.contains("library"))) {
+      name = t.is_string() ? t.get<std::string>() : t.at("library").get<std::string>();
+      try {
+        file = read_json_file(train_library_dir() / (name + ".json"));
+      } catch (const std::exception&) {
+        file = json::object();
+      }
+    } else if (t.is_object()) {
+      file = t;
+      name = t.value("name", std::string("inline train"));
+    }
+    TrainInfo info{name, "", std::nullopt};
+    std::string source = file.value("description", std::string());
+    for (const json& s : file.value("sources", json::array())) source += (source.empty() ? "" : " Source: ") + s.get<std::string>();
+    info.source = source.empty() ? "given in the study document" : source;
+    if (file.contains("hslm_a")) info.coach_length_m = file.at("hslm_a").value("coach_length_m", 0.0);
+    out[name] = info;
+  }
+  return out;
+}
+
+// The span of a bridge-2d structure that contains x (supports in info).
+std::optional<double> span_at(const StructureInfo& info, double x_m) {
+  const auto& s = info.support_x_m;
+  for (std::size_t i = 0; i + 1 < s.size(); ++i)
+    if (x_m >= s[i] && x_m <= s[i + 1]) return s[i + 1] - s[i];
+  return std::nullopt;
+}
+
+std::vector<double> spans_of(const StructureInfo& info) {
+  std::vector<double> spans;
+  for (std::size_t i = 0; i + 1 < info.support_x_m.size(); ++i)
+    spans.push_back(info.support_x_m[i + 1] - info.support_x_m[i]);
+  return spans;
+}
+
+// The check of a stored quantity against an upper limit, one case per job.
+CheckResult quantity_check(CheckResult check, const std::vector<JobResult>& jobs) {
+  std::vector<CheckCase> cases;
+  for (const JobResult& j : jobs) cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(check.quantity)});
+  return evaluate_upper_limit(std::move(check), cases);
+}
+
+bool any_value(const std::vector<JobResult>& jobs, const std::string& quantity) {
+  return std::any_of(jobs.begin(), jobs.end(), [&](const JobResult& j) { return j.overall(quantity).has_value(); });
+}
+
+std::string fidelity_text(const JobResult& j) {
+  if (j.fidelity.empty()) return "not run";
+  const json f = json::parse(j.fidelity);
+  std::string model = f.value("model", std::string("?"));
+  if (f.value("contact_law", std::string("none")) != "none")
+    model += ", " + f.value("contact_law", std::string()) + (f.value("unilateral", false) ? " (unilateral)" : "");
+  return fmt::format("{}, {} on {} ({} structure DOFs), HHT alpha {:g}", model, f.value("solver_path", std::string()),
+                     f.value("structure_backend", std::string()), f.value("structure_dofs", 0),
+                     f.value("hht_alpha", 0.0));
+}
+
+// Histories of one governing case, re-simulated from the stored scene.
+GoverningCase governing_case(Database& db, const JobResult& job, const std::string& why) {
+  GoverningCase g;
+  g.heading = why + ": " + case_label(job);
+  Scene scene = load_job_scene(db, job.id);
+  scene.analysis.history_stride = 1;
+  const Simulation sim(scene);
+  const Result r = sim.run();
+  g.status = std::string(r.status.name());
+  const Histories& h = r.histories;
+  if (h.t_s.empty()) return g;
+  const auto [bridge_start, bridge_end] = bridge_extent_m(*scene.structure);
+  const double x0 = scene.start_x_m.value_or(default_start_x_m(scene));
+  const double margin = scene.analysis.evaluation_margin_m;
+  // The evaluation window of the wheel envelopes: a wheel counts while it is
+  // within the margin of the bridge; shaded from the first axle entering to
+  // the last axle leaving that zone.
+  const double t_in = (bridge_start - margin - x0) / scene.speed_mps;
+  const double t_out = (bridge_end + margin + scene.train.length_m() - x0) / scene.speed_mps;
+  const std::pair<double, double> window{std::max(0.0, t_in), t_out};
+
+  // The deck point that governs: the largest displacement of this job.
+  std::size_t p = 0;
+  double best = -1.0;
+  for (std::size_t k = 0; k < h.point_names.size(); ++k) {
+    double m = 0.0;
+    for (double v : h.deck_displacement_m[k]) m = std::max(m, std::abs(v));
+    if (m > best) best = m, p = k;
+  }
+  const auto series = [&](const std::string& label, const std::vector<double>& y, double scale) {
+    PlotSeries s{label, {}};
+    for (std::size_t i = 0; i < y.size() && i < h.t_s.size(); ++i) s.points.emplace_back(h.t_s[i], y[i] * scale);
+    return s;
+  };
+  const auto time_plot = [&](std::string title, std::string y_label) {
+    LinePlot plot;
+    plot.title = std::move(title);
+    plot.x_label = "time [s]";
+    plot.y_label = std::move(y_label);
+    plot.shaded_x = window;
+    plot.shaded_label = "evaluation window";
+    return plot;
+  };
+  if (!h.point_names.empty()) {
+    LinePlot w = time_plot("Deck displacement at " + h.point_names[p], "displacement [mm]");
+    w.series.push_back(series(h.point_names[p], h.deck_displacement_m[p], 1e3));
+    g.figures.push_back({w, "Vertical deck displacement (positive up) at the governing point."});
+    LinePlot a = time_plot("Deck acceleration at " + h.point_names[p], "acceleration [m/s2]");
+    a.series.push_back(series("raw", h.deck_acceleration_mps2[p], 1.0));
+    const double dt = scene.analysis.dt_s;
+    if (job.cutoff_hz > 0.0 && job.cutoff_hz < 0.5 / dt)
+      a.series.push_back(series("filtered", code_low_pass(h.deck_acceleration_mps2[p], dt, job.cutoff_hz), 1.0));
+    g.figures.push_back({a, fmt::format("Deck acceleration, raw and after the code low-pass filter ({}).",
+                                        job.cutoff_hz > 0.0 && job.cutoff_hz < 0.5 / dt
+                                            ? code_filter_description(dt, job.cutoff_hz)
+                                            : std::string("not applied: cut-off at or above the Nyquist frequency"))});
+  }
+  if (!h.wheel_names.empty()) {
+    std::size_t w = 0;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < h.wheel_names.size(); ++k)
+      for (std::size_t i = 0; i < h.t_s.size(); ++i)
+        if (h.t_s[i] >= window.first && h.t_s[i] <= window.second && h.contact_force_N[k][i] < lowest)
+          lowest = h.contact_force_N[k][i], w = k;
+    LinePlot f = time_plot("Contact force of wheel " + h.wheel_names[w], "force [kN]");
+    f.series.push_back(series(h.wheel_names[w], h.contact_force_N[w], 1e-3));
+    g.figures.push_back({f, "Contact force of the wheel with the lowest force in the evaluation window."});
+  }
+  if (!h.body_names.empty()) {
+    std::size_t b = 0;
+    double largest = -1.0;
+    for (std::size_t k = 0; k < h.body_names.size(); ++k)
+      for (double v : h.carbody_acceleration_mps2[k])
+        if (std::abs(v) > largest) largest = std::abs(v), b = k;
+    LinePlot c = time_plot("Car-body acceleration of " + h.body_names[b], "acceleration [m/s2]");
+    c.series.push_back(series(h.body_names[b], h.carbody_acceleration_mps2[b], 1.0));
+    g.figures.push_back({c, "Vertical car-body acceleration of the car with the largest value."});
+  }
+  return g;
+}
+
+}  // namespace
+
+ComplianceReport build_compliance_report(Database& db, const std::string& study_id, const ComplianceOptions& options) {
+  ComplianceReport report;
+  const StudyInfo info = study_info(db, study_id);
+  std::string document_text;
+  {
+    Statement s = db.prepare("SELECT document FROM studies WHERE id = ?");
+    s.bind(1, study_id).step();
+    document_text = s.text(0);
+  }
+  const json study = json::parse(document_text);
+  const json checks = info.checks;
+  report.study_name = info.name;
+  report.study_id = info.id;
+  report.study_file = info.file;
+  report.version = options.version;
+  report.date = options.date;
+  report.study_document = study.dump(2);
+
+  const std::vector<JobResult> jobs = study_results(db, {study_id, {}, {}, {}, {}});
+  std::vector<std::string> train_order;
+  std::map<std::string, std::vector<const JobResult*>> by_train;
+  for (const JobResult& j : jobs) {
+    if (!by_train.count(j.train)) train_order.push_back(j.train);
+    by_train[j.train].push_back(&j);
+  }
+  const auto infos = train_infos(study);
+  for (const std::string& t : train_order) {
+    const auto it = infos.find(t);
+    report.trains.push_back({t, it == infos.end() ? std::string("given in the study document") : it->second.source});
+  }
+
+  // The structure, and each train as the jobs built it.
+  std::map<std::string, Scene> scenes;
+  for (const std::string& t : train_order) scenes.emplace(t, load_job_scene(db, by_train[t].front()->id));
+  const Scene& first = scenes.begin()->second;
+  const StructureModel& structure = *first.structure;
+  const StructureInfo& sinfo = structure.info();
+  const DeckFrequencies freq = deck_frequencies(structure);
+  const double cutoff = jobs.empty() ? 0.0 : jobs.front().cutoff_hz;
+  const std::vector<double> spans = spans_of(sinfo);
+  const bool continuous = study.contains("structure") && study.at("structure").value("continuous", false);
+  const double L_phi = determinant_length_m(spans, continuous);
+  const bool phi2 = checks.value("dynamic_factor", std::string("phi3")) == "phi2";
+  const double Phi = L_phi > 0.0 ? (phi2 ? dynamic_factor_phi2(L_phi) : dynamic_factor_phi3(L_phi)) : 0.0;
+  const double alpha = checks.value("lm71_alpha", 1.0);
+  double max_speed_kmh = 0.0;
+  for (const JobResult& j : jobs) max_speed_kmh = std::max(max_speed_kmh, j.speed_kmh);
+
+  // Model summary.
+  report.model.push_back({"structure", sinfo.source});
+  if (!spans.empty()) {
+    std::string s;
+    for (double x : spans) s += (s.empty() ? "" : ", ") + fmt::format("{:g}", x);
+    report.model.push_back({"spans [m]", s + (continuous ? " (continuous)" : " (simply supported)")});
+  }
+  if (study.contains("structure") && study.at("structure").contains("deck")) {
+    const json& deck = study.at("structure").at("deck");
+    for (const char* key : {"EI_Nm2", "first_frequency_hz", "mass_kg_per_m"})
+      if (deck.contains(key)) report.model.push_back({std::string("deck ") + key, deck.at(key).dump()});
+  }
+  report.model.push_back({"degrees of freedom",
+                          fmt::format("{} (deck {}, track {})", structure.num_dofs(), sinfo.deck_dofs, sinfo.track_dofs)});
+  report.model.push_back({"damping", sinfo.damping_ratio ? fmt::format("{:.3g} % ({})", *sinfo.damping_ratio * 100,
+                                                                       sinfo.damping_source)
+                                                         : sinfo.damping_source});
+  report.model.push_back({"f0, first deck bending frequency", freq.f0_hz > 0 ? fmt::format("{:.4g} Hz", freq.f0_hz) : "not found"});
+  report.model.push_back({"f3, third mode of the member", freq.f3_hz > 0 ? fmt::format("{:.4g} Hz", freq.f3_hz) : "not found"});
+  report.model.push_back({"deck acceleration cut-off max(30 Hz, 1.5 f0, f3) (EN 1990 A2.4.4.2.1)",
+                          fmt::format("{:.4g} Hz", cutoff)});
+  if (L_phi > 0.0)
+    report.model.push_back({"determinant length L_Phi (" + std::string(kDeterminantLengthClause) + ", unverified)",
+                            fmt::format("{:.4g} m", L_phi)});
+  if (Phi > 0.0)
+    report.model.push_back({std::string(phi2 ? "Phi2" : "Phi3") + " (" + kPhiClause + ")" +
+                                ((phi2 ? kPhi2Verified : kPhi3Verified) ? "" : ", unverified"),
+                            fmt::format("{:.4g}", Phi)});
+  report.model.push_back({"LM71 classification factor alpha (EN 1991-2 6.3.2(3))", fmt::format("{:g}", alpha)});
+  report.model.push_back({"output points", std::to_string(structure.outputs().size())});
+
+  // Rungs and time steps.
+  // Grouped by model and time step; the reason shown is the first job's
+  // (the binding bound may differ between speeds of one group).
+  std::map<std::pair<std::string, double>, std::pair<std::string, int>> rungs;
+  for (const JobResult& j : jobs) {
+    auto& [reason, n] = rungs[{fidelity_text(j), j.dt_s}];
+    if (n++ == 0) reason = j.dt_reason;
+  }
+  for (const auto& [key, value] : rungs)
+    report.rungs.push_back({key.first, fmt::format("{:g} s (first job: {})", key.second, value.first), value.second});
+
+  // Jobs without a clean result.
+  {
+    Statement s = db.prepare("SELECT warnings FROM jobs WHERE id = ?");
+    for (const JobResult& j : jobs) {
+      std::string detail = j.error;
+      if (s.reset(), s.bind(1, j.id).step() && !s.is_null(0)) {
+        const json w = json::parse(s.text(0), nullptr, false);
+        if (w.is_array())
+          for (const json& item : w) detail += (detail.empty() ? "" : "; ") + item.value("code", std::string()) + ": " +
+                                               item.value("message", std::string());
+      }
+      const bool clean = j.state == "done" && (j.status.empty() || j.status == "ok") && detail.empty();
+      if (!clean) report.issues.push_back({case_label(j), j.state + (j.status.empty() ? "" : " (" + j.status + ")"), detail});
+    }
+  }
+
+  // Checks on stored quantities.
+  const bool ballasted = checks.value("track_type", std::string("ballasted")) != "direct_fastening";
+  {
+    CheckResult c;
+    c.id = "deck_acceleration";
+    c.title = "Peak deck acceleration (filtered)";
+    c.quantity = "deck_acceleration_mps2";
+    c.unit = "m/s2";
+    const CodeValue code = ballasted ? deck_acceleration_limit_ballasted_mps2() : deck_acceleration_limit_direct_fastening_mps2();
+    c.clause = code.clause;
+    if (checks.contains("deck_acceleration_limit_mps2")) {
+      c.limit = checks.at("deck_acceleration_limit_mps2").get<double>();
+      c.limit_verified = c.limit == code.value && code.verified;
+      c.note = c.limit == code.value ? "" : "Limit given in the study's checks.";
+    } else {
+      c.limit = code.value;
+      c.limit_verified = code.verified;
+      c.note = std::string(ballasted ? "Ballasted track" : "Direct fastening") +
+               " limit (checks.track_type); frequencies up to the cut-off above.";
+    }
+    report.checks.push_back(quantity_check(c, jobs));
+  }
+  if (checks.contains("deck_displacement_limit_m")) {
+    CheckResult c;
+    c.id = "deck_displacement";
+    c.title = "Peak deck displacement";
+    c.quantity = "deck_displacement_m";
+    c.unit = "m";
+    c.clause = "limit given in the study's checks";
+    c.limit = checks.at("deck_displacement_limit_m").get<double>();
+    c.limit_verified = true;
+    report.checks.push_back(quantity_check(c, jobs));
+  }
+  const bool wheels = any_value(jobs, "unloading_ratio") || checks.contains("max_unloading_ratio");
+  if (wheels) {
+    CheckResult c;
+    c.id = "wheel_unloading";
+    c.title = "Wheel unloading dQ/Q";
+    c.quantity = "unloading_ratio";
+    c.unit = "";
+    const CodeValue code = unloading_ratio_limit();
+    c.limit = checks.value("max_unloading_ratio", code.value);
+    c.clause = checks.contains("max_unloading_ratio") ? "limit given in the study's checks" : code.clause;
+    c.limit_verified = checks.contains("max_unloading_ratio");
+    c.note = "1 means the wheel lost contact.";
+    report.checks.push_back(quantity_check(c, jobs));
+  }
+  if (any_value(jobs, "carbody_acceleration_mps2") || checks.contains("carbody_acceleration_limit_mps2")) {
+    CheckResult c;
+    c.id = "passenger_comfort";
+    c.title = "Passenger comfort: car-body acceleration";
+    c.quantity = "carbody_acceleration_mps2";
+    c.unit = "m/s2";
+    c.clause = kComfortClause;
+    const std::string level = checks.value("comfort_level", std::string("very good"));
+    c.limit = comfort_levels().front().b_v_mps2;
+    for (const ComfortLevel& l : comfort_levels())
+      if (level == l.name) c.limit = l.b_v_mps2;
+    c.limit_verified = kComfortVerified;
+    if (checks.contains("carbody_acceleration_limit_mps2")) {
+      c.limit = checks.at("carbody_acceleration_limit_mps2").get<double>();
+      c.note = "Limit given in the study's checks.";
+    } else {
+      c.note = "Required level: " + level + " (checks.comfort_level).";
+    }
+    c = quantity_check(c, jobs);
+    if (c.governing && c.governing->value) {
+      std::string achieved = "below acceptable";
+      for (const ComfortLevel& l : comfort_levels())
+        if (*c.governing->value <= l.b_v_mps2) {
+          achieved = l.name;
+          break;
+        }
+      c.note += " Level reached by the governing case: " + achieved + ".";
+    }
+    report.checks.push_back(c);
+  }
+
+  // Static checks from the same structure: LM71 deflection and the dynamic
+  // enhancement of each train against Phi x alpha x LM71.
+  std::optional<StaticInfluence> influence;
+  std::string static_note;
+  try {
+    influence.emplace(structure, first.analysis.contact.rail_lines);
+  } catch (const std::exception& e) {
+    static_note = std::string("Static influence lines could not be computed: ") + e.what();
+  }
+  std::vector<double> lm71_deflection_m(structure.outputs().size(), 0.0);
+  if (influence) {
+    // Each output point against the limit of its own span: the check is on
+    // the utilisation deflection / (L/600), and the note gives millimetres.
+    CheckResult c;
+    c.id = "lm71_deflection";
+    c.title = "Deflection under alpha x Phi x LM71, as a fraction of L/600";
+    c.quantity = "lm71_deflection_utilisation";
+    c.unit = "";
+    c.clause = deflection_span_ratio().clause;
+    c.limit = 1.0;
+    c.limit_verified = deflection_span_ratio().verified;
+    std::vector<CheckCase> cases;
+    double worst = -1.0;
+    for (std::size_t k = 0; k < structure.outputs().size(); ++k) {
+      const OutputPoint& p = structure.outputs()[k];
+      lm71_deflection_m[k] = influence->lm71(static_cast<int>(k)).max_deflection_m;
+      const auto L = span_at(sinfo, p.x_m);
+      if (!L || Phi <= 0.0) continue;
+      const double deflection_m = alpha * Phi * lm71_deflection_m[k];
+      const double utilisation = deflection_m / (*L / deflection_span_ratio().value);
+      cases.push_back({"LM71", std::nan(""), p.name, utilisation});
+      if (utilisation > worst) {
+        worst = utilisation;
+        c.note = fmt::format("Governing point {} (span {:g} m): LM71 {:.4g} mm x Phi {:.4g} x alpha {:g} = {:.4g} mm "
+                             "against L/600 = {:.4g} mm.",
+                             p.name, *L, lm71_deflection_m[k] * 1e3, Phi, alpha, deflection_m * 1e3, *L / 0.6);
+      }
+    }
+    if (cases.empty()) {
+      c.verdict = Verdict::kNotEvaluated;
+      c.note = "No output point lies in a span with known supports (imported structure).";
+      report.checks.push_back(c);
+    } else {
+      const std::string note = c.note;
+      CheckResult r = evaluate_upper_limit(c, cases);
+      r.note = note;
+      report.checks.push_back(r);
+    }
+  }
+  if (influence && Phi > 0.0) {
+    CheckResult c;
+    c.id = "dynamic_enhancement";
+    c.title = "Dynamic load effect against Phi x alpha x LM71 (deflection)";
+    c.quantity = "dynamic_to_lm71_ratio";
+    c.unit = "";
+    c.clause = "EN 1991-2 6.4.6.5(3)";
+    c.limit = 1.0;
+    c.limit_verified = true;
+    std::vector<CheckCase> cases;
+    std::string worst_note;
+    double worst = -1.0;
+    const double phi2nd_speed = max_speed_kmh / 3.6;
+    const double phi2nd = phi_double_prime(L_phi, freq.f0_hz, phi2nd_speed);
+    for (const std::string& t : train_order) {
+      const std::vector<MovingForce> axles = axle_loads(scenes.at(t).train);
+      std::optional<double> ratio;
+      double gov_speed = 0.0;
+      bool missing = false;
+      for (std::size_t k = 0; k < structure.outputs().size(); ++k) {
+        const std::string& point = structure.outputs()[k].name;
+        const double y_stat = influence->train_envelope(static_cast<int>(k), axles).max_deflection_m;
+        double y_dyn = -1.0, speed = 0.0;
+        for (const JobResult* j : by_train[t]) {
+          const auto q = j->envelopes.find("deck_displacement_m");
+          std::optional<double> v;
+          if (q != j->envelopes.end()) {
+            const auto l = q->second.find(point);
+            if (l != q->second.end()) v = l->second;
+          }
+          if (!v) {
+            missing = true;
+            continue;
+          }
+          if (*v > y_dyn) y_dyn = *v, speed = j->speed_kmh;
+        }
+        if (y_dyn < 0.0 || y_stat <= 0.0 || lm71_deflection_m[k] <= 0.0) continue;
+        const double phi_dyn = y_dyn / y_stat - 1.0;
+        const double effect = (1.0 + phi_dyn + 0.5 * phi2nd) * y_stat;
+        const double r = effect / (Phi * alpha * lm71_deflection_m[k]);
+        if (!ratio || r > *ratio) {
+          ratio = r;
+          gov_speed = speed;
+          if (r > worst) {
+            worst = r;
+            worst_note = fmt::format(
+                "Governing: {} at {}: static {:.4g} mm, dynamic {:.4g} mm, phi'dyn = {:.4g}, phi'' = {:.4g} "
+                "({}, unverified; v = {:g} km/h), (1 + phi'dyn + phi''/2) y_stat = {:.4g} mm against "
+                "Phi alpha LM71 = {:.4g} mm. A ratio above 1 means the dynamic analysis governs the design "
+                "load effect, not that the bridge fails.",
+                t, point, y_stat * 1e3, y_dyn * 1e3, phi_dyn, phi2nd, kPhiDoublePrimeClause, max_speed_kmh,
+                effect * 1e3, Phi * alpha * lm71_deflection_m[k] * 1e3);
+          }
+        }
+      }
+      cases.push_back({t, gov_speed, "", missing ? std::nullopt : ratio});
+    }
+    CheckResult r = evaluate_upper_limit(c, cases);
+    r.note = worst_note;
+    report.checks.push_back(r);
+  }
+  if (!static_note.empty()) report.notes.push_back(static_note);
+  {
+    CheckResult c;
+    c.id = "deck_twist";
+    c.title = "Deck twist";
+    c.clause = twist_limit_mm_per_3m(max_speed_kmh).clause;
+    c.verdict = Verdict::kNotEvaluated;
+    c.note = structure.rails().size() < 2
+                 ? "Not applicable: a plane model has one rail line, so no twist."
+                 : "Not evaluated: this version stores no twist envelope for two rail lines.";
+    report.checks.push_back(c);
+  }
+  report.overall = overall_verdict(report.checks);
+
+  // Response against speed for each check on stored quantities.
+  for (const CheckResult& c : report.checks) {
+    if (c.quantity.empty() || c.verdict == Verdict::kNotEvaluated || c.id == "lm71_deflection" ||
+        c.id == "dynamic_enhancement")
+      continue;
+    LinePlot plot;
+    plot.title = c.title;
+    plot.x_label = "speed [km/h]";
+    plot.y_label = c.title + (c.unit.empty() ? "" : " [" + c.unit + "]");
+    plot.limit = c.limit;
+    plot.limit_label = fmt::format("limit {:.4g}", c.limit);
+    for (const std::string& t : train_order) plot.series.push_back({t, per_speed_maximum(by_train[t], c.quantity)});
+    if (c.governing && c.governing->value) {
+      plot.marked = std::pair{c.governing->speed_kmh, *c.governing->value};
+      plot.marked_label = "governing";
+    }
+    for (const std::string& t : train_order) {
+      const auto it = infos.find(t);
+      if (it == infos.end() || !it->second.coach_length_m || freq.f0_hz <= 0.0) continue;
+      for (int i = 1; i <= 4; ++i) plot.x_marks.push_back(freq.f0_hz * *it->second.coach_length_m / i * 3.6);
+    }
+    std::sort(plot.x_marks.begin(), plot.x_marks.end());
+    plot.x_marks_label = "v = f0 D / i (HSLM)";
+    const int profiles = static_cast<int>(std::set<std::string>(
+        [&] { std::set<std::string> s; for (const JobResult& j : jobs) s.insert(j.irregularity); return s; }()).size());
+    report.check_figures.push_back(
+        {plot, c.title + " against speed, one line per train" +
+                   (profiles > 1 ? ", the largest value over the profiles at each speed" : "") +
+                   "; the dashed red line is the limit and the circle the governing case." +
+                   (plot.x_marks.empty() ? "" : " Dotted lines: resonance speeds v = f0 D / i of the HSLM trains.")});
+  }
+
+  // Governing cases, re-simulated.
+  if (options.histories) {
+    std::set<std::string> done;
+    for (const CheckResult& c : report.checks) {
+      if (!c.governing || !c.governing->value || c.id == "lm71_deflection" || c.id == "dynamic_enhancement") continue;
+      const auto it = std::find_if(jobs.begin(), jobs.end(), [&](const JobResult& j) {
+        return j.train == c.governing->train && j.speed_kmh == c.governing->speed_kmh &&
+               j.irregularity == c.governing->irregularity;
+      });
+      if (it == jobs.end() || done.count(it->id) ||
+          static_cast<int>(done.size()) >= options.max_governing_cases)
+        continue;
+      done.insert(it->id);
+      report.governing_cases.push_back(governing_case(db, *it, c.title));
+    }
+  }
+  return report;
+}
+
+}  // namespace railvsi::scheduler
