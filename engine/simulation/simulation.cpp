@@ -28,15 +28,13 @@ const char* law_name(ContactLaw law) {
   return "unknown";
 }
 
-// Time simulated: until the last axle is past the evaluation window behind
-// the bridge, plus any extra time asked for.
+}  // namespace
+
 double default_duration_s(const Scene& scene, double start_x_m) {
   const double end_m = bridge_extent_m(*scene.structure).second + scene.analysis.evaluation_margin_m;
   const double travel_m = end_m - start_x_m + scene.train.length_m();
   return travel_m / scene.speed_mps + scene.analysis.extra_time_s;
 }
-
-}  // namespace
 
 std::pair<double, double> bridge_extent_m(const StructureModel& structure) {
   const StructureInfo& info = structure.info();

@@ -14,6 +14,10 @@ namespace railvsi {
 // the same key. Throws InputError if the structure cannot be factorized.
 std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& scene);
 
+// Time simulated by default: until the last axle is the evaluation margin
+// past the bridge, plus the extra time asked for.
+double default_duration_s(const Scene& scene, double start_x_m);
+
 class Simulation {
  public:
   // Accepts the scene: static equilibrium of train and structure, the

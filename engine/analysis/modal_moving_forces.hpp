@@ -1,0 +1,28 @@
+#pragma once
+// The modal rung for moving forces: the structure's own modes (Lanczos on
+// its K and M, as modal_analysis), each modal equation stepped exactly for
+// loads linear within a step (integration/modal_recurrence), the modes
+// sampled under each axle with the rail's Hermite rows. No period error and
+// no numerical damping: the time step only samples the load and the output.
+// What it gives up against the FE rung: the modes above the cut-off, and
+// the coupling terms of a non-proportional damping matrix (each mode keeps
+// phi^T C phi / (2 omega), recorded in the fidelity).
+#include "simulation/result.hpp"
+#include "simulation/scene.hpp"
+
+namespace railvsi {
+
+struct ModalMovingForceOptions {
+  // All modes up to this frequency (Hz) are kept; > 0.
+  double max_frequency_hz = 60.0;
+  // Never fewer than this many modes (when the structure has them).
+  int min_modes = 1;
+};
+
+// The Result has the same histories and summary as the FE rung's
+// (Simulation::run) for a train of moving forces; its fidelity names the
+// backend "modal" with the mode count. Throws InputError for a scene that
+// is not a train of moving forces or whose modes cannot be computed.
+Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions& options = {});
+
+}  // namespace railvsi
