@@ -1,11 +1,11 @@
 #include "analysis/modal_moving_forces.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "analysis/modal_analysis.hpp"
 #include "core/input_error.hpp"
 #include "integration/modal_recurrence.hpp"
 #include "simulation/simulation.hpp"
@@ -16,37 +16,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The lowest modes, enough of them to pass max_frequency_hz: asked in
-// growing batches until the highest one computed lies above it (or the
-// model has no more).
-ModalResult modes_up_to(const StructureModel& s, const ModalMovingForceOptions& o) {
-  int asked = std::max(8, o.min_modes);
-  for (;;) {
-    ModalOptions mo;
-    mo.modes = std::min(asked, s.num_dofs() - 1);
-    ModalResult r = modal_analysis(s, mo);
-    if (!r.status.ok()) throw InputError("/structure", "modal analysis: " + r.status.message());
-    const bool enough = r.frequencies_hz.empty() || r.frequencies_hz.back() > o.max_frequency_hz;
-    if (enough || mo.modes >= s.num_dofs() - 1) {
-      int keep = 0;
-      while (keep < static_cast<int>(r.frequencies_hz.size()) &&
-             (r.frequencies_hz[static_cast<std::size_t>(keep)] <= o.max_frequency_hz || keep < o.min_modes))
-        ++keep;
-      r.frequencies_hz.resize(static_cast<std::size_t>(keep));
-      r.shapes = r.shapes.leftCols(keep).eval();
-      return r;
-    }
-    asked *= 2;
-  }
-}
-
 }  // namespace
 
-Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions& options) {
+Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis) {
   const auto t_start = Clock::now();
   if (!scene.train.is_moving_forces())
     throw InputError("/train", "the modal moving-force rung needs a train of moving forces");
-  if (!(options.max_frequency_hz > 0.0)) throw InputError("", "modal cut-off frequency must be > 0");
+  if (&basis.structure() != scene.structure.get())
+    throw InputError("/structure", "the modal basis was computed for another structure");
   const StructureModel& s = *scene.structure;
   const AnalysisOptions& an = scene.analysis;
   const double dt = an.dt_s;
@@ -55,31 +32,45 @@ Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions
   if (!(duration > 0.0) || !std::isfinite(duration))
     throw InputError("/analysis/duration_s", "the run has no duration: give speed_kmh > 0 or analysis.duration_s");
 
-  const ModalResult modes = modes_up_to(s, options);
-  const auto n_modes = static_cast<Eigen::Index>(modes.frequencies_hz.size());
-  const DenseMatrix& Phi = modes.shapes;  // mass-normalised columns
+  const Eigen::Index n_modes = basis.num_modes();
   std::vector<ModalStep> steps;
-  std::vector<double> omega(static_cast<std::size_t>(n_modes)), zeta(static_cast<std::size_t>(n_modes));
-  for (Eigen::Index k = 0; k < n_modes; ++k) {
-    const double w = 2.0 * M_PI * modes.frequencies_hz[static_cast<std::size_t>(k)];
-    const Vector phi = Phi.col(k);
-    // The diagonal of Phi^T C Phi: exact for Rayleigh damping, the modal
-    // approximation otherwise (the coupling terms are left out).
-    const double z = phi.dot(s.C() * phi) / (2.0 * w);
-    omega[static_cast<std::size_t>(k)] = w;
-    zeta[static_cast<std::size_t>(k)] = z;
-    steps.push_back(make_modal_step(w, z, dt));
-  }
+  for (Eigen::Index k = 0; k < n_modes; ++k)
+    steps.push_back(make_modal_step(basis.omega_rad_s()[static_cast<std::size_t>(k)],
+                                    basis.zeta()[static_cast<std::size_t>(k)], dt));
 
-  // Modal load of the moving forces with the first axle at x: p = Phi^T f.
-  Vector f = Vector::Zero(s.num_dofs());
+  // Modal load of the moving forces with the first axle at x: p = Phi^T f,
+  // summed over the few rail DOFs under the axles (downward loads, shared
+  // equally between the rail lines the train bears on).
+  const auto& rails = an.contact.rail_lines;
+  const double share = 1.0 / static_cast<double>(rails.size());
+  // Axles by offset: those on a rail line at x have offsets in
+  // [x - rail end, x - rail start], a contiguous range found by bisection,
+  // so a step costs the axles on the structure, not the whole train.
+  std::vector<MovingForce> axles = scene.train.moving_forces;
+  std::stable_sort(axles.begin(), axles.end(),
+                   [](const MovingForce& a, const MovingForce& b) { return a.offset_m < b.offset_m; });
+  std::vector<double> offsets;
+  for (const MovingForce& m : axles) offsets.push_back(m.offset_m);
   const auto modal_load = [&](double x, Vector& p) {
-    f.setZero();
-    add_moving_force_loads(scene, x, f);
-    p.noalias() = Phi.transpose() * f;
+    p.setZero();
+    for (int r : rails) {
+      const RailLine& rail = s.rails()[static_cast<std::size_t>(r)];
+      const auto first = std::lower_bound(offsets.begin(), offsets.end(), x - rail.end_m());
+      const auto last = std::upper_bound(offsets.begin(), offsets.end(), x - rail.start_m());
+      for (auto it = first; it != last; ++it) {
+        const MovingForce& m = axles[static_cast<std::size_t>(it - offsets.begin())];
+        const auto row = rail.locate(x - m.offset_m);
+        if (!row) continue;
+        for (int j = 0; j < 4; ++j) {
+          if (row->dof[j] < 0) continue;
+          const double f = -share * row->weight[j] * m.load_N;
+          const double* phi = basis.row(row->dof[j]);
+          for (Eigen::Index k = 0; k < n_modes; ++k) p[k] += f * phi[k];
+        }
+      }
+    }
   };
-  DenseMatrix Phi_out(static_cast<Eigen::Index>(s.outputs().size()), n_modes);
-  for (std::size_t i = 0; i < s.outputs().size(); ++i) Phi_out.row(static_cast<Eigen::Index>(i)) = Phi.row(s.outputs()[i].dof);
+  const DenseMatrix& Phi_out = basis.at_outputs();
 
   Result result;
   RunSummary& sum = result.summary;
@@ -88,14 +79,17 @@ Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions
   sum.fidelity.contact_law = "none";
   sum.fidelity.solver_path = "modal-exact";
   sum.fidelity.structure_backend =
-      fmt::format("modal ({} modes up to {:.4g} Hz, exact recurrence)", n_modes, options.max_frequency_hz);
+      fmt::format("modal ({} modes up to {:.4g} Hz, exact recurrence)", n_modes, basis.max_frequency_hz());
   sum.fidelity.structure_dofs = s.num_dofs();
 
   // Start from the static modal response under the loads at t = 0, as the
   // FE rung starts from the static equilibrium.
   Vector p(n_modes), p_next(n_modes), q(n_modes), qd = Vector::Zero(n_modes), qdd(n_modes);
   modal_load(x0, p);
-  for (Eigen::Index k = 0; k < n_modes; ++k) q[k] = p[k] / (omega[static_cast<std::size_t>(k)] * omega[static_cast<std::size_t>(k)]);
+  for (Eigen::Index k = 0; k < n_modes; ++k) {
+    const double w = basis.omega_rad_s()[static_cast<std::size_t>(k)];
+    q[k] = p[k] / (w * w);
+  }
   qdd.setZero();
 
   Histories& h = result.histories;
@@ -143,6 +137,16 @@ Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions
   }
   sum.wall_s = std::chrono::duration<double>(Clock::now() - t_start).count();
   return result;
+}
+
+Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions& options) {
+  const auto t_start = Clock::now();
+  const ModalBasis basis(scene.structure, options);
+  const double modes_s = std::chrono::duration<double>(Clock::now() - t_start).count();
+  Result r = run_modal_moving_forces(scene, basis);
+  r.summary.setup_s += modes_s;
+  r.summary.wall_s += modes_s;
+  return r;
 }
 
 }  // namespace railvsi

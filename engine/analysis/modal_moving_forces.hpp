@@ -7,22 +7,22 @@
 // What it gives up against the FE rung: the modes above the cut-off, and
 // the coupling terms of a non-proportional damping matrix (each mode keeps
 // phi^T C phi / (2 omega), recorded in the fidelity).
+#include "analysis/modal_basis.hpp"
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 
 namespace railvsi {
 
-struct ModalMovingForceOptions {
-  // All modes up to this frequency (Hz) are kept; > 0.
-  double max_frequency_hz = 60.0;
-  // Never fewer than this many modes (when the structure has them).
-  int min_modes = 1;
-};
+using ModalMovingForceOptions = ModalBasisOptions;
 
 // The Result has the same histories and summary as the FE rung's
 // (Simulation::run) for a train of moving forces; its fidelity names the
 // backend "modal" with the mode count. Throws InputError for a scene that
 // is not a train of moving forces or whose modes cannot be computed.
+// `basis` must be of scene.structure (else InputError): runs on one
+// structure share one basis, so a sweep computes its modes once.
+Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis);
+// Convenience: computes the basis for this run alone.
 Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions& options = {});
 
 }  // namespace railvsi

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "analysis/modal_moving_forces.hpp"
+#include "core/input_error.hpp"
 #include "fryba_series.hpp"
 #include "generators/bridge_2d.hpp"
 #include "integration/modal_recurrence.hpp"
@@ -130,6 +131,32 @@ TEST_P(ModalMovingForce, MatchesFrybaSeriesAtACoarseStepWhereTheFeRungDrifts) {
   // At this step the FE/HHT rung (all modes) is further from the 60-mode
   // series than the modal rung with 3 (measured 3.3e-3 to 6.2e-3).
   EXPECT_GT(err_fe, err_trunc);
+}
+
+TEST(ModalMovingForceBasis, OneSharedBasisGivesTheSameBitsAsABasisPerRun) {
+  Bridge2dOptions o;
+  o.spans_m = {15.0};
+  o.deck_first_frequency_hz = 5.0;
+  o.deck_mass_kg_per_m = 15000.0;
+  o.damping_ratio = 0.01;
+  Scene scene;
+  scene.structure = make_bridge_2d(o);
+  scene.train.moving_forces = {{0.0, 170e3}, {3.0, 170e3}, {14.0, 170e3}};
+  scene.speed_mps = 250 / 3.6;
+  scene.analysis.dt_s = 1e-3;
+  ModalMovingForceOptions mo;
+  mo.max_frequency_hz = 54.0;
+  const ModalBasis basis(scene.structure, mo);
+  EXPECT_EQ(basis.num_modes(), 3);  // 5, 20 and 45 Hz
+  const Result shared = run_modal_moving_forces(scene, basis);
+  const Result own = run_modal_moving_forces(scene, mo);
+  ASSERT_TRUE(shared.status.ok());
+  EXPECT_EQ(shared.histories.deck_displacement_m, own.histories.deck_displacement_m);
+  EXPECT_EQ(shared.histories.deck_acceleration_mps2, own.histories.deck_acceleration_mps2);
+  // A basis of another structure is refused, not silently used.
+  Scene other = scene;
+  other.structure = make_bridge_2d(o);
+  EXPECT_THROW(run_modal_moving_forces(other, basis), InputError);
 }
 
 INSTANTIATE_TEST_SUITE_P(SpeedParameters, ModalMovingForce,
