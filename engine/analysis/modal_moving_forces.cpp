@@ -100,8 +100,15 @@ Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis) {
   std::vector<double> max_u(np, 0.0), max_a(np, 0.0);
   Vector u_out(static_cast<Eigen::Index>(np)), a_out(static_cast<Eigen::Index>(np));
   const auto record = [&](double t, bool store) {
-    u_out.noalias() = Phi_out * q;
-    a_out.noalias() = Phi_out * qdd;
+    for (std::size_t i = 0; i < np; ++i) {
+      double u = 0.0, a = 0.0;
+      for (Eigen::Index k = 0; k < n_modes; ++k) {
+        u += Phi_out(static_cast<Eigen::Index>(i), k) * q[k];
+        a += Phi_out(static_cast<Eigen::Index>(i), k) * qdd[k];
+      }
+      u_out[static_cast<Eigen::Index>(i)] = u;
+      a_out[static_cast<Eigen::Index>(i)] = a;
+    }
     for (std::size_t i = 0; i < np; ++i) {
       max_u[i] = std::max(max_u[i], std::abs(u_out[static_cast<Eigen::Index>(i)]));
       max_a[i] = std::max(max_a[i], std::abs(a_out[static_cast<Eigen::Index>(i)]));
@@ -113,8 +120,14 @@ Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis) {
       h.deck_acceleration_mps2[i].push_back(a_out[static_cast<Eigen::Index>(i)]);
     }
   };
-  sum.setup_s = std::chrono::duration<double>(Clock::now() - t_start).count();
   const long n_steps = static_cast<long>(std::ceil(duration / dt - 1e-9));
+  const auto samples = static_cast<std::size_t>(n_steps / std::max(1, an.history_stride) + 2);
+  h.t_s.reserve(samples);
+  for (std::size_t i = 0; i < np; ++i) {
+    h.deck_displacement_m[i].reserve(samples);
+    h.deck_acceleration_mps2[i].reserve(samples);
+  }
+  sum.setup_s = std::chrono::duration<double>(Clock::now() - t_start).count();
   record(0.0, true);
   for (long n = 0; n < n_steps; ++n) {
     const double t_new = static_cast<double>(n + 1) * dt;
