@@ -50,6 +50,22 @@ double default_start_x_m(const Scene& scene) {
   return std::max(rail_start, std::min(bridge_start, whole_train_on_track));
 }
 
+namespace {
+
+double planned_duration_s(const Scene& scene, double start_x_m) {
+  return scene.analysis.duration_s.value_or(scene.speed_mps > 0.0 ? default_duration_s(scene, start_x_m) : 0.0);
+}
+
+long step_count(double duration_s, double dt_s) { return static_cast<long>(std::ceil(duration_s / dt_s - 1e-9)); }
+
+}  // namespace
+
+long planned_steps(const Scene& scene) {
+  const double duration_s = planned_duration_s(scene, scene.start_x_m.value_or(default_start_x_m(scene)));
+  if (!(duration_s > 0.0) || !std::isfinite(duration_s) || !(scene.analysis.dt_s > 0.0)) return 0;
+  return step_count(duration_s, scene.analysis.dt_s);
+}
+
 std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& scene) {
   const HhtCoefficients h(scene.analysis.hht, scene.analysis.dt_s);
   CholmodOperatorOptions options;
@@ -72,7 +88,7 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
   const auto t_start = Clock::now();
   const AnalysisOptions& an = scene_.analysis;
   const double x0 = scene_.start_x_m.value_or(default_start_x_m(scene_));
-  const double duration = an.duration_s.value_or(scene_.speed_mps > 0.0 ? default_duration_s(scene_, x0) : 0.0);
+  const double duration = planned_duration_s(scene_, x0);
   if (!(duration > 0.0) || !std::isfinite(duration))
     throw InputError("/analysis/duration_s", "the run has no duration: give speed_kmh > 0 or analysis.duration_s");
   const auto& rails = an.contact.rail_lines;
@@ -140,7 +156,7 @@ Result Simulation::run() const {
 
   RunState state(sc, layout, statics, x0);
   sum.setup_s = setup.setup_s + std::chrono::duration<double>(Clock::now() - t_start).count();
-  const long steps = static_cast<long>(std::ceil(setup.duration_s / an.dt_s - 1e-9));
+  const long steps = step_count(setup.duration_s, an.dt_s);
   state.record(0, 0.0, result.histories, /*store=*/true);
   for (long n = 0; n < steps; ++n) {
     const double t_new = (n + 1) * an.dt_s;

@@ -17,6 +17,9 @@ std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& sc
 // Time simulated by default: until the last axle is the evaluation margin
 // past the bridge, plus the extra time asked for.
 double default_duration_s(const Scene& scene, double start_x_m);
+// Time steps a run of the scene takes (its duration over dt, as run()
+// counts them); 0 when the scene has no duration. Cost estimates use it.
+long planned_steps(const Scene& scene);
 
 class Simulation {
  public:

@@ -9,6 +9,7 @@
 #include "cli/generate_command.hpp"
 #include "cli/report_command.hpp"
 #include "cli/service_commands.hpp"
+#include "cli/shard_command.hpp"
 
 namespace railvsi::cli {
 namespace {
@@ -43,6 +44,7 @@ int run(int argc, char** argv) {
   ServiceCommands service(app);
   GenerateCommand generate(app);
   ReportCommand report(app);
+  ClusterCommands cluster(app);
 
   try {
     app.parse(argc, argv);
@@ -54,6 +56,7 @@ int run(int argc, char** argv) {
   if (const auto code = service.run_parsed()) return *code;
   if (const auto code = generate.run_parsed()) return *code;
   if (const auto code = report.run_parsed()) return *code;
+  if (const auto code = cluster.run_parsed()) return *code;
   return validate_command(validate_file);
 }
 

@@ -92,6 +92,32 @@ CREATE VIEW study_progress AS
        R"sql(
 ALTER TABLE jobs ADD COLUMN warnings TEXT;  -- JSON array; NULL before the run
 )sql"},
+      {"shard: which shard of a study a shard store is; merged_shards: the shards merged into a store",
+       R"sql(
+CREATE TABLE shard (                  -- one row in a store written by vsi shard, none elsewhere
+  study_id       TEXT PRIMARY KEY REFERENCES studies (id),
+  shard_index    INTEGER NOT NULL,    -- 0 .. shard_count - 1 (SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX)
+  shard_count    INTEGER NOT NULL,
+  estimated_cost REAL NOT NULL,       -- sum over its jobs of steps x model DOFs
+  created_at     REAL NOT NULL        -- Unix time, s
+);
+CREATE TABLE merged_shards (          -- in a store written by vsi merge: the shards merged into it
+  study_id        TEXT NOT NULL REFERENCES studies (id),
+  shard_index     INTEGER NOT NULL,
+  shard_count     INTEGER NOT NULL,
+  file            TEXT NOT NULL,      -- the shard file at the last merge
+  jobs_done       INTEGER NOT NULL,   -- jobs of the shard done at the last merge
+  -- the shard's factorization cache statistics at the last merge; cache_stats
+  -- of the study is their sum, so merging again counts nothing twice
+  cache_jobs      INTEGER NOT NULL,
+  factorizations  INTEGER NOT NULL,
+  hits            INTEGER NOT NULL,
+  factorization_s REAL NOT NULL,
+  evictions       INTEGER NOT NULL,
+  merged_at       REAL NOT NULL,
+  PRIMARY KEY (study_id, shard_index)
+) WITHOUT ROWID;
+)sql"},
   };
   return all;
 }
