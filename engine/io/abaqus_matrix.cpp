@@ -20,19 +20,13 @@ struct RawEntry {
   long line = 0;
 };
 
-std::string trim(std::string_view s) {
-  const auto a = s.find_first_not_of(" \t");
-  if (a == std::string_view::npos) return {};
-  return std::string(s.substr(a, s.find_last_not_of(" \t") - a + 1));
-}
-
 // "node, dof, node, dof, value": false when the line is not of that form.
 bool parse_line(const std::string& line, RawEntry& e) {
   std::vector<std::string> fields;
   std::size_t start = 0;
   while (true) {
     const auto comma = line.find(',', start);
-    fields.push_back(trim(std::string_view(line).substr(start, comma == std::string::npos ? comma : comma - start)));
+    fields.push_back(trim_blanks(std::string_view(line).substr(start, comma == std::string::npos ? comma : comma - start)));
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
@@ -101,27 +95,20 @@ void write_abaqus_matrix(const std::filesystem::path& file, const SparseMatrix& 
   if (static_cast<Eigen::Index>(labels.size()) != A.rows() || !std::is_sorted(labels.begin(), labels.end()) ||
       std::adjacent_find(labels.begin(), labels.end()) != labels.end())
     throw std::invalid_argument("Abaqus export: one label per equation, strictly ordered by (node, DOF)");
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(file.c_str(), "wb"), &std::fclose);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", file.string()));
-  fmt::memory_buffer buffer;
-  const auto flush = [&] {
-    if (std::fwrite(buffer.data(), 1, buffer.size(), out.get()) != buffer.size())
-      throw std::runtime_error(fmt::format("cannot write {}", file.string()));
-    buffer.clear();
-  };
-  fmt::format_to(std::back_inserter(buffer), "** written by railvsi: row node, row DOF, column node, column DOF, value\n");
+  MatrixTextWriter out(file);
+  fmt::format_to(std::back_inserter(out.buffer()),
+                 "** written by railvsi: row node, row DOF, column node, column DOF, value\n");
   for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
     for (SparseMatrix::InnerIterator it(A, j); it; ++it)
       if (it.row() >= it.col()) {
         const DofLabel& r = labels[static_cast<std::size_t>(it.row())];
         const DofLabel& c = labels[static_cast<std::size_t>(it.col())];
-        fmt::format_to(std::back_inserter(buffer), "{}, {}, {}, {}, {:.17g}\n", r.node, r.component, c.node,
+        fmt::format_to(std::back_inserter(out.buffer()), "{}, {}, {}, {}, {:.17g}\n", r.node, r.component, c.node,
                        c.component, it.value());
       }
-    if (buffer.size() > (1u << 20)) flush();
+    out.flush_if_large();
   }
-  flush();
-  if (std::fflush(out.get()) != 0) throw std::runtime_error(fmt::format("cannot write {}", file.string()));
+  out.finish();
 }
 
 }  // namespace railvsi

@@ -39,12 +39,6 @@ FieldFormat parse_field_format(std::string text, bool integer, const TextLines& 
   return f;
 }
 
-std::string trim(const std::string& s) {
-  const auto a = s.find_first_not_of(" \t");
-  if (a == std::string::npos) return {};
-  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
-}
-
 // A Fortran real: D exponents, and "1.0-100" (an E format drops the E for
 // three-digit exponents).
 bool parse_fortran_real(std::string field, double& v) {
@@ -84,7 +78,7 @@ std::vector<T> read_fields(TextLines& lines, long count, FieldFormat f, const ch
       fields.clear();
       for (long slot = 0; slot < expected; ++slot) {
         const std::size_t pos = static_cast<std::size_t>(slot) * static_cast<std::size_t>(f.width);
-        fields.push_back(pos < line.size() ? trim(line.substr(pos, static_cast<std::size_t>(f.width))) : "");
+        fields.push_back(pos < line.size() ? trim_blanks(line.substr(pos, static_cast<std::size_t>(f.width))) : "");
         if (fields.back().empty())
           throw lines.error(fmt::format("expected {} {} on this line (fields of width {}), found '{}'", expected,
                                         what, f.width, line));
@@ -271,23 +265,15 @@ std::vector<DofLabel> read_ansys_mapping(const std::filesystem::path& file, int 
   return labels;
 }
 
-namespace {
-
-void write_all(const std::filesystem::path& file, const std::string& text) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(file.c_str(), "wb"), &std::fclose);
-  if (!out || std::fwrite(text.data(), 1, text.size(), out.get()) != text.size() || std::fflush(out.get()) != 0)
-    throw std::runtime_error(fmt::format("cannot write {}", file.string()));
-}
-
-}  // namespace
-
 void write_ansys_mapping(const std::filesystem::path& file, const std::vector<DofLabel>& labels) {
-  fmt::memory_buffer text;
-  fmt::format_to(std::back_inserter(text), "Matrix Eqn   Node   DOF\n");
-  for (std::size_t i = 0; i < labels.size(); ++i)
-    fmt::format_to(std::back_inserter(text), "{:10d} {:6d}   {}\n", i + 1, labels[i].node,
+  MatrixTextWriter out(file);
+  fmt::format_to(std::back_inserter(out.buffer()), "Matrix Eqn   Node   DOF\n");
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    fmt::format_to(std::back_inserter(out.buffer()), "{:10d} {:6d}   {}\n", i + 1, labels[i].node,
                    dof_component_name(labels[i].component, false));
-  write_all(file, fmt::to_string(text));
+    out.flush_if_large();
+  }
+  out.finish();
 }
 
 void write_harwell_boeing(const std::filesystem::path& file, const SparseMatrix& A, bool symmetric,
@@ -307,8 +293,8 @@ void write_harwell_boeing(const std::filesystem::path& file, const SparseMatrix&
   const int pn = std::max(1, 80 / pw), in = std::max(1, 80 / iw), vn = 3;
   const auto cards = [](std::size_t count, int per_line) { return static_cast<long>((count + per_line - 1) / per_line); };
   const long ptrcrd = cards(ptr.size(), pn), indcrd = cards(ind.size(), in), valcrd = cards(val.size(), vn);
-  fmt::memory_buffer text;
-  auto out = std::back_inserter(text);
+  MatrixTextWriter writer(file);
+  auto out = std::back_inserter(writer.buffer());
   fmt::format_to(out, "{:<72.72}{:<8}\n", title, "railvsi");
   fmt::format_to(out, "{:14d}{:14d}{:14d}{:14d}{:14d}\n", ptrcrd + indcrd + valcrd, ptrcrd, indcrd, valcrd, 0);
   fmt::format_to(out, "{:<14}{:14d}{:14d}{:14d}{:14d}\n", symmetric ? "RSA" : "RUA", A.rows(), A.cols(), val.size(), 0);
@@ -317,13 +303,16 @@ void write_harwell_boeing(const std::filesystem::path& file, const SparseMatrix&
   const auto block = [&](const auto& values, int per_line, auto&& field) {
     for (std::size_t k = 0; k < values.size(); ++k) {
       field(values[k]);
-      if ((k + 1) % static_cast<std::size_t>(per_line) == 0 || k + 1 == values.size()) fmt::format_to(out, "\n");
+      if ((k + 1) % static_cast<std::size_t>(per_line) == 0 || k + 1 == values.size()) {
+        fmt::format_to(out, "\n");
+        writer.flush_if_large();
+      }
     }
   };
   block(ptr, pn, [&](long v) { fmt::format_to(out, "{:{}d}", v, pw); });
   block(ind, in, [&](long v) { fmt::format_to(out, "{:{}d}", v, iw); });
   block(val, vn, [&](double v) { fmt::format_to(out, "{:25.16E}", v); });
-  write_all(file, fmt::to_string(text));
+  writer.finish();
 }
 
 }  // namespace railvsi

@@ -105,24 +105,17 @@ void write_matrix_market(const std::filesystem::path& file, const SparseMatrix& 
   long count = 0;
   for (Eigen::Index j = 0; j < A.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(A, j); it; ++it) count += written(it.row(), it.col()) ? 1 : 0;
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(file.c_str(), "wb"), &std::fclose);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", file.string()));
-  fmt::memory_buffer buffer;
-  const auto flush = [&] {
-    if (std::fwrite(buffer.data(), 1, buffer.size(), out.get()) != buffer.size())
-      throw std::runtime_error(fmt::format("cannot write {}", file.string()));
-    buffer.clear();
-  };
-  fmt::format_to(std::back_inserter(buffer), "%%MatrixMarket matrix coordinate real {}\n% written by railvsi\n{} {} {}\n",
+  MatrixTextWriter out(file);
+  fmt::format_to(std::back_inserter(out.buffer()),
+                 "%%MatrixMarket matrix coordinate real {}\n% written by railvsi\n{} {} {}\n",
                  symmetric ? "symmetric" : "general", A.rows(), A.cols(), count);
   for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
     for (SparseMatrix::InnerIterator it(A, j); it; ++it)
       if (written(it.row(), it.col()))
-        fmt::format_to(std::back_inserter(buffer), "{} {} {:.17g}\n", it.row() + 1, it.col() + 1, it.value());
-    if (buffer.size() > (1u << 20)) flush();
+        fmt::format_to(std::back_inserter(out.buffer()), "{} {} {:.17g}\n", it.row() + 1, it.col() + 1, it.value());
+    out.flush_if_large();
   }
-  flush();
-  if (std::fflush(out.get()) != 0) throw std::runtime_error(fmt::format("cannot write {}", file.string()));
+  out.finish();
 }
 
 }  // namespace railvsi

@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <stdexcept>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -31,6 +32,28 @@ bool TextLines::next(std::string& line) {
 
 InputError TextLines::error_at(long line, const std::string& what) const {
   return InputError(json_path_, fmt::format("{}:{}: {}", file_, line, what));
+}
+
+// ---- writing
+
+MatrixTextWriter::MatrixTextWriter(const std::filesystem::path& file)
+    : file_(file.string()), out_(std::fopen(file.c_str(), "wb"), &std::fclose) {
+  if (!out_) throw std::runtime_error(fmt::format("cannot write {}", file_));
+}
+
+void MatrixTextWriter::write_out() {
+  if (std::fwrite(buffer_.data(), 1, buffer_.size(), out_.get()) != buffer_.size())
+    throw std::runtime_error(fmt::format("cannot write {}", file_));
+  buffer_.clear();
+}
+
+void MatrixTextWriter::flush_if_large() {
+  if (buffer_.size() > (1u << 20)) write_out();
+}
+
+void MatrixTextWriter::finish() {
+  write_out();
+  if (std::fflush(out_.get()) != 0) throw std::runtime_error(fmt::format("cannot write {}", file_));
 }
 
 // ---- assembly with checks

@@ -1,10 +1,15 @@
 #pragma once
 // What the text matrix readers share: numbered lines of the file, entries
 // that remember their line, and one assembly that checks them.
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "core/input_error.hpp"
 #include "core/types.hpp"
@@ -26,6 +31,29 @@ class TextLines {
   std::string file_, json_path_;
   long number_ = 0;
 };
+
+// A matrix file being written: text goes to buffer(), out to the file in
+// pieces of about 1 MiB. Throws std::runtime_error naming the file.
+class MatrixTextWriter {
+ public:
+  explicit MatrixTextWriter(const std::filesystem::path& file);
+  fmt::memory_buffer& buffer() { return buffer_; }
+  void flush_if_large();  // after each column, say
+  void finish();          // the rest, and fflush
+
+ private:
+  void write_out();
+  std::string file_;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out_;
+  fmt::memory_buffer buffer_;
+};
+
+// `s` without leading and trailing blanks and tabs.
+inline std::string trim_blanks(std::string_view s) {
+  const auto a = s.find_first_not_of(" \t");
+  if (a == std::string_view::npos) return {};
+  return std::string(s.substr(a, s.find_last_not_of(" \t") - a + 1));
+}
 
 struct MatrixEntry {
   int row = 0, col = 0;  // 0-based

@@ -111,6 +111,21 @@ TEST_F(ImportErrors, RailNodeNotInTheMatrix) {
   }
 }
 
+TEST_F(ImportErrors, ZUpRailDofsAreRefused) {
+  // With z up the rotation about y is -dw/dx, not the +dv/dx of the rail.
+  json map = json::parse(read_text(dir_ / "map_abaqus.json"));
+  map["rail_lines"][0]["vertical_dof"] = "U3";
+  map["rail_lines"][0]["rotation_dof"] = "UR2";
+  write_json("map.json", map);
+  const auto s = scene("beam_K.abq", "beam_M.abq", "map.json");
+  const VsiRun run = vsi("validate '" + s.string() + "'");
+  expect_input_error(run, dir_ / "map.json", "/rail_lines/0/rotation_dof");
+  EXPECT_NE(run.err.find("U3 with UR2: railvsi needs the vertical displacement along y and the rotation about z "
+                         "(U2/UR3)"),
+            std::string::npos)
+      << run.err;
+}
+
 TEST_F(ImportErrors, RailNodesOutOfOrderAlongXNameTheCoordinateLines) {
   std::string csv = read_text(dir_ / "nodes.csv");
   // Node 5 (line 6) at x = 3 m, before node 4 (line 5, x = 6 m).

@@ -120,6 +120,7 @@ TEST_F(ImportRoundTrip, InspectTellsTrackFromDeckOnAnImportedStructure) {
   const auto& gen_modes = generated["modal_analysis"]["modes"];
   int track_modes = 0;
   for (const auto& m : gen_modes) track_modes += m["type"] == "track";
+  // Modes 4-9 and 11-12: the rail on its pads near 45.7 Hz (mode 4: 45.66 Hz).
   ASSERT_GT(track_modes, 0) << "the first 12 modes of the generated bridge hold a track mode";
 
   for (const ExportFormat f : {ExportFormat::kHarwellBoeing, ExportFormat::kMatrixMarket}) {
@@ -129,11 +130,12 @@ TEST_F(ImportRoundTrip, InspectTellsTrackFromDeckOnAnImportedStructure) {
     EXPECT_EQ(imported["structure"]["deck_dofs"], generated["structure"]["deck_dofs"]);
     const auto& modes = imported["modal_analysis"]["modes"];
     ASSERT_EQ(modes.size(), gen_modes.size());
+    // The same matrices in the same equation order: the same numbers to the
+    // bit (measured). Deck modes are worded differently (the import knows
+    // no supports: "along the bridge" rather than "in span 1").
     for (std::size_t k = 0; k < modes.size(); ++k) {
-      EXPECT_NEAR(modes[k]["frequency_hz"].get<double>(), gen_modes[k]["frequency_hz"].get<double>(),
-                  1e-9 * gen_modes[k]["frequency_hz"].get<double>());
-      EXPECT_NEAR(modes[k]["deck_energy_fraction"].get<double>(), gen_modes[k]["deck_energy_fraction"].get<double>(),
-                  1e-6);
+      EXPECT_EQ(modes[k]["frequency_hz"], gen_modes[k]["frequency_hz"]);
+      EXPECT_EQ(modes[k]["deck_energy_fraction"], gen_modes[k]["deck_energy_fraction"]);
       EXPECT_EQ(modes[k]["type"] == "track", gen_modes[k]["type"] == "track") << "mode " << k + 1;
     }
     EXPECT_FALSE(imported["structure"]["import"]["matched"].empty());
