@@ -18,10 +18,13 @@ namespace railvsi::test {
 constexpr double kBeamSpan_m = 20.0, kBeamEI_Nm2 = 5.0e9, kBeamMass_kg_per_m = 8000.0;
 constexpr int kBeamElements = 10;
 
-// The directory of the files, written on first use; empty (and the test
-// failed) when the script could not run.
+// The directory of the files: the one ctest's fixture test io_beam_files
+// writes (RAILVSI_BEAM_FILES, read only) when it is there; else written on
+// first use. Empty (and the test failed) when the script could not run.
 inline const std::filesystem::path& beam_files_dir() {
   static const std::filesystem::path dir = [] {
+    if (std::filesystem::is_regular_file(std::filesystem::path(RAILVSI_BEAM_FILES) / "map_index.json"))
+      return std::filesystem::path(RAILVSI_BEAM_FILES);
     const auto d = std::filesystem::temp_directory_path() / ("railvsi-beam-files-" + std::to_string(::getpid()));
     std::filesystem::remove_all(d);
     const std::string command = std::string(RAILVSI_PYTHON) + " " + RAILVSI_BEAM_SCRIPT + " '" + d.string() + "' " +
