@@ -1,6 +1,6 @@
 // Every matrix reader against files written by another program: SciPy's
 // mmwrite and hb_write, and write_beam_files.py from the documented layouts
-// (Harwell-Boeing elemental, Abaqus matrix input, ANSYS mapping). The same
+// (Harwell-Boeing elemental RSE and RUE, Abaqus matrix input, ANSYS mapping). The same
 // beam through every reader gives the same K and M to the bit, and the
 // natural frequencies of the generator's beam.
 #include <cctype>
@@ -31,6 +31,7 @@ const BeamFormat kFormats[] = {
     {"beam_K.rsa", "beam_M.rsa", "Harwell-Boeing RSA, labels from", true},        // scipy hb_write + mapping
     {"beam_K_gen.rua", "beam_M_gen.rua", "Harwell-Boeing RUA", false},            // scipy hb_write
     {"beam_K.rse", "beam_M.rse", "Harwell-Boeing RSE, labels from", true},        // elemental, by the script
+    {"beam_K_full.rue", "beam_M_full.rue", "Harwell-Boeing RUE", false},         // elemental, by the script
     {"beam_K.abq", "beam_M.abq", "Abaqus matrix input", true},                    // by the script
 };
 

@@ -2,7 +2,7 @@
 """Writes one small simply supported beam in every matrix format railvsi reads,
 with writers that are not railvsi's: SciPy's mmwrite (Matrix Market) and
 hb_write (Harwell-Boeing RSA and RUA), and, from the documented layouts,
-Harwell-Boeing elemental RSE (Duff, Grimes & Lewis 1992, Users' Guide for the
+Harwell-Boeing elemental RSE and RUE (Duff, Grimes & Lewis 1992, Users' Guide for the
 Harwell-Boeing Sparse Matrix Collection), the Abaqus *MATRIX INPUT data lines
 (row node, row DOF, column node, column DOF, value) and an ANSYS-style
 .mapping file (equation, node, DOF label).
@@ -81,7 +81,8 @@ def main():
             f.write("Matrix Eqn   Node   DOF\n")
             for i, (node, dof) in enumerate(labels):
                 f.write(f"{i + 1:10d} {node:6d}   {'UY' if dof == 2 else 'ROTZ'}\n")
-        write_elemental(os.path.join(out, f"beam_{name}.rse"), n, elements, 1 if name == "K" else 2)
+        write_elemental(os.path.join(out, f"beam_{name}.rse"), n, elements, 1 if name == "K" else 2, True)
+        write_elemental(os.path.join(out, f"beam_{name}_full.rue"), n, elements, 1 if name == "K" else 2, False)
         # Abaqus: K as the full square, M as its upper triangle.
         with open(os.path.join(out, f"beam_{name}.abq"), "w") as f:
             f.write("** beam, written from the *MATRIX INPUT data line layout\n")
@@ -106,16 +107,17 @@ def main():
         json.dump(labelled, open(os.path.join(out, f"map_{style}.json"), "w"), indent=1)
 
 
-def write_elemental(path, n, elements, which):
+def write_elemental(path, n, elements, which, symmetric):
     # RSE: per element its variable list (1-based) and the lower triangle of
-    # its matrix by columns; pointers into the variable lists.
+    # its matrix by columns; RUE: all of it by columns. Pointers into the
+    # variable lists.
     ptr, ind, val = [1], [], []
     for dofs, k, mm in elements:
         A = k if which == 1 else mm
         ind += [d + 1 for d in dofs]
         ptr.append(len(ind) + 1)
         for c in range(len(dofs)):
-            for r in range(c, len(dofs)):
+            for r in range(c if symmetric else 0, len(dofs)):
                 val.append(A[r, c])
 
     def cards(values, per_line, fmt):
@@ -130,7 +132,7 @@ def write_elemental(path, n, elements, which):
     with open(path, "w") as f:
         f.write("%-72s%-8s\n" % ("beam, elemental", "beam"))
         f.write("%14d%14d%14d%14d%14d\n" % (len(p) + len(i) + len(v), len(p), len(i), len(v), 0))
-        f.write("%-14s%14d%14d%14d%14d\n" % ("RSE", n, len(elements), len(ind), len(val)))
+        f.write("%-14s%14d%14d%14d%14d\n" % ("RSE" if symmetric else "RUE", n, len(elements), len(ind), len(val)))
         f.write("%-16s%-16s%-20s\n" % ("(10I8)", "(10I8)", "(3E26.17)"))
         f.write("\n".join(p + i + v) + "\n")
 
