@@ -88,8 +88,10 @@ ModeType classify_mode(const StructureModel& s, const Vector& shape) {
   ModeType t;
   const Vector energy = shape.cwiseProduct(s.M() * shape);
   const double total = energy.sum();
-  const int deck_dofs = std::clamp(s.info().deck_dofs, 0, static_cast<int>(shape.size()));
-  t.deck_energy_fraction = total > 0.0 ? energy.head(deck_dofs).sum() / total : 0.0;
+  double deck = 0.0;
+  for (Eigen::Index i = 0; i < energy.size(); ++i)
+    if (!s.info().is_track_dof(static_cast<int>(i))) deck += energy[i];
+  t.deck_energy_fraction = total > 0.0 ? deck / total : 0.0;
   t.deck = t.deck_energy_fraction >= 0.5;
   if (!t.deck) {
     t.description = "track";

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "io/matrix_text.hpp"
 #include "io/text_fields.hpp"
 
 namespace railvsi {
@@ -19,34 +21,12 @@ namespace {
 
 constexpr const char* kExpectedHeader = "%%MatrixMarket matrix coordinate real|integer general|symmetric";
 
-// Lines of the file with their 1-based numbers; comment and blank lines skipped.
-class MatrixMarketLines {
- public:
-  MatrixMarketLines(const std::filesystem::path& file, std::string json_path)
-      : in_(file), file_(file.string()), json_path_(std::move(json_path)) {
-    if (!in_) throw InputError(json_path_, fmt::format("{}: cannot open the file", file_));
-  }
-
-  bool next_header(std::string& line) { return read(line); }
-  bool next_data(std::string& line) {
-    while (read(line))
-      if (line.find_first_not_of(" \t\r") != std::string::npos && line.front() != '%') return true;
-    return false;
-  }
-  InputError error(const std::string& what) const {
-    return InputError(json_path_, fmt::format("{}:{}: {}", file_, number_, what));
-  }
-
- private:
-  bool read(std::string& line) {
-    if (!std::getline(in_, line)) return false;
-    ++number_;
-    return true;
-  }
-  std::ifstream in_;
-  std::string file_, json_path_;
-  int number_ = 0;
-};
+// The next line that is neither blank nor a % comment.
+bool next_data(TextLines& lines, std::string& line) {
+  while (lines.next(line))
+    if (line.find_first_not_of(" \t") != std::string::npos && line.front() != '%') return true;
+  return false;
+}
 
 std::vector<std::string> lowercase_words(const std::string& line) {
   std::istringstream ss(line);
@@ -59,9 +39,9 @@ std::vector<std::string> lowercase_words(const std::string& line) {
 }
 
 // Returns true for "symmetric", false for "general".
-bool read_header(MatrixMarketLines& lines) {
+bool read_header(TextLines& lines) {
   std::string line;
-  if (!lines.next_header(line)) throw lines.error(fmt::format("empty file; expected {}", kExpectedHeader));
+  if (!lines.next(line)) throw lines.error(fmt::format("empty file; expected {}", kExpectedHeader));
   const auto w = lowercase_words(line);
   const bool ok = w.size() == 5 && w[0] == "%%matrixmarket" && w[1] == "matrix" && w[2] == "coordinate" &&
                   (w[3] == "real" || w[3] == "integer" || w[3] == "double") &&
@@ -70,35 +50,54 @@ bool read_header(MatrixMarketLines& lines) {
   return w[4] == "symmetric";
 }
 
+// One value: a number, or nan/inf spelled as strtod spells them (refused later, with the line).
+bool parse_entry(const std::string& line, long& i, long& j, double& v) {
+  std::istringstream ss(line);
+  std::string value;
+  if (!(ss >> i >> j >> value)) return false;
+  ss >> std::ws;
+  if (!ss.eof()) return false;
+  char* end = nullptr;
+  v = std::strtod(value.c_str(), &end);
+  return end == value.c_str() + value.size();
+}
+
 }  // namespace
 
-SparseMatrix read_matrix_market(const std::filesystem::path& file, const std::string& json_path) {
-  MatrixMarketLines lines(file, json_path);
+MatrixFile MatrixMarketReader::read(const std::filesystem::path& file, const std::string& json_path) const {
+  TextLines lines(file, json_path);
   const bool symmetric = read_header(lines);
   std::string line;
   long rows = 0, cols = 0, nnz = 0;
-  if (!lines.next_data(line)) throw lines.error("missing the size line 'rows columns entries'");
+  if (!next_data(lines, line)) throw lines.error("missing the size line 'rows columns entries'");
   if (!parse_fields(line, rows, cols, nnz) || rows <= 0 || cols <= 0 || nnz < 0)
     throw lines.error(fmt::format("expected the size line 'rows columns entries', found '{}'", line));
   if (rows != cols) throw lines.error(fmt::format("matrix is {} x {}; a structure matrix must be square", rows, cols));
+  if (rows > std::numeric_limits<int>::max() || nnz > std::numeric_limits<int>::max())
+    throw lines.error(fmt::format("{} rows and {} entries: more than this program indexes", rows, nnz));
 
-  std::vector<Triplet> triplets;
-  triplets.reserve(static_cast<std::size_t>(symmetric ? 2 * nnz : nnz));
+  std::vector<MatrixEntry> entries;
+  entries.reserve(static_cast<std::size_t>(std::min<long>(nnz, 1L << 26)));
   for (long k = 0; k < nnz; ++k) {
-    if (!lines.next_data(line))
+    if (!next_data(lines, line))
       throw lines.error(fmt::format("the file ends after {} of the {} entries of the size line", k, nnz));
     long i = 0, j = 0;
     double v = 0.0;
-    if (!parse_fields(line, i, j, v)) throw lines.error(fmt::format("expected 'row column value', found '{}'", line));
+    if (!parse_entry(line, i, j, v)) throw lines.error(fmt::format("expected 'row column value', found '{}'", line));
     if (i < 1 || i > rows || j < 1 || j > cols)
       throw lines.error(fmt::format("index ({}, {}) outside the {} x {} matrix (indices are 1-based)", i, j, rows, cols));
-    triplets.emplace_back(static_cast<int>(i - 1), static_cast<int>(j - 1), v);
-    if (symmetric && i != j) triplets.emplace_back(static_cast<int>(j - 1), static_cast<int>(i - 1), v);
+    entries.push_back({static_cast<int>(i - 1), static_cast<int>(j - 1), v, lines.number()});
   }
-  if (lines.next_data(line)) throw lines.error(fmt::format("more entries than the {} of the size line", nnz));
-  SparseMatrix A(static_cast<int>(rows), static_cast<int>(cols));
-  A.setFromTriplets(triplets.begin(), triplets.end());
-  return A;
+  if (next_data(lines, line)) throw lines.error(fmt::format("more entries than the {} of the size line", nnz));
+  MatrixFile out;
+  out.A = assemble_checked(std::move(entries), static_cast<int>(rows),
+                           symmetric ? MatrixStorage::kLowerTriangle : MatrixStorage::kFull, lines);
+  out.format = symmetric ? "Matrix Market (symmetric)" : "Matrix Market (general)";
+  return out;
+}
+
+SparseMatrix read_matrix_market(const std::filesystem::path& file, const std::string& json_path) {
+  return MatrixMarketReader().read(file, json_path).A;
 }
 
 void write_matrix_market(const std::filesystem::path& file, const SparseMatrix& A, bool symmetric) {
@@ -106,24 +105,17 @@ void write_matrix_market(const std::filesystem::path& file, const SparseMatrix& 
   long count = 0;
   for (Eigen::Index j = 0; j < A.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(A, j); it; ++it) count += written(it.row(), it.col()) ? 1 : 0;
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(file.c_str(), "wb"), &std::fclose);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", file.string()));
-  fmt::memory_buffer buffer;
-  const auto flush = [&] {
-    if (std::fwrite(buffer.data(), 1, buffer.size(), out.get()) != buffer.size())
-      throw std::runtime_error(fmt::format("cannot write {}", file.string()));
-    buffer.clear();
-  };
-  fmt::format_to(std::back_inserter(buffer), "%%MatrixMarket matrix coordinate real {}\n% written by railvsi\n{} {} {}\n",
+  MatrixTextWriter out(file);
+  fmt::format_to(std::back_inserter(out.buffer()),
+                 "%%MatrixMarket matrix coordinate real {}\n% written by railvsi\n{} {} {}\n",
                  symmetric ? "symmetric" : "general", A.rows(), A.cols(), count);
   for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
     for (SparseMatrix::InnerIterator it(A, j); it; ++it)
       if (written(it.row(), it.col()))
-        fmt::format_to(std::back_inserter(buffer), "{} {} {:.17g}\n", it.row() + 1, it.col() + 1, it.value());
-    if (buffer.size() > (1u << 20)) flush();
+        fmt::format_to(std::back_inserter(out.buffer()), "{} {} {:.17g}\n", it.row() + 1, it.col() + 1, it.value());
+    out.flush_if_large();
   }
-  flush();
-  if (std::fflush(out.get()) != 0) throw std::runtime_error(fmt::format("cannot write {}", file.string()));
+  out.finish();
 }
 
 }  // namespace railvsi

@@ -1,16 +1,23 @@
 #pragma once
-// Matrix Market reader (and writer) for imported structures: "coordinate" format, "real"
-// or "integer" entries, "general" or "symmetric" (the lower triangle is
-// mirrored), 1-based indices. Errors name the file and the line.
+// Matrix Market reader (and writer) for imported structures: "coordinate"
+// format, "real" or "integer" entries, "general" or "symmetric" (the lower
+// triangle is stored and mirrored), 1-based indices. Errors name the file
+// and the line. Matrix Market carries no node or DOF labels.
 #include <filesystem>
 #include <string>
 
 #include "core/types.hpp"
+#include "io/matrix_reader.hpp"
 
 namespace railvsi {
 
-// Throws InputError at `json_path` (the scene key that named the file) with
-// "<file>:<line>: <what is wrong>" as the message.
+class MatrixMarketReader final : public MatrixReader {
+ public:
+  std::string_view format() const override { return "Matrix Market"; }
+  MatrixFile read(const std::filesystem::path& file, const std::string& json_path) const override;
+};
+
+// The matrix alone (MatrixMarketReader().read(...).A).
 SparseMatrix read_matrix_market(const std::filesystem::path& file, const std::string& json_path);
 
 // Writes A as "coordinate real": its lower triangle as "symmetric" (A must be

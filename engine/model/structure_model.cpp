@@ -30,6 +30,11 @@ void check_symmetric(const SparseMatrix& A, const std::string& path) {
 
 }  // namespace
 
+bool StructureInfo::is_track_dof(int dof) const {
+  if (!track_dof_list.empty()) return std::binary_search(track_dof_list.begin(), track_dof_list.end(), dof);
+  return dof >= deck_dofs && dof < deck_dofs + track_dofs;
+}
+
 StructureModel::StructureModel(SparseMatrix K, SparseMatrix M, SparseMatrix C,
                                std::vector<RailLine> rails, std::vector<OutputPoint> outputs,
                                StructureInfo info)

@@ -39,6 +39,16 @@ struct StructureInfo {
   // (bridge-2d). Empty when unknown (imported models).
   RailLine deck_line;
   std::vector<double> support_x_m;
+  // The track's DOFs (sorted) when they are not the range above: an imported
+  // model whose map names its track nodes or DOFs. Then track_dofs is their
+  // count and deck_dofs the rest.
+  std::vector<int> track_dof_list;
+  // What an import read and matched (one line each, for vsi inspect and
+  // vsi validate) and what looks wrong without being an error.
+  std::vector<std::string> import_notes;
+  std::vector<std::string> import_warnings;
+
+  bool is_track_dof(int dof) const;
 };
 
 class StructureModel {

@@ -65,6 +65,11 @@ void print_structure(const ordered_json& s, std::ostream& out) {
                      s["damping_source"].get<std::string>());
   for (const auto& p : s["output_points"])
     out << fmt::format("  output point '{}' at x = {:.3f} m\n", p["name"].get<std::string>(), p["x_m"].get<double>());
+  if (!s["import"].is_null()) {
+    out << "  import:\n";
+    for (const auto& line : s["import"]["matched"]) out << "    " << line.get<std::string>() << '\n';
+    for (const auto& line : s["import"]["warnings"]) out << "    warning: " << line.get<std::string>() << '\n';
+  }
 }
 
 void print_modes(const ordered_json& m, std::ostream& out) {
@@ -74,6 +79,7 @@ void print_modes(const ordered_json& m, std::ostream& out) {
                        m["message"].get<std::string>());
     return;
   }
+  if (m.contains("units_warning")) out << "  warning: " << m["units_warning"].get<std::string>() << '\n';
   out << "     n   frequency_hz  deck_energy  type\n";
   for (const auto& mode : m["modes"])
     out << fmt::format("  {:4d}  {:13.4f}  {:10.1f}%  {}\n", mode["n"].get<int>(), mode["frequency_hz"].get<double>(),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/frequency_units_check.hpp"
 #include "analysis/modal_analysis.hpp"
 #include "analysis/mode_classification.hpp"
 #include "simulation/static_equilibrium.hpp"
@@ -35,7 +36,10 @@ ordered_json structure_report(const StructureModel& s) {
           {"damping_source", info.damping_source},
           {"rayleigh_f1_estimate_hz", info.first_frequency_hz > 0.0 ? ordered_json(info.first_frequency_hz)
                                                                      : ordered_json(nullptr)},
-          {"output_points", outputs}};
+          {"output_points", outputs},
+          {"import", info.source == "import" ? ordered_json{{"matched", info.import_notes},
+                                                             {"warnings", info.import_warnings}}
+                                             : ordered_json(nullptr)}};
 }
 
 ordered_json modal_report(const StructureModel& s, int modes) {
@@ -50,6 +54,8 @@ ordered_json modal_report(const StructureModel& s, int modes) {
     return out;
   }
   out["modes"] = ordered_json::array();
+  if (!r.frequencies_hz.empty() && s.info().source == "import")
+    if (const auto warning = frequency_units_warning(r.frequencies_hz.front())) out["units_warning"] = *warning;
   for (std::size_t k = 0; k < r.frequencies_hz.size(); ++k) {
     const ModeType type = classify_mode(s, r.shapes.col(static_cast<Eigen::Index>(k)));
     out["modes"].push_back({{"n", k + 1},

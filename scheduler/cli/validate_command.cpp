@@ -1,5 +1,7 @@
 #include <iostream>
 
+#include "analysis/frequency_units_check.hpp"
+#include "analysis/modal_analysis.hpp"
 #include "cli/commands.hpp"
 #include "io/document_kind.hpp"
 #include "io/json_document.hpp"
@@ -21,6 +23,20 @@ bool is_study(const std::string& file) {
   return doc.contains("trains");
 }
 
+// An imported model's warnings (stderr; the document is still valid): what
+// the import noticed, and a first frequency that suggests a unit mistake.
+void warn_about_import(const StructureModel& structure, const std::string& file) {
+  if (structure.info().source != "import") return;
+  for (const std::string& w : structure.info().import_warnings)
+    std::cerr << "warning: " << file << ": /structure/import: " << w << '\n';
+  ModalOptions options;
+  options.modes = 1;
+  const ModalResult modes = modal_analysis(structure, options);
+  if (modes.status.ok() && !modes.frequencies_hz.empty())
+    if (const auto w = frequency_units_warning(modes.frequencies_hz.front()))
+      std::cerr << "warning: " << file << ": /structure/import: " << *w << '\n';
+}
+
 }  // namespace
 
 int validate_command(const std::string& file) {
@@ -35,7 +51,9 @@ int validate_command(const std::string& file) {
     // A dry run of the setup: factorization (mechanism check) and the static
     // equilibrium of the train, everything but the time loop.
     try {
-      const Simulation setup(load_scene(file));
+      const Scene scene = load_scene(file);
+      const Simulation setup(scene);
+      warn_about_import(*scene.structure, file);
     } catch (const InputError& e) {
       throw e.with_file(file);
     }
