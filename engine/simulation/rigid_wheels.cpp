@@ -1,0 +1,102 @@
+#include "simulation/rigid_wheels.hpp"
+
+namespace railvsi {
+namespace {
+
+// Newmark: a_{n+1} = c0 u_{n+1} - ha, v_{n+1} = c3 u_{n+1} - hv, with ha, hv
+// from the state at t_n (eqs. 16-17 of the paper).
+struct NewmarkHistory {
+  double ha = 0.0, hv = 0.0;
+};
+
+NewmarkHistory newmark_history(const HhtCoefficients& h, double u, double v, double a) {
+  NewmarkHistory n;
+  n.ha = h.c0 * u + h.c1 * v + h.c2 * a;
+  n.hv = h.gamma * h.dt * n.ha - v - h.dt * (1.0 - h.gamma) * a;
+  return n;
+}
+
+}  // namespace
+
+double row_value(const std::optional<RailContactRow>& row, std::array<double, 4> RailContactRow::*w,
+                 const Vector& u) {
+  if (!row) return 0.0;
+  double z = 0.0;
+  for (int k = 0; k < 4; ++k)
+    if (row->dof[k] >= 0) z += ((*row).*w)[k] * u[row->dof[k]];
+  return z;
+}
+
+WheelDefect wheel_defect(const WheelFollowsRail& t, const std::optional<RailContactRow>& row,
+                         const Vector& u_s, double u_w) {
+  const double rel = row_value(row, &RailContactRow::weight, u_s) - u_w;
+  const double slope = row_value(row, &RailContactRow::slope, u_s);
+  const double curv = row_value(row, &RailContactRow::curvature, u_s);
+  return {t.c_a_u * rel + t.c_a_slope * slope + t.c_a_curv * curv + t.a_known,
+          t.c_v_u * rel + t.c_v_slope * slope + t.v_known};
+}
+
+RigidWheels::RigidWheels(const Scene& scene, const TrainLayout& layout) : scene_(scene), layout_(layout) {
+  enabled_ = !layout.contacts.empty() && layout.contacts.front().law->is_constraint();
+  if (enabled_) terms_.resize(layout.contacts.size());
+}
+
+ProfilePoint RigidWheels::profile(double front_x_m, const ContactSpec& c) const {
+  if (!scene_.irregularity) return {};
+  return scene_.irregularity->smooth_at(TrainLayout::position_m(front_x_m, c.offset_m));
+}
+
+void RigidWheels::prepare(const HhtCoefficients& h, double front_x_m, const KinematicState& s,
+                          const std::vector<KinematicState>& vehicles,
+                          const std::vector<std::optional<RailContactRow>>& rows, Vector& r) {
+  if (!enabled_) return;
+  const double V = scene_.speed_mps;
+  for (std::size_t c = 0; c < layout_.contacts.size(); ++c) {
+    const ContactSpec& cs = layout_.contacts[c];
+    const ProfilePoint p = profile(front_x_m, cs);
+    r[static_cast<Eigen::Index>(c)] = p.r_m;
+    // The structure's history terms at the rail DOFs under the wheel.
+    double Nha = 0.0, Nhv = 0.0, N1hv = 0.0;
+    if (const auto& row = rows[c]) {
+      for (int k = 0; k < 4; ++k) {
+        const int d = row->dof[k];
+        if (d < 0) continue;
+        const NewmarkHistory hs = newmark_history(h, s.u[d], s.v[d], s.a[d]);
+        Nha += row->weight[k] * hs.ha;
+        Nhv += row->weight[k] * hs.hv;
+        N1hv += row->slope[k] * hs.hv;
+      }
+    }
+    const KinematicState& vs = vehicles[static_cast<std::size_t>(cs.vehicle)];
+    const NewmarkHistory hw = newmark_history(h, vs.u[cs.local_dof], vs.v[cs.local_dof], vs.a[cs.local_dof]);
+    WheelFollowsRail& t = terms_[c];
+    t.c_a_u = h.c0;
+    t.c_a_slope = 2.0 * V * h.c3;
+    t.c_a_curv = V * V;
+    t.a_known = -Nha - 2.0 * V * N1hv + V * V * p.curvature_per_m + hw.ha;
+    t.c_v_u = h.c3;
+    t.c_v_slope = V;
+    t.v_known = -Nhv + V * p.slope + hw.hv;
+  }
+}
+
+void RigidWheels::follow_rail(double front_x_m, const KinematicState& s,
+                              const std::vector<std::optional<RailContactRow>>& rows,
+                              std::vector<KinematicState>& vehicles) const {
+  if (!enabled_) return;
+  const double V = scene_.speed_mps;
+  for (std::size_t c = 0; c < layout_.contacts.size(); ++c) {
+    const ContactSpec& cs = layout_.contacts[c];
+    const ProfilePoint p = profile(front_x_m, cs);
+    const auto& row = rows[c];
+    KinematicState& w = vehicles[static_cast<std::size_t>(cs.vehicle)];
+    const double slope_u = row_value(row, &RailContactRow::slope, s.u);
+    w.u[cs.local_dof] = row_value(row, &RailContactRow::weight, s.u) + p.r_m;
+    w.v[cs.local_dof] = row_value(row, &RailContactRow::weight, s.v) + V * (slope_u + p.slope);
+    w.a[cs.local_dof] = row_value(row, &RailContactRow::weight, s.a) +
+                        2.0 * V * row_value(row, &RailContactRow::slope, s.v) +
+                        V * V * (row_value(row, &RailContactRow::curvature, s.u) + p.curvature_per_m);
+  }
+}
+
+}  // namespace railvsi
