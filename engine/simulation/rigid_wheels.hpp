@@ -36,6 +36,7 @@
 
 #include "integration/hht.hpp"
 #include "model/rail_line.hpp"
+#include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/train_layout.hpp"
 
@@ -71,10 +72,21 @@ class RigidWheels {
   const std::vector<WheelFollowsRail>& terms() const { return terms_; }
 
   // The wheels' states := the rail top's under them (structure state at the
-  // same time, rows located at front_x_m).
+  // same time, rows located at front_x_m). After a step (after_step), also
+  // records where a wheel crossed a slope discontinuity of its path: a node
+  // whose two elements have different rotation DOFs (a joint at a pier), or
+  // the passage between the rigid path and a line (a rail end, the bridge
+  // end without track). Its velocity jumps there by V times the kink.
   void follow_rail(double front_x_m, const KinematicState& structure,
                    const std::vector<std::optional<RailContactRow>>& rows,
-                   std::vector<KinematicState>& vehicles) const;
+                   std::vector<KinematicState>& vehicles, bool after_step = false, double t_s = 0.0);
+
+  // rigid_path_kink: a rigid wheel crossed a kink of its path. Its velocity
+  // jumps there; the impulse m dv of that jump is not a force any step can
+  // carry, so the wheel force and the structure miss it.
+  // Only kinks inside the evaluation window count (the embankments' rail
+  // ends are not bridge results).
+  void add_warnings(std::vector<RunWarning>& warnings) const;
 
  private:
   ProfilePoint profile(double front_x_m, const ContactSpec& c) const;
@@ -83,6 +95,13 @@ class RigidWheels {
   const TrainLayout& layout_;
   bool enabled_ = false;
   std::vector<WheelFollowsRail> terms_;
+  struct Kink {
+    double impulse_Ns = 0.0, dv_mps = 0.0, t_s = 0.0;
+    int contact = -1;
+  };
+  Kink worst_;  // largest unresolved impulse of the run, in the window
+  std::vector<std::optional<RailContactRow>> rows_prev_;
+  double window_start_m_ = 0.0, window_end_m_ = 0.0;
 };
 
 }  // namespace railvsi

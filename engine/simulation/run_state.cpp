@@ -84,7 +84,7 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   for (std::size_t i = 0; i < layout_.vehicles.size(); ++i)
     hht_update(h, solution_.u_v.segment(layout_.vehicles[i].first_dof, layout_.vehicles[i].model->num_dofs()),
                vehicles_[i]);
-  rigid_.follow_rail(x, s_, rows_, vehicles_);
+  rigid_.follow_rail(x, s_, rows_, vehicles_, /*after_step=*/true, t_new);
   P_ = solution_.P;
   f_s_ = f_new_;
   add_rail_loads(rows_, P_, 1.0, f_s_);
@@ -171,6 +171,7 @@ void RunState::summarize(RunSummary& sum) const {
     if (!std::isfinite(sum.min_contact_force_N)) sum.min_contact_force_N = 0.0;
   }
   sum.max_abs_carbody_acceleration_mps2 = max_abs_body_a_;
+  rigid_.add_warnings(sum.warnings);
 }
 
 }  // namespace railvsi
