@@ -1,7 +1,7 @@
 // Rigid wheel-rail contact: the wheel's vertical DOF follows the rail
 // (simulation/rigid_wheels.hpp). Hard cases of issue 7: every HHT alpha in
 // [-1/3, 0], dt from 2 ms down, perfect and rough track; agreement with
-// Hertz on a TTB-2D-like scene; both solver paths.
+// Hertz on a TTB-2D-like scene. Both solver paths: condensed_vs_reference_test.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -184,29 +184,6 @@ INSTANTIATE_TEST_SUITE_P(AlphaAndTrack, RigidStability,
                                            StabilityCase{"AlphaZeroGermanLow", 0.0, true},
                                            StabilityCase{"AlphaMinusThirdGermanLow", -1.0 / 3.0, true}),
                          [](const ::testing::TestParamInfo<StabilityCase>& info) { return info.param.name; });
-
-// The new formulation on both solver paths: same discrete equations.
-class RigidPaths : public ::testing::TestWithParam<double> {};
-
-TEST_P(RigidPaths, CondensedEqualsReferenceToRoundOff) {
-  Scene scene = testing::small_viaduct_with_dip(300.0, 0.0005);
-  scene.analysis.contact.law = "rigid";
-  scene.analysis.hht = HhtParameters::from_alpha(GetParam());
-  scene.analysis.duration_s = 0.25;
-  scene.analysis.solver = SolverPath::kCondensed;
-  const Result condensed = run(scene);
-  scene.analysis.solver = SolverPath::kReference;
-  const Result reference = run(scene);
-  ASSERT_EQ(condensed.histories.t_s.size(), reference.histories.t_s.size());
-  EXPECT_LT(testing::relative_history_difference(condensed.histories.contact_force_N,
-                                                 reference.histories.contact_force_N), 1e-9);
-  EXPECT_LT(testing::relative_history_difference(condensed.histories.deck_displacement_m,
-                                                 reference.histories.deck_displacement_m), 1e-9);
-  EXPECT_LT(testing::relative_history_difference(condensed.histories.deck_acceleration_mps2,
-                                                 reference.histories.deck_acceleration_mps2), 1e-9);
-}
-
-INSTANTIATE_TEST_SUITE_P(Alpha, RigidPaths, ::testing::Values(0.0, -1.0 / 3.0));
 
 // A wheelset on two rails under a rigid law would need an indeterminate
 // load split on the rigid path: refused with the path (exit 2 in vsi).
