@@ -3,6 +3,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "core/input_error.hpp"
+
 namespace railvsi {
 namespace {
 
@@ -37,6 +39,22 @@ WheelDefect wheel_defect(const WheelFollowsRail& t, const std::optional<RailCont
   const double curv = row_value(row, &RailContactRow::curvature, u_s);
   return {t.c_a_u * rel + t.c_a_slope * slope + t.c_a_curv * curv + t.a_known,
           t.c_v_u * rel + t.c_v_slope * slope + t.v_known};
+}
+
+void check_rigid_contact_alpha(const TrainLayout& layout, double alpha) {
+  if (layout.contacts.empty() || !layout.contacts.front().law->is_constraint() || alpha <= kRigidMaxAlpha + 1e-12)
+    return;
+  for (const ContactSpec& c : layout.contacts) {
+    const VehicleModel& v = *layout.vehicles[static_cast<std::size_t>(c.vehicle)].model;
+    if (v.M()(c.local_dof, c.local_dof) > 0.0)
+      throw InputError("/analysis/hht_alpha",
+                       fmt::format("rigid contact with hht_alpha = {} > {}: a wheel mass moving over the rail's "
+                                   "beam elements excites the rail's highest modes at the element-crossing "
+                                   "frequency, and without numerical damping they grow (wheel forces that "
+                                   "chatter or are several times too large). Use hht_alpha <= {} or the "
+                                   "hertz law",
+                                   alpha, kRigidMaxAlpha, kRigidMaxAlpha));
+  }
 }
 
 RigidWheels::RigidWheels(const Scene& scene, const TrainLayout& layout) : scene_(scene), layout_(layout) {

@@ -80,6 +80,7 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
                      "on the rigid path: use a compliant law (hertz or linear-hertz)");
   auto setup = std::make_unique<SimulationSetup>(
       SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, 0.0});
+  check_rigid_contact_alpha(setup->layout, an.hht.alpha);
   setup->statics = static_equilibrium(scene_, setup->layout, x0);
   for (std::size_t c = 0; c < setup->layout.contacts.size(); ++c)
     setup->layout.contacts[c].law =
