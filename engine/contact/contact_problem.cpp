@@ -6,15 +6,15 @@
 namespace railvsi {
 
 void contact_residual(const Vector& delta_bar, const DenseMatrix& A,
-                      const std::vector<ContactLawPoint>& laws, const Vector& P, Vector& delta,
+                      const std::vector<const ContactLaw*>& laws, const Vector& P, Vector& delta,
                       Vector& phi, DenseMatrix* J) {
   const auto n = P.size();
   delta.noalias() = delta_bar - A * P;
   phi.resize(n);
   if (J) J->setZero(n, n);
   for (Eigen::Index c = 0; c < n; ++c) {
-    const ContactLawPoint& law = laws[static_cast<std::size_t>(c)];
-    if (law.is_rigid()) {
+    const ContactLaw& law = *laws[static_cast<std::size_t>(c)];
+    if (law.is_constraint()) {
       phi[c] = -delta[c] / A(c, c);
       if (J) J->row(c) = A.row(c) / A(c, c);
     } else {
@@ -28,7 +28,7 @@ void contact_residual(const Vector& delta_bar, const DenseMatrix& A,
 }
 
 Status solve_contact_problem(const Vector& delta_bar, const DenseMatrix& A,
-                             const std::vector<ContactLawPoint>& laws,
+                             const std::vector<const ContactLaw*>& laws,
                              const ContactProblemOptions& options, Vector& P,
                              ContactWorkspace& ws, ContactProblemSummary& summary) {
   const double scale = std::max(options.force_scale_N, 1.0);
@@ -57,8 +57,8 @@ Status solve_contact_problem(const Vector& delta_bar, const DenseMatrix& A,
     if (summary.relative_residual <= options.tolerance) {
       // Make the returned forces admissible: exactly the law's value.
       for (Eigen::Index c = 0; c < P.size(); ++c) {
-        const ContactLawPoint& law = laws[static_cast<std::size_t>(c)];
-        if (!law.is_rigid()) P[c] = law.force(ws.delta[c]);
+        const ContactLaw& law = *laws[static_cast<std::size_t>(c)];
+        if (!law.is_constraint()) P[c] = law.force(ws.delta[c]);
       }
       return Status::Ok();
     }

@@ -9,9 +9,9 @@
 //   rigid:     Phi_c = -delta_c / A_cc
 // A unilateral compliant law has H = 0 for an open contact, so contacts
 // open and close inside the iteration (the active set follows from the
-// branch of H). A rigid contact is always bilateral: with a displacement
-// constraint, re-impact of a wheel is ill-posed under HHT (the force
-// chatters between zero and MN-level spikes from step to step).
+// branch of H). A rigid contact is always bilateral (contact_laws.cpp); A
+// then carries the terms of the wheel following the rail and is not
+// symmetric (simulation/rigid_wheels.hpp).
 #include <vector>
 
 #include "contact/contact_law.hpp"
@@ -40,13 +40,13 @@ struct ContactWorkspace {
 
 // Residual Phi(P) and, if J is non-null, its generalized Jacobian.
 void contact_residual(const Vector& delta_bar, const DenseMatrix& A,
-                      const std::vector<ContactLawPoint>& laws, const Vector& P, Vector& delta,
+                      const std::vector<const ContactLaw*>& laws, const Vector& P, Vector& delta,
                       Vector& phi, DenseMatrix* J);
 
 // P holds the initial guess on entry and the solution on exit. A must
 // already include the (1+alpha) factor of HHT.
 Status solve_contact_problem(const Vector& delta_bar, const DenseMatrix& A,
-                             const std::vector<ContactLawPoint>& laws,
+                             const std::vector<const ContactLaw*>& laws,
                              const ContactProblemOptions& options, Vector& P,
                              ContactWorkspace& ws, ContactProblemSummary& summary);
 

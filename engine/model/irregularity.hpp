@@ -1,10 +1,20 @@
 #pragma once
 // Vertical track irregularity r(x): a positive r raises the rail top. Held as
 // samples, linearly interpolated; zero outside the sampled range.
+// Rigid contact makes the wheel follow the profile exactly, so it needs the
+// profile's slope and curvature: for it, smooth_at() interpolates the same
+// samples with a natural cubic spline (C2: a finite wheel acceleration
+// V^2 r'' where linear interpolation would give impulses at every sample).
 #include <string>
 #include <vector>
 
 namespace railvsi {
+
+struct ProfilePoint {
+  double r_m = 0.0;
+  double slope = 0.0;             // dr/dx
+  double curvature_per_m = 0.0;   // d2r/dx2
+};
 
 class Irregularity {
  public:
@@ -13,12 +23,14 @@ class Irregularity {
   Irregularity(std::vector<double> x_m, std::vector<double> r_m, std::string source = {});
 
   double at(double x_m) const;
+  ProfilePoint smooth_at(double x_m) const;
   const std::vector<double>& x_m() const { return x_; }
   const std::vector<double>& r_m() const { return r_; }
   const std::string& source() const { return source_; }
 
  private:
   std::vector<double> x_, r_;
+  std::vector<double> spline_m_;  // second derivatives of the natural cubic spline at the samples
   std::string source_;
 };
 

@@ -11,6 +11,15 @@ std::array<double, 4> hermite_weights(double xi, double h) {
           h * (xi3 - xi2)};
 }
 
+std::array<double, 4> hermite_slopes(double xi, double h) {
+  const double xi2 = xi * xi;
+  return {6.0 * (xi2 - xi) / h, 1.0 - 4.0 * xi + 3.0 * xi2, 6.0 * (xi - xi2) / h, 3.0 * xi2 - 2.0 * xi};
+}
+
+std::array<double, 4> hermite_curvatures(double xi, double h) {
+  return {(12.0 * xi - 6.0) / (h * h), (6.0 * xi - 4.0) / h, (6.0 - 12.0 * xi) / (h * h), (6.0 * xi - 2.0) / h};
+}
+
 RailLine RailLine::from_nodes(std::string name, std::vector<double> x_m,
                               const std::vector<int>& dof_v, const std::vector<int>& dof_rot) {
   RailLine line;
@@ -30,11 +39,19 @@ std::optional<RailContactRow> RailLine::locate(double x) const {
   if (j >= x_m.size()) j = x_m.size() - 1;  // x == end: last element
   const std::size_t i = j - 1;
   const double h = x_m[j] - x_m[i];
-  const auto w = hermite_weights((x - x_m[i]) / h, h);
+  const double xi = (x - x_m[i]) / h;
+  const auto w = hermite_weights(xi, h);
+  const auto w1 = hermite_slopes(xi, h);
+  const auto w2 = hermite_curvatures(xi, h);
   RailContactRow row;
   row.element = static_cast<int>(i);
   row.dof = element_dofs[i];
-  for (int k = 0; k < 4; ++k) row.weight[k] = row.dof[k] >= 0 ? w[k] : 0.0;
+  for (int k = 0; k < 4; ++k) {
+    if (row.dof[k] < 0) continue;
+    row.weight[k] = w[k];
+    row.slope[k] = w1[k];
+    row.curvature[k] = w2[k];
+  }
   return row;
 }
 

@@ -11,12 +11,16 @@
 
 namespace railvsi {
 
-// Hermite row of one wheel on one rail element: rail top = sum weight[k]*u[dof[k]].
-// Constrained DOFs carry dof = -1 and weight 0.
+// Hermite row of one wheel on one rail element: rail top = sum weight[k]*u[dof[k]],
+// its slope d/dx = sum slope[k]*u[dof[k]] and curvature d2/dx2 likewise
+// (rigid contact needs them for the wheel's convective velocity and
+// acceleration). Constrained DOFs carry dof = -1 and zero weights.
 struct RailContactRow {
   int element = -1;
   std::array<int, 4> dof{-1, -1, -1, -1};
   std::array<double, 4> weight{0.0, 0.0, 0.0, 0.0};
+  std::array<double, 4> slope{0.0, 0.0, 0.0, 0.0};
+  std::array<double, 4> curvature{0.0, 0.0, 0.0, 0.0};
 };
 
 struct RailLine {
@@ -39,5 +43,8 @@ struct RailLine {
 // Cubic Hermite shape functions on an element of length h at xi in [0,1]:
 // weights of (v_i, theta_i, v_j, theta_j), theta = dv/dx.
 std::array<double, 4> hermite_weights(double xi, double h);
+// Their first and second derivatives with respect to x.
+std::array<double, 4> hermite_slopes(double xi, double h);
+std::array<double, 4> hermite_curvatures(double xi, double h);
 
 }  // namespace railvsi

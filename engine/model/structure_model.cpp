@@ -83,7 +83,6 @@ StructureModel::StructureModel(SparseMatrix K, SparseMatrix M, SparseMatrix C,
   }
   std::sort(rail_dofs_.begin(), rail_dofs_.end());
   rail_dofs_.erase(std::unique(rail_dofs_.begin(), rail_dofs_.end()), rail_dofs_.end());
-  history_ = std::make_unique<const SparseHistoryOperator>(M_, C_, K_);
   for (std::size_t p = 0; p < outputs_.size(); ++p)
     if (outputs_[p].dof < 0 || outputs_[p].dof >= n)
       throw InputError(fmt::format("/structure/output_points/{}", p),

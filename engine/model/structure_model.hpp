@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "core/types.hpp"
-#include "integration/history_operator.hpp"
 #include "model/rail_line.hpp"
 
 namespace railvsi {
@@ -68,8 +67,6 @@ class StructureModel {
   // Sorted, unique DOFs of all rail lines: the rows/columns of the rail
   // flexibility block.
   const std::vector<int>& rail_dofs() const { return rail_dofs_; }
-  // M, C, K fused for the HHT history terms of the time loop.
-  const SparseHistoryOperator& history() const { return *history_; }
 
  private:
   SparseMatrix K_, M_, C_;
@@ -77,7 +74,6 @@ class StructureModel {
   std::vector<OutputPoint> outputs_;
   StructureInfo info_;
   std::vector<int> rail_dofs_;
-  std::unique_ptr<const SparseHistoryOperator> history_;
 };
 
 }  // namespace railvsi

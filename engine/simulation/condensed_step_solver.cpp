@@ -17,7 +17,7 @@ class CondensedStepSolver final : public StepSolver {
     const auto nc = static_cast<Eigen::Index>(layout_.contacts.size());
     A_.resize(nc, nc);
     delta_bar_.resize(nc);
-    for (const ContactSpec& c : layout_.contacts) laws_.push_back(c.law);
+    for (const ContactSpec& c : layout_.contacts) laws_.push_back(c.law.get());
   }
 
   Status solve(const StepProblem& p, StepSolution& s) override {
@@ -35,12 +35,13 @@ class CondensedStepSolver final : public StepSolver {
 
     // 2-3. Penetration affine in P: delta = delta_bar - (1+alpha) A P.
     bool any_on_track = false;
+    for (Eigen::Index c = 0; c < nc; ++c) any_on_track = any_on_track || p.rows[c].has_value();
+    assemble_A(p.rows);
+    if (p.rigid) add_wheel_following(p, s);
     for (Eigen::Index c = 0; c < nc; ++c) {
       const ContactSpec& cs = layout_.contacts[c];
       delta_bar_[c] = rail_top(p.rows[c], s.u_s) + p.r[c] - s.u_v[cs.global_dof];
-      any_on_track = any_on_track || p.rows[c].has_value();
     }
-    assemble_A(p.rows);
 
     // 4. The small contact problem.
     ContactProblemOptions cpo;
@@ -64,6 +65,16 @@ class CondensedStepSolver final : public StepSolver {
       const VehicleInstance& v = layout_.vehicles[cs.vehicle];
       s.u_v.segment(v.first_dof, v.model->num_dofs()) +=
           (one_alpha * s.P[c]) * vehicles_[v.type].wheel_columns.col(cs.local_wheel);
+    }
+    if (p.rigid) {
+      // The wheels' kinematic terms at the final structure displacement,
+      // in place of those of the free prediction.
+      for (Eigen::Index c = 0; c < nc; ++c) {
+        const auto t = static_cast<std::size_t>(c);
+        const WheelDefect d = wheel_defect((*p.rigid)[t], p.rows[t], s.u_s,
+                                           rail_top(p.rows[t], s.u_s) + p.r[c]);
+        add_vehicle_defect(c, d.a - defect_[t].a, d.v - defect_[t].v, s.u_v);
+      }
     }
     return Status::Ok();
   }
@@ -96,14 +107,83 @@ class CondensedStepSolver final : public StepSolver {
     }
   }
 
+  // u_v -= K_bar_v^-1 (M E^T da + (1+alpha) C E^T dv) for contact c's wheel.
+  void add_vehicle_defect(Eigen::Index c, double da, double dv, Vector& u_v) const {
+    const ContactSpec& cs = layout_.contacts[c];
+    const VehicleInstance& v = layout_.vehicles[cs.vehicle];
+    const VehicleOperator& vo = vehicles_[v.type];
+    u_v.segment(v.first_dof, v.model->num_dofs()) -=
+        da * vo.mass_columns.col(cs.local_wheel) + ((1.0 + options_.alpha) * dv) * vo.damping_columns.col(cs.local_wheel);
+  }
+
+  // Rigid contacts (rigid_wheels.hpp): the wheel's kinematic acceleration and
+  // velocity depend on the rail's slope and curvature under it, which are
+  // affine in P like the rail top. With the constraint u_w = N u_s + r,
+  //   d_a = c_a_u (-r) + c_a_slope z' + c_a_curv z'' + a_known,  z' = N' u_s, ...
+  //   d_v = c_v_u (-r) + c_v_slope z' + v_known,
+  //   z' = z'_bar - (1+alpha) B1 P, z'' = z''_bar - (1+alpha) B2 P,
+  //   B1 = N' F N^T, B2 = N'' F N^T,
+  // and E u_v gains - G_m d_a - (1+alpha) G_c d_v (G = E K_bar_v^-1 {M, C} E^T).
+  // The free prediction takes the d of the free structure displacement; A
+  // gains (1+alpha) (G_m T + (1+alpha) G_c S), T = c_a_slope B1 + c_a_curv B2,
+  // S = c_v_slope B1.
+  void add_wheel_following(const StepProblem& p, StepSolution& s) {
+    const auto nc = A_.rows();
+    const double one_alpha = 1.0 + options_.alpha;
+    defect_.resize(static_cast<std::size_t>(nc));
+    for (Eigen::Index c = 0; c < nc; ++c) {
+      const auto t = static_cast<std::size_t>(c);
+      defect_[t] = wheel_defect((*p.rigid)[t], p.rows[t], s.u_s, rail_top(p.rows[t], s.u_s) + p.r[c]);
+      add_vehicle_defect(c, defect_[t].a, defect_[t].v, s.u_v);
+    }
+    const DenseMatrix& F = op_->rail_flexibility();
+    const auto cross = [&](Eigen::Index c, Eigen::Index e, const std::array<double, 4>& wc) {
+      double b = 0.0;
+      if (!p.rows[c] || !p.rows[e]) return b;
+      for (int i = 0; i < 4; ++i) {
+        const int di = p.rows[c]->dof[i];
+        if (di < 0) continue;
+        const int ri = op_->rail_index(di);
+        for (int j = 0; j < 4; ++j) {
+          const int dj = p.rows[e]->dof[j];
+          if (dj >= 0) b += wc[i] * p.rows[e]->weight[j] * F(ri, op_->rail_index(dj));
+        }
+      }
+      return b;
+    };
+    T_.setZero(nc, nc);
+    S_.setZero(nc, nc);
+    for (Eigen::Index k = 0; k < nc; ++k) {
+      if (!p.rows[k]) continue;
+      const WheelFollowsRail& t = (*p.rigid)[static_cast<std::size_t>(k)];
+      for (Eigen::Index e = 0; e < nc; ++e) {
+        const double b1 = cross(k, e, p.rows[k]->slope), b2 = cross(k, e, p.rows[k]->curvature);
+        T_(k, e) = t.c_a_slope * b1 + t.c_a_curv * b2;
+        S_(k, e) = t.c_v_slope * b1;
+      }
+    }
+    for (Eigen::Index c = 0; c < nc; ++c) {
+      const ContactSpec& cc = layout_.contacts[c];
+      const VehicleOperator& vo = vehicles_[layout_.vehicles[cc.vehicle].type];
+      for (Eigen::Index k = 0; k < nc; ++k) {
+        const ContactSpec& ck = layout_.contacts[k];
+        if (ck.vehicle != cc.vehicle) continue;
+        const double gm = vo.mass_columns(cc.local_dof, ck.local_wheel);
+        const double gc = vo.damping_columns(cc.local_dof, ck.local_wheel);
+        A_.row(c) += one_alpha * (gm * T_.row(k) + one_alpha * gc * S_.row(k));
+      }
+    }
+  }
+
   std::shared_ptr<const StructureOperator> op_;
   const TrainLayout& layout_;
   std::vector<VehicleOperator> vehicles_;
   StepSolverOptions options_;
   std::unique_ptr<SolveWorkspace> ws_;
-  std::vector<ContactLawPoint> laws_;
-  DenseMatrix A_;
+  std::vector<const ContactLaw*> laws_;
+  DenseMatrix A_, T_, S_;
   Vector delta_bar_, load_, correction_;
+  std::vector<WheelDefect> defect_;  // d_a, d_v of the free prediction
   ContactWorkspace contact_ws_;
 };
 

@@ -61,12 +61,25 @@ class ReferenceStepSolver final : public StepSolver {
     const Vector P = z_.tail(nc_);
     add_rail_loads(p.rows, P, -one_alpha, fs);  // + (1+alpha) N^T P
     R.head(ns_) += fs;
+    if (p.rigid) {
+      // The wheel follows the rail: its kinematic acceleration and velocity
+      // replace Newmark's in the vehicle's equations (rigid_wheels.hpp).
+      const Vector u_s = z_.head(ns_);
+      for (int c = 0; c < nc_; ++c) {
+        const ContactSpec& cs = layout_.contacts[c];
+        const auto t = static_cast<std::size_t>(c);
+        const WheelDefect d = wheel_defect((*p.rigid)[t], p.rows[t], u_s, z_[ns_ + cs.global_dof]);
+        const VehicleInstance& v = layout_.vehicles[cs.vehicle];
+        R.segment(ns_ + v.first_dof, v.model->num_dofs()) +=
+            d.a * v.model->M().col(cs.local_dof) + (one_alpha * d.v) * v.model->C().col(cs.local_dof);
+      }
+    }
     for (int c = 0; c < nc_; ++c) {
       const ContactSpec& cs = layout_.contacts[c];
       R[ns_ + cs.global_dof] -= one_alpha * P[c];
       const double delta = penetration(p, c);
-      if (cs.law.is_rigid()) R[ns_ + nv_ + c] = -delta;
-      else R[ns_ + nv_ + c] = P[c] - cs.law.force(delta);
+      if (cs.law->is_constraint()) R[ns_ + nv_ + c] = -delta;
+      else R[ns_ + nv_ + c] = P[c] - cs.law->force(delta);
     }
   }
 
@@ -82,6 +95,7 @@ class ReferenceStepSolver final : public StepSolver {
         const ContactSpec& cs = layout_.contacts[c];
         const int row = ns_ + nv_ + c;
         const int wheel = ns_ + cs.global_dof;
+        if (p.rigid) add_wheel_following_jacobian(p, c, t);
         // Coupling columns: D_bar of eq. (36).
         if (p.rows[c])
           for (int k = 0; k < 4; ++k)
@@ -89,10 +103,10 @@ class ReferenceStepSolver final : public StepSolver {
         t.emplace_back(wheel, row, -one_alpha);
         // Constraint rows: H_bar of eq. (36), or the linearized contact law.
         double dn = 0.0, dp = 0.0;  // d R_c / d(delta), d R_c / dP
-        if (cs.law.is_rigid()) {
+        if (cs.law->is_constraint()) {
           dn = -1.0;
         } else {
-          dn = -cs.law.stiffness(penetration(p, c));
+          dn = -cs.law->stiffness(penetration(p, c));
           dp = 1.0;
         }
         if (dp != 0.0) t.emplace_back(row, row, dp);
@@ -118,11 +132,33 @@ class ReferenceStepSolver final : public StepSolver {
       residual(p, R);
       double contact_res = 0.0;
       for (int c = 0; c < nc_; ++c)
-        if (!layout_.contacts[c].law.is_rigid()) contact_res += R[ns_ + nv_ + c] * R[ns_ + nv_ + c];
+        if (!layout_.contacts[c].law->is_constraint()) contact_res += R[ns_ + nv_ + c] * R[ns_ + nv_ + c];
       if (std::sqrt(contact_res) <= options_.tolerance * options_.force_scale_N) return Status::Ok();
     }
     return {StatusCode::kNoConvergence,
             fmt::format("reference path: Newton did not converge in {} iterations", options_.max_iterations)};
+  }
+
+  // d/d(u_s, u_w) of M E^T d_a + (1+alpha) C E^T d_v for contact c's wheel.
+  void add_wheel_following_jacobian(const StepProblem& p, int c, std::vector<Triplet>& t) const {
+    const ContactSpec& cs = layout_.contacts[c];
+    const WheelFollowsRail& f = (*p.rigid)[static_cast<std::size_t>(c)];
+    const VehicleInstance& v = layout_.vehicles[cs.vehicle];
+    const auto& row = p.rows[static_cast<std::size_t>(c)];
+    const double one_alpha = 1.0 + options_.alpha;
+    for (int i = 0; i < v.model->num_dofs(); ++i) {
+      const double m = v.model->M()(i, cs.local_dof), cd = one_alpha * v.model->C()(i, cs.local_dof);
+      if (m == 0.0 && cd == 0.0) continue;
+      const int r = ns_ + v.first_dof + i;
+      t.emplace_back(r, ns_ + cs.global_dof, -(m * f.c_a_u + cd * f.c_v_u));
+      if (!row) continue;
+      for (int k = 0; k < 4; ++k) {
+        if (row->dof[k] < 0) continue;
+        t.emplace_back(r, row->dof[k],
+                       m * (f.c_a_u * row->weight[k] + f.c_a_slope * row->slope[k] + f.c_a_curv * row->curvature[k]) +
+                           cd * (f.c_v_u * row->weight[k] + f.c_v_slope * row->slope[k]));
+      }
+    }
   }
 
   const TrainLayout& layout_;

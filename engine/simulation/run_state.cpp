@@ -8,7 +8,8 @@ namespace railvsi {
 
 RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics,
                    double start_x_m)
-    : scene_(scene), layout_(layout), start_x_m_(start_x_m) {
+    : scene_(scene), layout_(layout), start_x_m_(start_x_m),
+      history_(scene.structure->M(), scene.structure->C(), scene.structure->K()), rigid_(scene, layout) {
   const int ns = scene.structure->num_dofs();
   s_.resize(ns);
   s_.u = statics.u_s;
@@ -27,6 +28,7 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
   add_moving_force_loads(scene, start_x_m, f_s_);
   rows_ = locate_contacts(*scene.structure, layout, start_x_m);
   add_rail_loads(rows_, P_, 1.0, f_s_);
+  rigid_.follow_rail(start_x_m, s_, rows_, vehicles_);
   r_ = Vector::Zero(nc);
   const std::size_t np = scene.structure->outputs().size();
   max_abs_u_.assign(np, 0.0);
@@ -51,10 +53,11 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   rows_ = locate_contacts(*scene_.structure, layout_, x);
   for (Eigen::Index c = 0; c < r_.size(); ++c)
     r_[c] = scene_.irregularity ? scene_.irregularity->at(TrainLayout::position_m(x, layout_.contacts[c].offset_m)) : 0.0;
+  rigid_.prepare(h, x, s_, vehicles_, rows_, r_);
 
   // Right-hand sides of eq. (3) with the new contact forces left out:
   // (1+alpha) F_{n+1} - alpha F_n + history terms.
-  scene_.structure->history().apply(h, s_, rhs_s_);
+  history_.apply(h, s_, rhs_s_);
   rhs_s_ += (1.0 + h.alpha) * f_new_ - h.alpha * f_s_;
   rhs_v_.resize(layout_.num_vehicle_dofs);
   for (std::size_t i = 0; i < layout_.vehicles.size(); ++i) {
@@ -67,7 +70,7 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   for (Eigen::Index c = 0; c < P_.size(); ++c) rhs_v_[layout_.contacts[c].global_dof] -= h.alpha * P_[c];
 
   solution_.P = P_;
-  const StepProblem problem{rhs_s_, rhs_v_, rows_, r_};
+  const StepProblem problem{rhs_s_, rhs_v_, rows_, r_, rigid_.enabled() ? &rigid_.terms() : nullptr};
   Status st = solver.solve(problem, solution_);
   iterations = solution_.iterations;
   if (!st.ok()) return st;
@@ -81,6 +84,7 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   for (std::size_t i = 0; i < layout_.vehicles.size(); ++i)
     hht_update(h, solution_.u_v.segment(layout_.vehicles[i].first_dof, layout_.vehicles[i].model->num_dofs()),
                vehicles_[i]);
+  rigid_.follow_rail(x, s_, rows_, vehicles_, /*after_step=*/true, t_new);
   P_ = solution_.P;
   f_s_ = f_new_;
   add_rail_loads(rows_, P_, 1.0, f_s_);
@@ -167,6 +171,7 @@ void RunState::summarize(RunSummary& sum) const {
     if (!std::isfinite(sum.min_contact_force_N)) sum.min_contact_force_N = 0.0;
   }
   sum.max_abs_carbody_acceleration_mps2 = max_abs_body_a_;
+  rigid_.add_warnings(sum.warnings);
 }
 
 }  // namespace railvsi

@@ -5,7 +5,9 @@
 #include <optional>
 #include <vector>
 
+#include "integration/history_operator.hpp"
 #include "simulation/result.hpp"
+#include "simulation/rigid_wheels.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "simulation/step_solver.hpp"
@@ -30,6 +32,7 @@ class RunState {
   const Scene& scene_;
   const TrainLayout& layout_;
   double start_x_m_;
+  SparseHistoryOperator history_;  // the structure's M, C, K fused for the HHT history terms
   KinematicState s_;
   std::vector<KinematicState> vehicles_;  // one per vehicle instance
   std::vector<Vector> vehicle_rhs_, vehicle_work_;
@@ -39,6 +42,7 @@ class RunState {
   std::vector<std::optional<RailContactRow>> rows_;
   Vector r_, rhs_s_, rhs_v_, f_new_;
   StepSolution solution_;
+  RigidWheels rigid_;
   // Envelopes, updated every step (not only at stored samples).
   std::vector<double> max_abs_u_, max_abs_a_, min_P_, no_contact_s_;
   double max_abs_body_a_ = 0.0;

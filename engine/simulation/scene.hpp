@@ -5,32 +5,13 @@
 #include <optional>
 #include <vector>
 
+#include "contact/contact_law.hpp"
 #include "integration/hht.hpp"
 #include "model/irregularity.hpp"
 #include "model/structure_model.hpp"
 #include "model/train.hpp"
 
 namespace railvsi {
-
-enum class ContactLaw { kRigid, kLinearHertz, kHertz };
-
-struct ContactOptions {
-  ContactLaw law = ContactLaw::kHertz;
-  // A unilateral contact may open (P = 0) and close again; a bilateral one
-  // holds the wheel on the rail whatever the sign of the force.
-  bool unilateral = true;
-  // Hertz constant G in m/N^(2/3); when absent, from the wheel radius:
-  // G = 3.86e-8 * R^-0.115 (conical tread; see reference/DATA.md).
-  std::optional<double> hertz_G;
-  // Wheels sharing one contact of the model (2 for a plane model lumping
-  // both rails): P = n * (delta/G)^(3/2).
-  double wheels_per_contact = 2.0;
-  // Rail lines every wheel (and every moving force) bears on. A plane train
-  // on a 3D deck with two rails lists both: each wheelset then makes one
-  // contact per rail, sharing wheels_per_contact between them, and a moving
-  // force is split equally between the rails.
-  std::vector<int> rail_lines{0};
-};
 
 enum class SolverPath { kCondensed, kReference };
 
@@ -70,7 +51,5 @@ struct Scene {
 double default_start_x_m(const Scene& scene);
 // [start, end] of the bridge along rail line 0.
 std::pair<double, double> bridge_extent_m(const StructureModel& structure);
-
-double hertz_constant(const ContactOptions& c, double wheel_radius_m);
 
 }  // namespace railvsi

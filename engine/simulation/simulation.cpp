@@ -19,17 +19,10 @@ EffectiveMatrixFactors structure_factors(const HhtCoefficients& h) {
   return {h.mass_factor(), h.damping_factor(), h.stiffness_factor()};
 }
 
-const char* law_name(ContactLaw law) {
-  switch (law) {
-    case ContactLaw::kRigid: return "rigid";
-    case ContactLaw::kLinearHertz: return "linear-hertz";
-    case ContactLaw::kHertz: return "hertz";
-  }
-  return "unknown";
-}
-
 }  // namespace
 
+// Time simulated: until the last axle is past the evaluation window behind
+// the bridge, plus any extra time asked for.
 double default_duration_s(const Scene& scene, double start_x_m) {
   const double end_m = bridge_extent_m(*scene.structure).second + scene.analysis.evaluation_margin_m;
   const double travel_m = end_m - start_x_m + scene.train.length_m();
@@ -97,15 +90,17 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
       throw InputError(fmt::format("/analysis/contact/rail_lines/{}", i),
                        fmt::format("rail line {} does not exist: the structure has {}", rails[i],
                                    scene_.structure->rails().size()));
-  if (rails.size() > 1 && an.contact.law == ContactLaw::kRigid && !scene_.train.is_moving_forces())
+  if (rails.size() > 1 && !scene_.train.is_moving_forces() && make_contact_law(an.contact)->is_constraint())
     throw InputError("/analysis/contact/rail_lines",
                      "a rigid wheelset on several rails has an indeterminate load split where it runs "
                      "on the rigid path: use a compliant law (hertz or linear-hertz)");
   auto setup = std::make_unique<SimulationSetup>(
       SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, 0.0});
+  check_rigid_contact_alpha(setup->layout, an.hht.alpha);
   setup->statics = static_equilibrium(scene_, setup->layout, x0);
   for (std::size_t c = 0; c < setup->layout.contacts.size(); ++c)
-    setup->layout.contacts[c].law.linearize_at(setup->statics.P[static_cast<Eigen::Index>(c)]);
+    setup->layout.contacts[c].law =
+        setup->layout.contacts[c].law->at_static_load(setup->statics.P[static_cast<Eigen::Index>(c)]);
   if (!op_ && an.solver == SolverPath::kCondensed) op_ = make_structure_operator(scene_);
   setup->setup_s = std::chrono::duration<double>(Clock::now() - t_start).count();
   setup_ = std::move(setup);
@@ -142,8 +137,8 @@ Result Simulation::run() const {
   // Fidelity record.
   const bool mf = sc.train.is_moving_forces();
   sum.fidelity.model = mf ? "moving-forces" : "interaction";
-  sum.fidelity.contact_law = mf ? "none" : law_name(an.contact.law);
-  sum.fidelity.unilateral = !mf && !layout.contacts.empty() && layout.contacts.front().law.unilateral;
+  sum.fidelity.contact_law = mf ? "none" : std::string(make_contact_law(an.contact)->name());
+  sum.fidelity.unilateral = !mf && !layout.contacts.empty() && layout.contacts.front().law->unilateral();
   sum.fidelity.solver_path = an.solver == SolverPath::kReference ? "reference" : "condensed";
   sum.fidelity.structure_dofs = sc.structure->num_dofs();
   sum.fidelity.vehicle_dofs = layout.num_vehicle_dofs;

@@ -151,10 +151,10 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
       R[g] -= P[c];
       R[nv + c] -= u_v[g];
       if (compliant) {
-        R[nv + c] -= laws[c].law.compression(P[c]);
-        J(nv + c, nv + c) -= laws[c].law.compliance(P[c]);
-      } else if (!laws[c].law.is_rigid()) {
-        const double nominal_compliance = laws[c].law.compression(kNominalLoad_N) / kNominalLoad_N;
+        R[nv + c] -= laws[c].law->compression(P[c]);
+        J(nv + c, nv + c) -= laws[c].law->compliance(P[c]);
+      } else if (!laws[c].law->is_constraint()) {
+        const double nominal_compliance = laws[c].law->compression(kNominalLoad_N) / kNominalLoad_N;
         R[nv + c] -= nominal_compliance * P[c];
         J(nv + c, nv + c) -= nominal_compliance;
       }
@@ -181,7 +181,7 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
                            fmt::format("wheel {} of vehicle {} carries no static load ({:.1f} N): "
                                        "the vehicle does not rest on its wheels",
                                        laws[c].local_wheel, laws[c].vehicle, z[nv + c]));
-      if (laws.empty() || laws.front().law.is_rigid()) break;
+      if (laws.empty() || laws.front().law->is_constraint()) break;
     } else if (step * dz.norm() <= 1e-13 * z.norm()) {
       break;
     }

@@ -11,6 +11,7 @@
 
 #include "core/status.hpp"
 #include "model/rail_line.hpp"
+#include "simulation/rigid_wheels.hpp"
 #include "simulation/train_layout.hpp"
 #include "solver/structure_operator.hpp"
 
@@ -19,11 +20,14 @@ namespace railvsi {
 // K_bar_s u_s = rhs_s - (1+alpha) sum_c N_c^T P_c
 // K_bar_v u_v = rhs_v + (1+alpha) sum_c E_c^T P_c
 // contact:  delta_c = N_c u_s + r_c - E_c u_v,  P_c = H_c(delta_c)
+// Rigid contacts (rigid_wheels.hpp): delta_c = 0 and the vehicle equations
+// carry - M E^T d_a - (1+alpha) C E^T d_v, the wheel following the rail.
 struct StepProblem {
   const Vector& rhs_s;
   const Vector& rhs_v;
   const std::vector<std::optional<RailContactRow>>& rows;
   const Vector& r;
+  const std::vector<WheelFollowsRail>* rigid = nullptr;  // one per contact, or null
 };
 
 struct StepSolution {

@@ -25,13 +25,7 @@ TrainLayout::TrainLayout(const Train& train, const ContactOptions& contact) {
       c.offset_m = tv.offset_m + wheel.offset_m;
       c.rail_line = rail;
       c.rails_per_wheel = static_cast<int>(contact.rail_lines.size());
-      c.law.law = contact.law;
-      // Hertz cannot pull and a rigid contact cannot let go (see
-      // contact_problem.hpp); the flag matters for the linearized law only.
-      c.law.unilateral = contact.law == ContactLaw::kHertz ||
-                         (contact.law == ContactLaw::kLinearHertz && contact.unilateral);
-      c.law.G = hertz_constant(contact, wheel.radius_m);
-      c.law.n = contact.wheels_per_contact / static_cast<double>(contact.rail_lines.size());
+      c.law = make_contact_law(contact, {wheel.radius_m, c.rails_per_wheel});
       contacts.push_back(c);
       }
     next_dof += model->num_dofs();
@@ -62,6 +56,8 @@ std::vector<VehicleOperator> make_vehicle_operators(const TrainLayout& layout,
     for (Eigen::Index w = 0; w < nw; ++w) Et(model->wheels()[w].dof, w) = 1.0;
     op.wheel_columns = op.factor.solve(Et);
     op.wheel_flexibility = Et.transpose() * op.wheel_columns;
+    op.mass_columns = op.factor.solve(model->M() * Et);
+    op.damping_columns = op.factor.solve(model->C() * Et);
     ops.push_back(std::move(op));
   }
   return ops;

@@ -26,7 +26,7 @@ struct ContactSpec {
   double offset_m = 0.0;  // behind the train's first axle
   int rail_line = 0;
   int rails_per_wheel = 1;
-  ContactLawPoint law;
+  std::shared_ptr<const ContactLaw> law;  // linearized at the static load once it is known
 };
 
 // "v<vehicle>_w<wheel>", 1-based: the name of a wheel in histories and summaries.
@@ -51,6 +51,9 @@ struct VehicleOperator {
   Eigen::LDLT<DenseMatrix> factor;
   DenseMatrix wheel_columns;  // K_bar_v^-1 E^T (n_dofs x n_wheels)
   DenseMatrix wheel_flexibility;  // E K_bar_v^-1 E^T
+  // K_bar_v^-1 M E^T and K_bar_v^-1 C E^T: how the wheels' kinematic
+  // acceleration and velocity under rigid contact move the vehicle.
+  DenseMatrix mass_columns, damping_columns;
 };
 
 std::vector<VehicleOperator> make_vehicle_operators(const TrainLayout& layout,

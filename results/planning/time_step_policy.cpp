@@ -31,7 +31,7 @@ double shortest_rail_element_m(const StructureModel& structure) {
 }
 
 double highest_contact_frequency_hz(const Train& train, const ContactOptions& contact) {
-  if (train.is_moving_forces() || contact.law == ContactLaw::kRigid) return 0.0;
+  if (train.is_moving_forces() || make_contact_law(contact)->is_constraint()) return 0.0;
   double f_max = 0.0;
   std::set<const VehicleModel*> seen;  // one vehicle type is shared by many cars
   for (const TrainVehicle& tv : train.vehicles) {
@@ -41,9 +41,9 @@ double highest_contact_frequency_hz(const Train& train, const ContactOptions& co
     for (std::size_t w = 0; w < v.wheels().size(); ++w) {
       const Wheel& wheel = v.wheels()[w];
       const double Q = std::max(0.0, loads[static_cast<Eigen::Index>(w)]);
-      const double n = contact.wheels_per_contact;
-      // P = n (delta/G)^(3/2): dP/d(delta) = 1.5 n (P/n)^(1/3) / G.
-      const double k = 1.5 * n * std::cbrt(Q / n) / hertz_constant(contact, wheel.radius_m);
+      // The law's tangent stiffness at the static load.
+      const auto law = make_contact_law(contact, {wheel.radius_m, 1})->at_static_load(Q);
+      const double k = law->stiffness(law->compression(Q));
       const double m = v.M()(wheel.dof, wheel.dof);
       if (m > 0.0) f_max = std::max(f_max, std::sqrt(k / m) / (2.0 * std::numbers::pi));
     }

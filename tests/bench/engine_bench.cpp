@@ -33,7 +33,7 @@ Scene ice3_on_viaduct() {
   s.structure = make_bridge_2d(b);
   s.speed_mps = 300.0 / 3.6;
   s.analysis.dt_s = 2.5e-4;
-  s.analysis.contact.law = ContactLaw::kHertz;
+  s.analysis.contact.law = "hertz";
   s.analysis.history_stride = 10;
   return s;
 }

@@ -47,7 +47,7 @@ void BM_SeedScaleKhst(benchmark::State& state) {
     scene.speed_mps = 120.0;
     scene.analysis.dt_s = 2.5e-4;
     scene.analysis.hht = HhtParameters::from_alpha(-0.05);
-    scene.analysis.contact.law = ContactLaw::kHertz;
+    scene.analysis.contact.law = "hertz";
     scene.analysis.contact.rail_lines = {0, 1};
     scene.analysis.duration_s = 2000 * 2.5e-4;
     t0 = Clock::now();

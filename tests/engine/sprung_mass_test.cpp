@@ -122,7 +122,7 @@ Scene biggs_scene(double kv, double dt, double alpha) {
   scene.start_x_m = 0.0;  // the wheel on the left support
   scene.analysis.dt_s = dt;
   scene.analysis.hht = HhtParameters::from_alpha(alpha);
-  scene.analysis.contact.law = ContactLaw::kRigid;
+  scene.analysis.contact.law = "rigid";
   scene.analysis.contact.unilateral = false;
   scene.analysis.duration_s = kL / kSpeed;
   return scene;

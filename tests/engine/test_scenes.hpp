@@ -58,7 +58,7 @@ inline Scene small_viaduct_with_dip(double speed_kmh, double dip_depth_m) {
   s.speed_mps = speed_kmh / 3.6;
   s.irregularity = cosine_dip(4.0, 1.0, dip_depth_m);
   s.analysis.dt_s = 2.0e-4;
-  s.analysis.contact.law = ContactLaw::kHertz;
+  s.analysis.contact.law = "hertz";
   return s;
 }
 

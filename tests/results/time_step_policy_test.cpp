@@ -111,7 +111,7 @@ TEST(TimeStepPolicy, HertzContactFrequencyOfAnIce3Coach) {
   EXPECT_NEAR(f_H, 206.0, 1.0);  // the order of magnitude the policy is justified with
 
   ContactOptions rigid;
-  rigid.law = ContactLaw::kRigid;
+  rigid.law = "rigid";
   rigid.unilateral = false;
   EXPECT_EQ(highest_contact_frequency_hz(train, rigid), 0.0);
   EXPECT_EQ(highest_contact_frequency_hz(one_force(), hertz), 0.0);
