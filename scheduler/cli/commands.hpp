@@ -1,5 +1,5 @@
 #pragma once
-// The subcommands of vsi (DESIGN.md "Command line contract").
+// The subcommands of vsi (README "Commands").
 #include <optional>
 #include <string>
 

@@ -48,7 +48,7 @@ ordered_json moving_force_scene(const StructureModel& model, const std::string& 
 ordered_json multibody_scene(const StructureModel& model, const std::string& summary) {
   return {{"$schema", "scene.schema.json"},
           {"description",
-           fmt::format("The seed-scale run of the paper (reference/DATA.md, 'The paper's example'): the 46-axle "
+           fmt::format("The seed-scale run of the paper (Neves, Montenegro, Azevedo & Calcada (2014), Engineering Structures 69, 83-89, section 5): the 46-axle "
                        "library train KHST (a KHST-like model, see jobs/trains/KHST.json) at 120 m/s (432 km/h), "
                        "dt = 2.5e-4 s, 2,000 steps, HHT alpha = -0.05, nonlinear Hertz contact, each wheelset on "
                        "both rails, over the generated deck ({}). The train starts wholly on the approach track.",
