@@ -5,6 +5,8 @@
 // control characters and ANSI escapes of user strings are escaped.
 #include <algorithm>
 
+#include <fmt/format.h>
+
 #include "scheduler_test_support.hpp"
 
 namespace railvsi::test {
@@ -14,7 +16,15 @@ using nlohmann::json;
 
 constexpr char kEsc = '\x1b';
 
-class TerminalOutput : public ServiceTest {
+class TerminalOutputFixture : public ServiceTest {
+ public:
+  // The transcript of `vsi run` of long_study() in a pseudo-terminal.
+  std::string run_in_terminal(const std::string& terminal_setup) const {
+    const auto study = write_json("study.json", long_study());
+    return in_terminal(fmt::format("{} {} run '{}' --db '{}' --threads 1 >/dev/null", terminal_setup, VSI_BINARY,
+                                   study.string(), (dir_ / "r.sqlite").string()));
+  }
+
  protected:
   // Runs `command` in a pseudo-terminal (script -q -e -c); the transcript
   // of the terminal is returned.
@@ -31,6 +41,8 @@ class TerminalOutput : public ServiceTest {
   }
 };
 
+using TerminalOutput = TerminalOutputFixture;
+
 bool has_script() { return std::system("command -v script >/dev/null 2>&1") == 0; }
 
 // The redraws of the progress line: the pieces between \r and the next \r
@@ -45,27 +57,25 @@ std::vector<std::string> redraws(const std::string& transcript) {
   return out;
 }
 
-TEST_F(TerminalOutput, ProgressLineFitsTheTerminalWidthFromTheTerminalItself) {
-  if (!has_script()) GTEST_SKIP() << "script(1) missing";
-  const auto study = write_json("study.json", long_study());
-  const std::string transcript = in_terminal("stty cols 50 rows 20; " + std::string(VSI_BINARY) + " run '" +
-                                             study.string() + "' --db '" + (dir_ / "r.sqlite").string() +
-                                             "' --threads 1 >/dev/null");
+// Every redraw of the progress line of `vsi run` in a pseudo-terminal set
+// up by `terminal_setup` (shell commands and environment before vsi) has
+// `width` characters.
+void expect_redraws_of_width(const TerminalOutputFixture& test, const std::string& terminal_setup, std::size_t width) {
+  const std::string transcript = test.run_in_terminal(terminal_setup);
   const auto lines = redraws(transcript);
   ASSERT_FALSE(lines.empty()) << transcript;
-  for (const auto& l : lines) EXPECT_EQ(l.size(), 49u) << "'" << l << "'";  // 50 columns less one: no wrap
+  for (const auto& l : lines) EXPECT_EQ(l.size(), width) << "'" << l << "'";
+}
+
+TEST_F(TerminalOutput, ProgressLineFitsTheTerminalWidthFromTheTerminalItself) {
+  if (!has_script()) GTEST_SKIP() << "script(1) missing";
+  expect_redraws_of_width(*this, "stty cols 50 rows 20;", 49);  // 50 columns less one: no wrap
 }
 
 TEST_F(TerminalOutput, ProgressLineFollowsColumnsWhenTheTerminalHasNoSize) {
   if (!has_script()) GTEST_SKIP() << "script(1) missing";
-  const auto study = write_json("study.json", long_study());
   // stty cols 0: the terminal reports no width; COLUMNS says 62.
-  const std::string transcript = in_terminal("stty cols 0 rows 0; COLUMNS=62 " + std::string(VSI_BINARY) + " run '" +
-                                             study.string() + "' --db '" + (dir_ / "r.sqlite").string() +
-                                             "' --threads 1 >/dev/null");
-  const auto lines = redraws(transcript);
-  ASSERT_FALSE(lines.empty()) << transcript;
-  for (const auto& l : lines) EXPECT_EQ(l.size(), 61u) << "'" << l << "'";
+  expect_redraws_of_width(*this, "stty cols 0 rows 0; COLUMNS=62", 61);
 }
 
 TEST_F(TerminalOutput, WithoutATerminalProgressIsPlainLinesWithoutCarriageReturns) {
