@@ -20,7 +20,8 @@ struct ContactOptions {
   // law's default (only linear-hertz offers the choice).
   std::optional<bool> unilateral;
   // Hertz constant G in m/N^(2/3); when absent, from the wheel radius:
-  // G = 3.86e-8 * R^-0.115 (conical tread; see reference/DATA.md).
+  // G = 3.86e-8 * R^-0.115 (conical tread, as cited from Zhai's vehicle-track
+  // coupled dynamics; unverified against a primary source).
   std::optional<double> hertz_G;
   // Wheels sharing one contact of the model (2 for a plane model lumping
   // both rails): P = n * (delta/G)^(3/2).

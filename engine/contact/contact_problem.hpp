@@ -1,6 +1,6 @@
 #pragma once
 // The small nonlinear problem left after condensing the structure and the
-// vehicles (DESIGN.md step 4): find the contact forces P with
+// vehicles (Neves et al. (2014), Eng. Struct. 69, section 3.2): find the contact forces P with
 //   delta(P) = delta_bar - A P
 //   compliant contact:  P_c = H_c(delta_c(P))
 //   rigid (bilateral):  delta_c(P) = 0

@@ -11,7 +11,8 @@
 
 namespace railvsi {
 
-// Defaults: Zhai et al. (2004), both rails lumped (reference/DATA.md).
+// Defaults: Zhai, Wang & Lin (2004), J. Sound Vib. 270, 673-683,
+// both rails lumped.
 struct TrackOptions {
   double rail_EI_Nm2 = 2.059e11 * 2.0 * 3.217e-5;
   double rail_mass_kg_per_m = 2.0 * 60.64;

@@ -219,7 +219,7 @@ Deck3dMesh choose_deck_3d_mesh(const Deck3dOptions& o) {
   if (!(best_error <= 0.05))
     throw InputError("/target_dofs",
                      fmt::format("{} DOFs cannot be reached within 5 %: the nearest mesh has {} (the rails alone "
-                                 "have {}; shorten approach_m or exit_m for a smaller model)",
+                                 "have {}; a shorter approach or exit track gives a smaller model)",
                                  o.target_dofs, best.nx.empty() ? rail_dofs(o) : deck_3d_dofs(o, best),
                                  rail_dofs(o)));
   return best;

@@ -39,7 +39,7 @@ struct Deck3dOptions {
   // within 5 %; ignored when `mesh` is given.
   int target_dofs = 230000;
   std::optional<Deck3dMesh> mesh;
-  // Rails, per rail: Zhai et al. (2004), reference/DATA.md, whose 2D values
+  // Rails, per rail: Zhai, Wang & Lin (2004), J. Sound Vib. 270, 673-683, whose values
   // lump both rails, halved.
   double rail_EI_Nm2 = 2.059e11 * 3.217e-5;
   double rail_mass_kg_per_m = 60.64;

@@ -36,6 +36,7 @@ Train make_hslm_a(const HslmAOptions& o, std::string name) {
 
   Train t;
   t.name = std::move(name);
+  t.coach_length_m = o.coach_length_m;
   for (double offset_m : x) t.moving_forces.push_back({offset_m, o.axle_load_N});
   return t;
 }

@@ -1,6 +1,6 @@
 #pragma once
-// A random vertical track profile of a given spectrum (reference/DATA.md
-// "Sampling"): with the one-sided PSD G of track_spectrum.hpp,
+// A random vertical track profile of a given spectrum (spectral
+// representation, Shinozuka & Jan 1972, J. Sound Vib. 25): with the one-sided PSD G of track_spectrum.hpp,
 //   r(x) = sum_k sqrt(2 * G(W_k) * dW) * cos(W_k * x + phi_k),
 // so that the variance of r is sum_k G(W_k) dW, the midpoint rule for the
 // integral of G over the band.

@@ -1,6 +1,5 @@
 #pragma once
-// Vertical track irregularity spectra (reference/DATA.md "Track irregularity
-// spectra"), all as ONE-SIDED power spectral densities G(Omega) in m^2/(rad/m)
+// Vertical track irregularity spectra, all as ONE-SIDED power spectral densities G(Omega) in m^2/(rad/m)
 // of the spatial angular frequency Omega = 2*pi/lambda in rad/m, normalised
 // so that the variance of r(x) over a band is the integral of G dOmega over
 // that band. Sources differ by factors of 2 and 2*pi (two-sided spectra,
@@ -12,7 +11,7 @@
 //   A_v = 4.032e-7 (low) or 1.080e-6 (high) m*rad.
 // As widely cited from the DB / ORE B176 high-speed spectrum in the
 // train-track-bridge literature (Zhai and co-workers and others).
-// UNVERIFIED: taken from reference/DATA.md, not checked against the ORE B176
+// UNVERIFIED: as cited in that literature, not checked against the ORE B176
 // report; in particular whether the published formula is one-sided in rad/m.
 // No validity band is stated there, so none is enforced.
 //
@@ -22,7 +21,7 @@
 //   cm^2*rad/m, valid for wavelengths 1.524-304.8 m (5-1000 ft);
 //   converted here to m^2/(rad/m) (x 1e-4).
 // As cited from the FRA track classes by Hamid & Yang and later papers.
-// UNVERIFIED: taken from reference/DATA.md, not checked against the FRA
+// UNVERIFIED: as cited in that literature, not checked against the FRA
 // report.
 #include <optional>
 #include <span>

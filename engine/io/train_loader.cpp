@@ -180,8 +180,16 @@ Train hslm_a_train(const json& h, std::string name) {
 
 std::filesystem::path train_library_dir() {
   const char* library = std::getenv("RAILVSI_LIBRARY");
-  return std::filesystem::path(library != nullptr && *library != '\0' ? library : RAILVSI_SOURCE_DIR "/jobs") /
-         "trains";
+  if (library != nullptr && *library != '\0') return std::filesystem::path(library) / "trains";
+  // An installed binary: <prefix>/bin/vsi finds <prefix>/share/railvsi/trains.
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const auto installed = (exe.parent_path() / RAILVSI_DATA_FROM_BINARY / "trains").lexically_normal();
+    if (std::filesystem::is_directory(installed, ec)) return installed;
+  }
+  // The build tree: the library of the source tree.
+  return std::filesystem::path(RAILVSI_SOURCE_DIR "/jobs") / "trains";
 }
 
 std::vector<std::string> library_train_names() {

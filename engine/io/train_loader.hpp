@@ -11,8 +11,9 @@
 
 namespace railvsi {
 
-// <library>/trains, library = $RAILVSI_LIBRARY or the jobs/ folder of the
-// source tree.
+// <library>/trains: library = $RAILVSI_LIBRARY when set; else, for an
+// installed binary, <prefix>/share/railvsi beside <prefix>/bin (found from
+// /proc/self/exe); else the jobs/ folder of the source tree (build tree).
 std::filesystem::path train_library_dir();
 std::vector<std::string> library_train_names();
 

@@ -1,7 +1,6 @@
 #pragma once
 // Lower bound of the damping ratio of railway bridges for dynamic analysis,
-// EN 1991-2:2003 Table 6.6 (values copied in reference/DATA.md, "EN 1991-2 /
-// EN 1990 Annex A2 limits"). Span L in m, zeta in percent:
+// EN 1991-2:2003 Table 6.6. Span L in m, zeta in percent:
 //   steel and composite             0.5 + 0.125 (20 - L)  for L < 20 m, else 0.5
 //   prestressed concrete            1.0 + 0.07  (20 - L)  for L < 20 m, else 1.0
 //   filler beam, reinforced concrete 1.5 + 0.07 (20 - L)  for L < 20 m, else 1.5

@@ -1,4 +1,5 @@
-// The condensed direct method (DESIGN.md, steps 1-5).
+// The condensed direct method (README "The method", steps 1-5; the direct
+// method of Neves et al. (2014), Eng. Struct. 69, section 3).
 #include <fmt/format.h>
 
 #include "contact/contact_problem.hpp"

@@ -1,5 +1,6 @@
 #pragma once
-// One run of the direct method (DESIGN.md "The direct method, condensed").
+// One run of the direct method (Neves et al. (2014), Eng. Struct. 69, 83-89;
+// README "The method").
 // The Simulation holds only const things; run() creates the per-run state.
 #include <memory>
 

@@ -1,5 +1,5 @@
 #pragma once
-// The envelopes of one job (DESIGN.md "Study, queue, workers"): what the
+// The envelopes of one job: what the
 // result store keeps of a run. Every value is finite or absent: an absent
 // value (std::nullopt) is "no value" in the store, never a number. A value
 // is absent when it does not apply (wheel values of moving forces, a wheel

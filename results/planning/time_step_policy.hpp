@@ -1,6 +1,6 @@
 #pragma once
-// The time step of a job whose study does not fix dt_s (DESIGN.md "Fidelity
-// ladder"): the largest step on the ladder dt_max / 2^k that meets every
+// The time step of a job whose study does not fix dt_s (the fidelity
+// ladder): the largest step on the ladder dt_max / 2^k that meets every
 // accuracy bound, so that jobs whose requirements fall in the same ladder
 // interval share one structure factorization.
 //

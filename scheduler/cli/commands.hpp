@@ -1,9 +1,12 @@
 #pragma once
-// The subcommands of vsi (DESIGN.md "Command line contract").
+// The subcommands of vsi (README "Commands").
 #include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "core/input_error.hpp"
+#include "simulation/scene.hpp"
 
 namespace railvsi::cli {
 
@@ -21,6 +24,12 @@ struct SimulateArgs {
   std::optional<std::string> histories_dir;
 };
 
+struct ReplayArgs {
+  std::string db = "vsi-results.sqlite";
+  std::string job_id;  // id or a prefix of at least 6 hex digits
+  std::optional<std::string> histories_dir;
+};
+
 struct InspectArgs {
   std::string file;
   int modes = 6;
@@ -28,9 +37,24 @@ struct InspectArgs {
 };
 
 int simulate_command(const SimulateArgs& args);
+// Runs a scene, writes its histories when asked, prints the summary JSON.
+// cutoff_hz: the code filter's cut-off (a stored job's), else from the
+// structure. Exit 0 when the run is ok, else 1.
+int run_scene(const Scene& scene, const std::string& file_for_errors, std::optional<double> cutoff_hz,
+              const std::optional<std::string>& histories_dir);
+// Runs a stored job again from jobs.scene (vsi replay).
+int replay_command(const ReplayArgs& args);
 int validate_command(const std::string& file);
 // Exit 1 when the modal analysis of a scene's structure fails.
 int inspect_command(const InspectArgs& args);
+
+// A study names study.schema.json in "$schema" or lists "trains"; the
+// engine's document kinds know nothing of studies.
+bool is_study_document(const nlohmann::json& doc);
+
+// Throws InputError when `file` is not a study, saying what it is and which
+// command takes it (a scene: vsi simulate).
+void require_study_file(const std::string& file);
 
 // "error: <file>: <json path>: <message>" on stderr.
 void report_input_error(const InputError& e);

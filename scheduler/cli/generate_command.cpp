@@ -1,6 +1,7 @@
 #include "cli/generate_command.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -48,7 +49,7 @@ ordered_json moving_force_scene(const StructureModel& model, const std::string& 
 ordered_json multibody_scene(const StructureModel& model, const std::string& summary) {
   return {{"$schema", "scene.schema.json"},
           {"description",
-           fmt::format("The seed-scale run of the paper (reference/DATA.md, 'The paper's example'): the 46-axle "
+           fmt::format("The seed-scale run of the paper (Neves, Montenegro, Azevedo & Calcada (2014), Engineering Structures 69, 83-89, section 5): the 46-axle "
                        "library train KHST (a KHST-like model, see jobs/trains/KHST.json) at 120 m/s (432 km/h), "
                        "dt = 2.5e-4 s, 2,000 steps, HHT alpha = -0.05, nonlinear Hertz contact, each wheelset on "
                        "both rails, over the generated deck ({}). The train starts wholly on the approach track.",
@@ -73,10 +74,13 @@ GenerateCommand::GenerateCommand(CLI::App& app) {
   CLI::App* deck = generate_->add_subcommand(
       "deck-3d", "Simply supported spans of solid concrete (8-node hexahedra) with two rails on pads, refined to a "
                  "number of DOFs; writes K.mtx, M.mtx, C.mtx, map.json, moving-forces.json, multibody.json");
-  deck->add_option("--dofs", args_.dofs, "Total DOFs (deck and rails) the mesh is refined to, within 5 %")
-      ->capture_default_str()
+  deck->add_option("--dofs", args_.dofs,
+                   "Total DOFs (deck and rails) the mesh is refined to, within 5 % (the paper's size is 233,292)")
+      ->required()
       ->check(CLI::PositiveNumber);
-  deck->add_option("--out", args_.out_dir, "Directory for the files (created if needed)")->required();
+  deck->add_option("--out", args_.out_dir, "Directory for the files (created if needed; must be empty unless --force)")
+      ->required();
+  deck->add_flag("--force", args_.force, "Write into a non-empty --out, replacing the files of the same names");
   deck->add_option("--spans", args_.spans_m, "Span lengths in m, comma-separated")->delimiter(',')->capture_default_str();
   deck->add_option("--approach", args_.approach_m, "Track on rigid ground before the bridge in m (holds the train "
                                                   "at the start)")
@@ -89,6 +93,14 @@ std::optional<int> GenerateCommand::run_parsed() const {
 }
 
 int generate_deck_3d_command(const GenerateArgs& args) {
+  std::error_code ec;
+  if (!args.force && std::filesystem::is_directory(args.out_dir, ec) &&
+      !std::filesystem::is_empty(args.out_dir, ec))
+    throw InputError("--out", fmt::format("{} is not empty; pass --force to write into it (files of the same "
+                                          "names are replaced)",
+                                          args.out_dir));
+  if (!args.force && std::filesystem::exists(args.out_dir, ec) && !std::filesystem::is_directory(args.out_dir, ec))
+    throw InputError("--out", fmt::format("{} exists and is not a directory", args.out_dir));
   Deck3dOptions o;
   o.target_dofs = static_cast<int>(std::min<long>(args.dofs, 1L << 30));
   o.spans_m = args.spans_m;

@@ -10,7 +10,8 @@
 namespace railvsi::cli {
 
 struct GenerateArgs {
-  long dofs = 230000;
+  long dofs = 0;  // required: a default size would hide a 230,000-DOF run
+  bool force = false;  // write into a non-empty --out
   std::string out_dir;
   std::vector<double> spans_m{25.0, 25.0, 25.0};
   double approach_m = 400.0;

@@ -38,11 +38,17 @@ std::vector<Column> named_columns(const std::vector<std::string>& names, const s
 
 // The three files appear together or not at all, even if vsi is killed
 // while writing.
-void write_histories(const Histories& h, const std::filesystem::path& dir) {
+void write_histories(const Histories& h, const std::filesystem::path& dir, const HistoryExtras* extras) {
   std::vector<Column> deck;
+  if (extras) {
+    deck.push_back({"first_axle_x_m", &extras->first_axle_x_m});
+    deck.push_back({"in_window", &extras->in_window});
+  }
   for (std::size_t p = 0; p < h.point_names.size(); ++p) {
     deck.push_back({h.point_names[p] + "_displacement_m", &h.deck_displacement_m.at(p)});
     deck.push_back({h.point_names[p] + "_acceleration_mps2", &h.deck_acceleration_mps2.at(p)});
+    if (extras && p < extras->filtered_acceleration_mps2.size())
+      deck.push_back({h.point_names[p] + "_acceleration_filtered_mps2", &extras->filtered_acceleration_mps2[p]});
   }
   const auto table_file = [&h](std::string name, std::vector<Column> columns) {
     return FileToWrite{std::move(name), [&h, columns = std::move(columns)](const std::filesystem::path& file) {

@@ -17,6 +17,16 @@ ordered_json finite_or_null(double v) { return std::isfinite(v) ? ordered_json(v
 
 }  // namespace
 
+ordered_json resonance_report(const Train& train, double f0_hz, double min_kmh, double max_kmh) {
+  if (!(train.coach_length_m > 0.0) || !(f0_hz > 0.0)) return nullptr;
+  ordered_json speeds = ordered_json::array();
+  for (int i = 1; i <= 4; ++i) {
+    const double v_kmh = f0_hz * train.coach_length_m / i * 3.6;
+    if (v_kmh >= min_kmh && v_kmh <= max_kmh) speeds.push_back({{"i", i}, {"speed_kmh", v_kmh}});
+  }
+  return {{"train", train.name}, {"coach_length_m", train.coach_length_m}, {"f0_hz", f0_hz}, {"speeds", speeds}};
+}
+
 ordered_json structure_report(const StructureModel& s) {
   const StructureInfo& info = s.info();
   ordered_json rails = ordered_json::array();

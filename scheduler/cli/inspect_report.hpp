@@ -24,6 +24,13 @@ nlohmann::ordered_json modal_report(const StructureModel& structure, int modes);
 // vehicle is not carried by its wheels.
 nlohmann::ordered_json train_report(const Train& train);
 
+// The HSLM-A resonance speeds v_i = f0 D / i (i = 1..4) of a train with a
+// coach length D (EN 1991-2 Annex E; the passages of coaches D apart in
+// phase with every i-th cycle of the fundamental mode f0). Speeds within
+// [min_kmh, max_kmh] only; with a study's range, each says whether the
+// study runs it. null when the train is no HSLM-A or f0 is unknown.
+nlohmann::ordered_json resonance_report(const Train& train, double f0_hz, double min_kmh, double max_kmh);
+
 // Source, sampled range, min, max, mean and RMS of the samples (about zero,
 // trapezoidal over x).
 nlohmann::ordered_json irregularity_report(const Irregularity& irregularity);

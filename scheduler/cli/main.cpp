@@ -10,6 +10,7 @@
 #include "cli/report_command.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/shard_command.hpp"
+#include "core/terminal_text.hpp"
 
 namespace railvsi::cli {
 namespace {
@@ -21,10 +22,20 @@ int run(int argc, char** argv) {
 
   SimulateArgs simulate_args;
   CLI::App* simulate = app.add_subcommand("simulate", "Run one scene and print its summary JSON on stdout");
-  simulate->add_option("scene", simulate_args.scene_file, "Scene file (JSON, schemas/scene.schema.json)")->required();
+  simulate->add_option("scene", simulate_args.scene_file, "Scene file (JSON, schemas/scene.schema.json); - reads stdin")
+      ->required();
   simulate->add_option("--histories", simulate_args.histories_dir,
-                       "Directory for the time histories: deck.csv, and for multibody trains contact_forces.csv "
-                       "and carbody.csv (created if needed)");
+                       "Directory for the time histories: deck.csv (with the first axle's x, the evaluation window "
+                       "and the filtered deck acceleration), and for multibody trains contact_forces.csv and "
+                       "carbody.csv (created if needed)");
+
+  ReplayArgs replay_args;
+  CLI::App* replay = app.add_subcommand(
+      "replay", "Run a job of a study database again from its stored scene; print its summary JSON and write its "
+                "histories, to reconcile with the envelopes vsi query shows");
+  replay->add_option("job", replay_args.job_id, "Job id, or a prefix of at least 6 hex digits")->required();
+  replay->add_option("--db", replay_args.db, "Study database (SQLite file)")->capture_default_str();
+  replay->add_option("--histories", replay_args.histories_dir, "Directory for the time histories, as vsi simulate");
 
   std::string validate_file;
   CLI::App* validate = app.add_subcommand(
@@ -33,8 +44,9 @@ int run(int argc, char** argv) {
 
   InspectArgs inspect_args;
   CLI::App* inspect = app.add_subcommand(
-      "inspect", "Report what a scene, train or irregularity profile holds: structure DOFs, damping, the lowest "
-                 "natural frequencies with their mode types, axles and static loads, profile statistics");
+      "inspect", "Report what a scene, study, train or irregularity profile holds: structure DOFs, damping, the "
+                 "lowest natural frequencies with their mode types, axles and static loads, profile statistics, the "
+                 "HSLM resonance speeds");
   inspect->add_option("file", inspect_args.file, "Document (JSON)")->required();
   inspect->add_option("--modes", inspect_args.modes, "Number of natural frequencies to compute (default 6)")
       ->check(CLI::Range(1, 1000));
@@ -52,6 +64,7 @@ int run(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitInvalidInput;  // help and --version are successes
   }
   if (simulate->parsed()) return simulate_command(simulate_args);
+  if (replay->parsed()) return replay_command(replay_args);
   if (inspect->parsed()) return inspect_command(inspect_args);
   if (const auto code = service.run_parsed()) return *code;
   if (const auto code = generate.run_parsed()) return *code;
@@ -62,7 +75,11 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-void report_input_error(const InputError& e) { std::cerr << "error: " << e.describe() << '\n'; }
+// Messages carry user strings (file names, names, values): escaped, so that
+// they cannot drive the terminal.
+void report_input_error(const InputError& e) {
+  std::cerr << "error: " << scheduler::terminal_safe(e.describe()) << '\n';
+}
 
 }  // namespace railvsi::cli
 
@@ -74,7 +91,7 @@ int main(int argc, char** argv) {
     report_input_error(e);
     return kExitInvalidInput;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << railvsi::scheduler::terminal_safe(e.what()) << '\n';
     return kExitRuntimeFailure;
   } catch (...) {
     std::cerr << "error: unexpected failure\n";

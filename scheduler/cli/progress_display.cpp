@@ -1,17 +1,38 @@
 #include "cli/progress_display.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include "core/terminal_text.hpp"
 
 namespace railvsi::cli {
 
 std::string format_duration(double seconds) {
   const long s = std::lround(std::max(0.0, seconds));
   return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60) : fmt::format("{}:{:02}", s / 60, s % 60);
+}
+
+std::string progress_line(const scheduler::StateCounts& c, double rate, const std::string& eta, int width) {
+  const std::int64_t finished = c.done + c.failed + c.cancelled;
+  const std::int64_t total = std::max<std::int64_t>(c.total(), 1);
+  std::string text = fmt::format("{}/{} done, {} failed, {} running, {:.1f} jobs/s, ETA {}", c.done, c.total(),
+                                 c.failed, c.running, rate, eta);
+  if (static_cast<int>(text.size()) > width) text = fmt::format("{}/{} done, ETA {}", c.done, c.total(), eta);
+  // A bar of up to 30 cells in front when at least 10 fit.
+  const int bar = std::min(30, width - static_cast<int>(text.size()) - 3);
+  if (bar >= 10) {
+    const auto filled = static_cast<std::size_t>(bar * finished / total);
+    text = fmt::format("[{}{}] {}", std::string(filled, '#'), std::string(static_cast<std::size_t>(bar) - filled, '.'),
+                       text);
+  }
+  if (static_cast<int>(text.size()) > width) text.resize(static_cast<std::size_t>(std::max(0, width)));
+  return text;
 }
 
 ProgressDisplay::ProgressDisplay(bool terminal, double log_interval_s)
@@ -23,16 +44,14 @@ void ProgressDisplay::update(const scheduler::StateCounts& c, double elapsed_s, 
   // The rate of this process's session: jobs finished since it started.
   const double rate = elapsed_s > 0.0 ? static_cast<double>(finished - finished_at_start_) / elapsed_s : 0.0;
   const std::string eta = rate > 0.0 ? format_duration(static_cast<double>(c.unfinished()) / rate) : "?";
-  const std::int64_t total = std::max<std::int64_t>(c.total(), 1);
   if (terminal_) {
-    constexpr int kWidth = 30;
-    const int filled = static_cast<int>(kWidth * finished / total);
-    std::fputs(fmt::format("\r[{}{}] {}/{} done, {} failed, {} running, {:.1f} jobs/s, ETA {}   ",
-                           std::string(static_cast<std::size_t>(filled), '#'),
-                           std::string(static_cast<std::size_t>(kWidth - filled), '.'), c.done, c.total(), c.failed,
-                           c.running, rate, eta)
-                   .c_str(),
-               stderr);
+    // One line rewritten in place: never wider than the terminal (less one
+    // column, so that the cursor does not wrap), padded to erase the last one.
+    const int width = std::max(1, scheduler::terminal_columns(STDERR_FILENO) - 1);
+    std::string line = progress_line(c, rate, eta, width);
+    line.resize(static_cast<std::size_t>(width), ' ');
+    std::fputs("\r", stderr);
+    std::fputs(line.c_str(), stderr);
     if (final) std::fputs("\n", stderr);
     std::fflush(stderr);
     return;

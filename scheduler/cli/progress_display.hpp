@@ -1,6 +1,7 @@
 #pragma once
-// Progress of `vsi work` / `vsi run`: a bar with the ETA redrawn on stderr
-// when it is a terminal, else a plain log line every few seconds.
+// Progress of `vsi work` / `vsi run`: on a terminal, one line redrawn with
+// \r on stderr, fitted to the terminal's width (TIOCGWINSZ, else $COLUMNS,
+// else 80); otherwise a plain log line every log_interval_s.
 #include "queue/job_queue.hpp"
 
 namespace railvsi::cli {
@@ -16,6 +17,10 @@ class ProgressDisplay {
   double last_log_s_ = -1e9;
   std::int64_t finished_at_start_ = -1;
 };
+
+// The progress text of a terminal, at most `width` columns: a bar when it
+// fits, the counts, rate and ETA (shortened when they do not fit).
+std::string progress_line(const scheduler::StateCounts& counts, double rate, const std::string& eta, int width);
 
 // "1:02:03", "4:05"
 std::string format_duration(double seconds);

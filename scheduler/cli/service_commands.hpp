@@ -1,6 +1,6 @@
 #pragma once
 // The study service's subcommands of vsi: submit, work, run, status, query,
-// cancel, retry (DESIGN.md "Command line contract"). They share one
+// cancel, retry (README "Studies" and "Commands"). They share one
 // database option, default ./vsi-results.sqlite.
 #include <optional>
 #include <string>

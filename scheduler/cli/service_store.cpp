@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "core/terminal_text.hpp"
 #include "queue/job_queue.hpp"
 #include "store/store_schema.hpp"
 
@@ -16,7 +17,8 @@ std::unique_ptr<scheduler::Database> open_store(const std::string& file) {
 std::optional<std::string> find_study(scheduler::Database& db, const std::string& id_or_prefix) {
   const std::string id = scheduler::resolve_study_id(db, id_or_prefix);
   if (id.empty()) {
-    std::cerr << "error: no study " << id_or_prefix << " in " << db.file()
+    std::cerr << "error: no study " << scheduler::terminal_safe(id_or_prefix) << " in "
+              << scheduler::terminal_safe(db.file())
               << (id_or_prefix.size() < 6 ? " (give at least 6 digits of the id)" : "") << '\n';
     return std::nullopt;
   }

@@ -6,6 +6,7 @@
 #include "cli/progress_display.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/service_store.hpp"
+#include "core/terminal_text.hpp"
 #include "query/study_status.hpp"
 
 namespace railvsi::cli {
@@ -24,7 +25,7 @@ int status_command(const ServiceArgs& args) {
   for (const std::string& id : ids) {
     const scheduler::StudyStatus s = scheduler::study_status(*db, id);
     const auto& c = s.counts;
-    std::cout << fmt::format("study {} ({})\n", s.id, s.name);
+    std::cout << fmt::format("study {} ({})\n", s.id, scheduler::terminal_safe(s.name));
     std::cout << fmt::format("  jobs: {} total, {} queued, {} running, {} done, {} failed, {} cancelled\n", c.total(),
                              c.queued, c.running, c.done, c.failed, c.cancelled);
     if (s.jobs_per_s)

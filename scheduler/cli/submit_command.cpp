@@ -8,6 +8,8 @@
 #include "cli/progress_display.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/service_store.hpp"
+#include "core/terminal_text.hpp"
+#include "query/study_refinement.hpp"
 #include "query/study_report.hpp"
 #include "queue/job_queue.hpp"
 #include "study/study_plan.hpp"
@@ -26,6 +28,7 @@ struct Submitted {
 Submitted submit(const ServiceArgs& args) {
   scheduler::ExpandOptions options;
   options.allow_large = args.allow_large;
+  require_study_file(args.study_file);
   const scheduler::StudyPlan plan = scheduler::load_study(args.study_file, options);
   Submitted s{open_store(args.db), {}};
   s.result = scheduler::submit_study(*s.db, plan, args.max_attempts);
@@ -56,18 +59,40 @@ int submit_command(const ServiceArgs& args) {
   return kExitOk;
 }
 
+namespace {
+
+// Work until the queue is empty; then studies that ask for refinement
+// ("refine": true) get their next pass of speeds, which are worked in turn,
+// until every peak is resolved (a bounded number of passes).
+bool work_and_refine(const ServiceArgs& args, scheduler::Database& db, const std::vector<std::string>& studies) {
+  constexpr int kMaxPasses = 12;  // 10 km/h to 1 km/h takes 4; a wide range of peaks a few more
+  bool failed = false;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    failed = work(args).jobs_failed > 0 || failed;
+    std::size_t added = 0;
+    for (const std::string& id : studies) {
+      const std::size_t n = scheduler::refine_study(db, id, args.max_attempts);
+      if (n > 0) spdlog::info("study {}: refinement pass {} adds {} jobs around the peaks", id.substr(0, 12), pass + 1, n);
+      added += n;
+    }
+    if (added == 0) break;
+  }
+  return failed;
+}
+
+}  // namespace
+
 int work_command(const ServiceArgs& args) {
-  open_store(args.db);  // create and migrate before the workers start
-  const scheduler::WorkSummary s = work(args);
-  return s.jobs_failed > 0 ? kExitStudyFailedJobs : kExitOk;
+  const auto db = open_store(args.db);  // create and migrate before the workers start
+  return work_and_refine(args, *db, scheduler::study_ids(*db)) ? kExitStudyFailedJobs : kExitOk;
 }
 
 int run_command(const ServiceArgs& args) {
   const Submitted submitted = submit(args);
   const scheduler::SubmitResult& r = submitted.result;
   scheduler::Database& db = *submitted.db;
-  spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id, r.jobs, r.new_jobs, args.db);
-  work(args);
+  spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id, r.jobs, r.new_jobs, scheduler::terminal_safe(args.db));
+  work_and_refine(args, db, {r.study_id});
   const scheduler::StudyInfo info = scheduler::study_info(db, r.study_id);
   std::cout << scheduler::format_table(info, scheduler::study_results(db, {r.study_id, {}, {}, {}, {}}));
   const scheduler::StateCounts c = scheduler::state_counts(db, r.study_id);

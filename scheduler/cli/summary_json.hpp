@@ -1,5 +1,5 @@
 #pragma once
-// The summary JSON of `vsi simulate` (DESIGN.md "Command line contract").
+// The summary JSON of `vsi simulate` (README "Commands", the summary keys).
 #include <nlohmann/json.hpp>
 
 #include "simulation/result.hpp"

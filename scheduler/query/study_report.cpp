@@ -3,27 +3,32 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
+#include <tuple>
 
 #include <fmt/format.h>
+
+#include "core/terminal_text.hpp"
 
 namespace railvsi::scheduler {
 namespace {
 
 using nlohmann::ordered_json;
 
-// The table's columns: overall quantity, heading, scale to the shown unit, check key.
+// The table's columns: overall quantity, heading, shown unit, scale to it, check key.
 struct Column {
   const char* quantity;
   const char* heading;
+  const char* unit;
   double scale;
   const char* check;
 };
 
 constexpr Column kColumns[] = {
-    {"deck_acceleration_mps2", "deck a [m/s2]", 1.0, "deck_acceleration_limit_mps2"},
-    {"deck_displacement_m", "deck w [mm]", 1e3, "deck_displacement_limit_m"},
-    {"unloading_ratio", "dQ/Q", 1.0, "max_unloading_ratio"},
-    {"carbody_acceleration_mps2", "body a [m/s2]", 1.0, "carbody_acceleration_limit_mps2"},
+    {"deck_acceleration_mps2", "deck a", "m/s2, code filter", 1.0, "deck_acceleration_limit_mps2"},
+    {"deck_displacement_m", "deck w", "mm", 1e3, "deck_displacement_limit_m"},
+    {"unloading_ratio", "dQ/Q", "", 1.0, "max_unloading_ratio"},
+    {"carbody_acceleration_mps2", "body a", "m/s2", 1.0, "carbody_acceleration_limit_mps2"},
 };
 
 std::string shown(std::optional<double> v, double scale) {
@@ -63,42 +68,161 @@ std::vector<TrainEnvelope> study_envelope_over_speeds(const std::vector<JobResul
   return out;
 }
 
+namespace {
+
+// Tables fit an 80-column terminal: labels longer than their share are cut
+// with "~" (csv and json carry them whole).
+constexpr std::size_t kTableWidth = 80;
+
+std::string fit(const std::string& text, std::size_t width) {
+  const std::string safe = terminal_safe(text);
+  if (safe.size() <= width) return safe;
+  return width == 0 ? std::string() : safe.substr(0, width - 1) + "~";
+}
+
+// Widths of the two label columns so that `fixed` more columns fit.
+std::pair<std::size_t, std::size_t> label_widths(std::size_t train_w, std::size_t irr_w, std::size_t fixed) {
+  while (train_w + irr_w + fixed > kTableWidth && (train_w > 8 || irr_w > 10)) {
+    if (irr_w > 10 && irr_w >= train_w) --irr_w;
+    else if (train_w > 8) --train_w;
+    else --irr_w;
+  }
+  return {train_w, irr_w};
+}
+
+// A line cut to the table width (the last column is free text).
+std::string table_line(std::string line) {
+  line.erase(line.find_last_not_of(' ') + 1);
+  if (line.size() > kTableWidth) line = line.substr(0, kTableWidth - 1) + "~";
+  return line + "\n";
+}
+
+std::vector<SeededValue> seeded_values(const std::vector<JobResult>& jobs, const std::string& quantity) {
+  std::vector<SeededValue> rows;
+  for (const JobResult& j : jobs)
+    if (!j.profile_family.empty()) rows.push_back({j.train, j.speed_kmh, j.profile_family, j.overall(quantity)});
+  return rows;
+}
+
+std::map<std::string, std::string> family_labels(const std::vector<JobResult>& jobs) {
+  std::map<std::string, std::string> labels;
+  for (const JobResult& j : jobs)
+    if (!j.profile_family.empty()) labels.emplace(j.profile_family, j.family_label);
+  return labels;
+}
+
+}  // namespace
+
+std::vector<SampleStatistics> study_profile_statistics(const std::vector<JobResult>& jobs, const std::string& quantity) {
+  return profile_statistics(seeded_values(jobs, quantity), extreme_of(quantity).value_or(Extreme::kMax));
+}
+
+bool at_edge_of_speed_range(const std::vector<JobResult>& jobs, const TrainEnvelope& e) {
+  std::set<double> speeds;
+  for (const JobResult& j : jobs)
+    if (j.train == e.train) speeds.insert(j.speed_kmh);
+  return e.value && speeds.size() >= 3 &&
+         (e.governing_speed_kmh == *speeds.begin() || e.governing_speed_kmh == *speeds.rbegin());
+}
+
 std::string format_table(const StudyInfo& study, const std::vector<JobResult>& jobs) {
   std::vector<const Column*> columns;
   for (const Column& c : kColumns)
     if (any_value(jobs, c.quantity)) columns.push_back(&c);
   std::size_t train_w = 5, irr_w = 12;
+  std::vector<std::size_t> value_w;
+  for (const Column* c : columns) value_w.push_back(std::string(c->heading).size());
   for (const JobResult& j : jobs) {
-    train_w = std::max(train_w, j.train.size());
-    irr_w = std::max(irr_w, j.irregularity.size());
+    train_w = std::max(train_w, terminal_safe(j.train).size());
+    irr_w = std::max(irr_w, terminal_safe(j.irregularity).size());
+    for (std::size_t k = 0; k < columns.size(); ++k)
+      value_w[k] = std::max(value_w[k], shown(j.overall(columns[k]->quantity), columns[k]->scale).size());
   }
-  std::string out = fmt::format("study {} ({}): {} jobs shown\n\n", study.id.substr(0, 12), study.name, jobs.size());
-  out += fmt::format("{:<{}}  {:>7}  {:<{}}  {:>9}", "train", train_w, "km/h", "irregularity", irr_w, "dt [s]");
-  for (const Column* c : columns) out += fmt::format("  {:>13}", c->heading);
-  out += "  state\n";
+  std::size_t fixed = 2 + 5 + 2 + 2 + 8 + 2 + 6;  // km/h, dt, a short state
+  for (std::size_t w : value_w) fixed += 2 + w;
+  std::tie(train_w, irr_w) = label_widths(train_w, irr_w, fixed);
+
+  std::string out = table_line(
+      fmt::format("study {} ({}): {} jobs shown", study.id.substr(0, 12), terminal_safe(study.name), jobs.size()));
+  std::string units = "units: dt s";
+  for (const Column* c : columns)
+    if (*c->unit != '\0') units += fmt::format("; {} {}", c->heading, c->unit);
+  out += table_line(units) + "\n";
+  std::string heading = fmt::format("{:<{}}  {:>5}  {:<{}}  {:>8}", "train", train_w, "km/h", "irregularity", irr_w, "dt");
+  for (std::size_t k = 0; k < columns.size(); ++k) heading += fmt::format("  {:>{}}", columns[k]->heading, value_w[k]);
+  out += table_line(heading + "  state");
   for (const JobResult& j : jobs) {
-    out += fmt::format("{:<{}}  {:>7}  {:<{}}  {:>9.3g}", j.train, train_w, speed_text(j.speed_kmh), j.irregularity,
-                       irr_w, j.dt_s);
-    for (const Column* c : columns) out += fmt::format("  {:>13}", shown(j.overall(c->quantity), c->scale));
-    out += "  " + (j.state == "failed" && !j.status.empty() ? j.state + " (" + j.status + ")" : j.state) + "\n";
+    std::string line = fmt::format("{:<{}}  {:>5}  {:<{}}  {:>8.3g}", fit(j.train, train_w), train_w,
+                                   speed_text(j.speed_kmh), fit(j.irregularity, irr_w), irr_w, j.dt_s);
+    for (std::size_t k = 0; k < columns.size(); ++k)
+      line += fmt::format("  {:>{}}", shown(j.overall(columns[k]->quantity), columns[k]->scale), value_w[k]);
+    line += "  " + terminal_safe(j.state == "failed" && !j.status.empty() ? j.state + " (" + j.status + ")" : j.state);
+    out += table_line(line);
   }
 
+  // The envelope over speeds; notes that do not fit go on the next line.
+  std::size_t etrain_w = 5, eirr_w = 12;
+  for (const JobResult& j : jobs) {
+    etrain_w = std::max(etrain_w, terminal_safe(j.train).size());
+    eirr_w = std::max(eirr_w, terminal_safe(j.irregularity).size());
+  }
+  std::tie(etrain_w, eirr_w) = label_widths(etrain_w, eirr_w, 2 + 8 + 2 + 10 + 2 + 5 + 2 + 14);
   out += "\nenvelope over speeds (the governing value, and the case that gives it):\n";
-  out += fmt::format("{:<{}}  {:<15}  {:>10}  {:>7}  {:<{}}  {}\n", "train", train_w, "quantity", "value", "km/h",
-                     "irregularity", irr_w, "check");
+  out += table_line(fmt::format("{:<{}}  {:<8}  {:>10}  {:>5}  {:<{}}  {}", "train", etrain_w, "quantity", "value",
+                                "km/h", "irregularity", eirr_w, "check"));
+  bool any_edge = false;
   for (const Column* c : columns)
     for (const TrainEnvelope& e : study_envelope_over_speeds(jobs, c->quantity)) {
-      std::string note;
+      std::vector<std::string> notes;
       if (study.checks.contains(c->check) && e.value) {
         const double limit = study.checks.at(c->check).get<double>();
-        note = fmt::format("{} (limit {})", *e.value <= limit ? "ok" : "EXCEEDED", shown(limit, c->scale));
+        notes.push_back(fmt::format("{} (limit {})", *e.value <= limit ? "ok" : "EXCEEDED", shown(limit, c->scale)));
+      }
+      if (at_edge_of_speed_range(jobs, e)) {
+        notes.push_back("EDGE");
+        any_edge = true;
       }
       if (e.cases_without_value > 0)
-        note += fmt::format("{}{} of {} cases without a value", note.empty() ? "" : "; ", e.cases_without_value, e.cases);
-      out += fmt::format("{:<{}}  {:<15}  {:>10}  {:>7}  {:<{}}  {}\n", e.train, train_w, c->heading,
-                         shown(e.value, c->scale), e.value ? speed_text(e.governing_speed_kmh) : "-",
-                         e.value ? e.governing_irregularity : "-", irr_w, note);
+        notes.push_back(fmt::format("{} of {} cases without a value", e.cases_without_value, e.cases));
+      std::string line = fmt::format("{:<{}}  {:<8}  {:>10}  {:>5}  {:<{}}", fit(e.train, etrain_w), etrain_w,
+                                     c->heading, shown(e.value, c->scale),
+                                     e.value ? speed_text(e.governing_speed_kmh) : "-",
+                                     fit(e.value ? e.governing_irregularity : "-", eirr_w), eirr_w);
+      std::string note_text;
+      for (const auto& n : notes) note_text += (note_text.empty() ? "" : "; ") + n;
+      if (note_text.empty()) out += table_line(line);
+      else if (line.size() + 2 + note_text.size() <= kTableWidth) out += table_line(line + "  " + note_text);
+      else out += table_line(line) + table_line("    " + note_text);
     }
+  if (any_edge)
+    out += "EDGE: the governing value is at the first or last speed of the train's range;\n"
+           "a larger value may lie beyond it (extend the speeds).\n";
+
+  // Several seeds of one random profile: mean, standard deviation and extreme.
+  const auto labels = family_labels(jobs);
+  const std::size_t stats_train_w = std::min<std::size_t>(etrain_w, 10);
+  std::string block;
+  for (const Column* c : columns) {
+    const Extreme extreme = extreme_of(c->quantity).value_or(Extreme::kMax);
+    for (const StatisticsOverSpeeds& s : statistics_over_speeds(study_profile_statistics(jobs, c->quantity), extreme))
+      for (const auto& [governs, g] : {std::pair{"mean", s.governing_mean}, std::pair{"extreme", s.governing_extreme}}) {
+        if (!g) continue;
+        std::string line = fmt::format("{:<{}}  {:<6}  {:<10}  {:>2}  {:<7}  {:>5}  {:>8}  {:>8}  {:>8}",
+                                       fit(s.train, stats_train_w), stats_train_w, c->heading, fit(labels.at(s.family), 10),
+                                       g->samples, governs, speed_text(g->speed_kmh), shown(g->mean, c->scale),
+                                       shown(g->std_dev, c->scale), shown(g->extreme, c->scale));
+        if (g->without_value > 0) line += fmt::format("  {} without a value", g->without_value);
+        block += table_line(line);
+      }
+  }
+  if (!block.empty()) {
+    out += "\nover random profiles (n seeds of one spectrum per train and speed: mean, standard\n"
+           "deviation with divisor n - 1, extreme), at the speed where the mean governs and\n"
+           "where the extreme governs; every speed: vsi query --format json:\n";
+    out += table_line(fmt::format("{:<{}}  {:<6}  {:<10}  {:>2}  {:<7}  {:>5}  {:>8}  {:>8}  {:>8}", "train", stats_train_w,
+                                  "qty", "profile", "n", "governs", "km/h", "mean", "std", "extreme"));
+    out += block;
+  }
   return out;
 }
 
@@ -148,8 +272,25 @@ ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& j
                         {"governing_speed_kmh", e.governing_speed_kmh},
                         {"governing_irregularity", e.governing_irregularity},
                         {"cases", e.cases},
-                        {"cases_without_value", e.cases_without_value}});
+                        {"cases_without_value", e.cases_without_value},
+                        {"at_edge_of_speed_range", at_edge_of_speed_range(jobs, e)}});
   out["envelope_over_speeds"] = std::move(over);
+  // Over the seeds of each random profile, per train x speed (only when a
+  // profile has several seeds).
+  const auto labels = family_labels(jobs);
+  ordered_json stats = ordered_json::array();
+  for (const EnvelopeQuantity& q : envelope_quantities())
+    for (const SampleStatistics& g : study_profile_statistics(jobs, std::string(q.name)))
+      stats.push_back({{"train", g.train},
+                       {"speed_kmh", g.speed_kmh},
+                       {"profile", labels.at(g.family)},
+                       {"quantity", std::string(q.name)},
+                       {"samples", g.samples},
+                       {"samples_without_value", g.without_value},
+                       {"mean", number(g.mean)},
+                       {"std_dev", number(g.std_dev)},
+                       {q.extreme == Extreme::kMax ? "max" : "min", number(g.extreme)}});
+  out["profile_statistics"] = std::move(stats);
   return out;
 }
 

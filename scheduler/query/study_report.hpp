@@ -1,16 +1,21 @@
 #pragma once
 // The three outputs of `vsi query`:
-// - table: one line per job, then the envelope over speeds of every train
-//   (maximum and governing speed) with the study's checks;
+// - table (80 columns, control characters escaped): one line per job, then
+//   the envelope over speeds of every train (maximum and governing speed)
+//   with the study's checks and a flag when it is at the edge of the speed
+//   range, then, for random profiles with several seeds, the mean, standard
+//   deviation and extreme over the seeds;
 // - csv: one line per envelope value (train, irregularity, speed, quantity,
 //   location, value), values only, in full precision: two runs of the same
 //   study give identical files;
-// - json: everything, timings and fidelity included.
+// - json: everything, timings, fidelity and the statistics over seeds per
+//   train x speed (profile_statistics) included.
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "envelopes/profile_statistics.hpp"
 #include "envelopes/speed_envelope.hpp"
 #include "query/study_results.hpp"
 
@@ -19,6 +24,14 @@ namespace railvsi::scheduler {
 // The envelope over speeds (results/ envelope_over_speeds) of one quantity,
 // trains in the order of the study.
 std::vector<TrainEnvelope> study_envelope_over_speeds(const std::vector<JobResult>& jobs, const std::string& quantity);
+
+// Mean, standard deviation (divisor n - 1) and extreme of one quantity over
+// the seeds of each random profile, per train x speed.
+std::vector<SampleStatistics> study_profile_statistics(const std::vector<JobResult>& jobs, const std::string& quantity);
+
+// The governing value sits at the first or last speed the train runs (of at
+// least three): a larger value may lie beyond the range.
+bool at_edge_of_speed_range(const std::vector<JobResult>& jobs, const TrainEnvelope& envelope);
 
 std::string format_table(const StudyInfo& study, const std::vector<JobResult>& jobs);
 std::string format_csv(const std::vector<JobResult>& jobs);

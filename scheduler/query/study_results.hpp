@@ -33,6 +33,10 @@ struct JobResult {
   double cutoff_hz = 0.0;
   std::optional<double> wall_s, loop_s;
   std::string fidelity;  // JSON, empty before a run
+  // A random profile (a spectrum with a seed): its profile without the seed
+  // (canonical JSON, the key that groups the seeds of one spectrum) and the
+  // spectrum's name. Both empty for other profiles.
+  std::string profile_family, family_label;
   // quantity -> location ("" for the whole job) -> value (nullopt: not produced)
   std::map<std::string, std::map<std::string, std::optional<double>>> envelopes;
   std::optional<double> overall(const std::string& quantity) const;

@@ -26,12 +26,20 @@ SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts)
       .run();
   result.new_study = db.changes() > 0;
   db.prepare("INSERT OR IGNORE INTO cache_stats (study_id) VALUES (?)").bind(1, plan.id).run();
+  result.new_jobs = insert_study_jobs(db, plan.id, plan.jobs, 0, max_attempts, now);
+  tx.commit();
+  return result;
+}
+
+std::size_t insert_study_jobs(Database& db, const std::string& study_id, const std::vector<JobSpec>& jobs,
+                              std::int64_t first_position, int max_attempts, double now) {
+  std::size_t new_jobs = 0;
   Statement insert_job = db.prepare(
       "INSERT OR IGNORE INTO jobs (id, scene, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
       "cutoff_hz, max_attempts, enqueued_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   Statement link = db.prepare("INSERT OR IGNORE INTO study_jobs (study_id, job_id, position) VALUES (?, ?, ?)");
-  std::int64_t position = 0;
-  for (const JobSpec& j : plan.jobs) {
+  std::int64_t position = first_position;
+  for (const JobSpec& j : jobs) {
     insert_job.bind(1, j.id)
         .bind(2, j.scene)
         .bind(3, j.train)
@@ -44,11 +52,10 @@ SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts)
         .bind(10, max_attempts)
         .bind(11, now)
         .run();
-    result.new_jobs += static_cast<std::size_t>(db.changes());
-    link.bind(1, plan.id).bind(2, j.id).bind(3, position++).run();
+    new_jobs += static_cast<std::size_t>(db.changes());
+    link.bind(1, study_id).bind(2, j.id).bind(3, position++).run();
   }
-  tx.commit();
-  return result;
+  return new_jobs;
 }
 
 JobQueue::JobQueue(Database& db, std::string worker, double lease_s)

@@ -30,6 +30,12 @@ struct SubmitResult {
 // stays as it is (re-submitting adds nothing).
 SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts = 3);
 
+// Inserts jobs (INSERT OR IGNORE: a job already stored stays as it is) and
+// links them to the study at positions first_position, +1, ...; returns the
+// number of new jobs. Inside the caller's transaction.
+std::size_t insert_study_jobs(Database& db, const std::string& study_id, const std::vector<JobSpec>& jobs,
+                              std::int64_t first_position, int max_attempts, double now);
+
 struct ClaimedJob {
   std::string id;
   std::string scene;

@@ -48,7 +48,9 @@ InputError in_study(const InputError& e, const std::string& file, const std::str
   return InputError(mapped, e.what(), file);
 }
 
-std::string train_label(const json& train) {
+}  // namespace
+
+std::string study_train_label(const json& train) {
   if (train.is_string()) return train.get<std::string>();
   if (train.contains("library")) {
     const std::string name = train.at("library").get<std::string>();
@@ -56,6 +58,8 @@ std::string train_label(const json& train) {
   }
   return train.at("name").get<std::string>();
 }
+
+namespace {
 
 std::string profile_label(const json& p, std::size_t index) {
   if (p.is_null()) return "none";
@@ -230,7 +234,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& base_dir, c
           profiles[j].path);
 
   std::vector<std::string> train_labels;
-  for (const json& t : trains) train_labels.push_back(train_label(t));
+  for (const json& t : trains) train_labels.push_back(study_train_label(t));
   make_unique(train_labels);
 
   plan.jobs.reserve(count);

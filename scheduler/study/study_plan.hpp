@@ -47,6 +47,10 @@ struct ExpandOptions {
 // /trains/2/vehicles/0/primary/k_N_per_m.
 StudyPlan expand_study(const nlohmann::json& doc, const std::filesystem::path& base_dir, const std::string& file,
                        const ExpandOptions& options = {});
+// The label of a study's train as jobs carry it: its library name ("X as
+// Y" for a renamed library train) or its name.
+std::string study_train_label(const nlohmann::json& train);
+
 StudyPlan load_study(const std::filesystem::path& file, const ExpandOptions& options = {});
 
 }  // namespace railvsi::scheduler

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "core/terminal_text.hpp"
 #include "store/store_schema.hpp"
 #include "workers/job_runner.hpp"
 
@@ -89,11 +90,12 @@ void worker_loop(const WorkOptions& options, const std::string& name, Factorizat
         ++tally.done;
       } else {
         ++tally.failed;
-        spdlog::warn("job {} ({} at {} km/h, {}) failed: {}", job->id.substr(0, 12), job->train, job->speed_kmh,
-                     job->irregularity, outcome.error);
+        // Names and messages are user strings: escaped before they reach a terminal.
+        spdlog::warn("job {} ({} at {} km/h, {}) failed: {}", job->id.substr(0, 12), terminal_safe(job->train),
+                     job->speed_kmh, terminal_safe(job->irregularity), terminal_safe(outcome.error));
       }
     } catch (const std::exception& e) {
-      spdlog::error("{}: job {} attempt {}: {}", name, job->id.substr(0, 12), job->attempt, e.what());
+      spdlog::error("{}: job {} attempt {}: {}", name, job->id.substr(0, 12), job->attempt, terminal_safe(e.what()));
       try {
         queue.release_after_error(*job, e.what());
       } catch (const std::exception& e2) {

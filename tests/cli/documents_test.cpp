@@ -62,7 +62,9 @@ TEST_F(Documents, HistoriesAreWrittenAsCsvWithOneColumnPerPointQuantity) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string deck = read_text(out / "deck.csv");
   EXPECT_EQ(deck.substr(0, deck.find('\n')),
-            "t_s,quarter_displacement_m,quarter_acceleration_mps2,midspan_displacement_m,midspan_acceleration_mps2");
+            "t_s,first_axle_x_m,in_window,quarter_displacement_m,quarter_acceleration_mps2,"
+            "quarter_acceleration_filtered_mps2,midspan_displacement_m,midspan_acceleration_mps2,"
+            "midspan_acceleration_filtered_mps2");
   const auto rows = std::count(deck.begin(), deck.end(), '\n');
   EXPECT_EQ(rows, json::parse(run.out)["run"]["steps"].get<long>() + 2) << "header, t = 0 and every step";
   EXPECT_FALSE(std::filesystem::exists(out / "contact_forces.csv")) << "moving forces have no contact";

@@ -1,6 +1,6 @@
 // Bad input never crashes and never half-runs: `vsi validate` and `vsi
 // simulate` exit with 2, print nothing on stdout, and name the file and the
-// JSON path of the offending value on stderr (DESIGN.md "Input documents").
+// JSON path of the offending value on stderr.
 #include <optional>
 
 #include "exported_beam.hpp"

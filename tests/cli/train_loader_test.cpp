@@ -81,7 +81,7 @@ TEST(TrainLoader, LibraryNamesAreListedFromTheTrainsFolder) {
   EXPECT_THROW(load_library_train("../trains/ICE3"), InputError) << "a name is never a path";
 }
 
-// EN 1991-2 HSLM-A as collected in reference/DATA.md (N, D, d, P), and two
+// EN 1991-2 Annex E, HSLM-A table (N, D, d, P), and two
 // axle positions per train from the public CALDINTAV files
 // caldintav/trains/aNN.def (GitHub SoftwareImpacts/SIMPAC-2024-175): the
 // first axle of the first articulated bogie and the first axle of the rear
@@ -103,7 +103,7 @@ TEST(TrainLibrary, HslmATrainsHaveTheAxlesOfTheRuleForAllTen) {
     SCOPED_TRACE("HSLM-A" + std::to_string(r.number));
     const Train t = load_library_train("HSLM-A" + std::to_string(r.number));
     ASSERT_TRUE(t.is_moving_forces());
-    // The rule of DATA.md, segment by segment: power car (4 axles, 17 m),
+    // The EN 1991-2 Annex E layout, segment by segment: power car (4 axles, 17 m),
     // 3.525 m, end coach (2 axles, d), gap g, N + 1 articulated bogies D
     // apart (2 axles each, d), gap g, end coach, 3.525 m, power car.
     const double g = r.D_m - 1.5 * r.d_m - 1.7625;

@@ -1,5 +1,5 @@
 // EN 1991-2 Table 6.6 damping, against values worked out by hand from the
-// table (reference/DATA.md), and its use by the bridge generator.
+// table (EN 1991-2:2003 Table 6.6), and its use by the bridge generator.
 #include <gtest/gtest.h>
 
 #include "generators/bridge_2d.hpp"

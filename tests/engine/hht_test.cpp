@@ -99,7 +99,7 @@ TEST_P(HhtOrder, ErrorAtFixedTimeFallsFourfoldWhenStepHalves) {
   EXPECT_LE(r2, 2.1);
 }
 
-// alpha = 0 (the trapezoidal rule) as DESIGN.md asks; HHT is second order
+// alpha = 0 (the trapezoidal rule); HHT is second order
 // for every alpha in [-1/3, 0] with the consistent beta, gamma (Hilber,
 // Hughes & Taylor 1977), so -0.05 and -1/3 are checked too.
 INSTANTIATE_TEST_SUITE_P(Cases, HhtOrder,
@@ -210,7 +210,7 @@ TEST(HhtParameters, ConsistentParametersAreAccepted) {
     const auto problem = hht_stability_problem(p);
     EXPECT_FALSE(problem.has_value()) << "alpha " << alpha << ": " << *problem;
   }
-  // DATA.md: alpha = -0.05 gives beta = 0.275625, gamma = 0.55.
+  // Hilber, Hughes & Taylor (1977): alpha = -0.05 gives beta = 0.275625, gamma = 0.55.
   const HhtParameters p = HhtParameters::from_alpha(-0.05);
   EXPECT_NEAR(p.beta, 0.275625, 1e-15);
   EXPECT_NEAR(p.gamma, 0.55, 1e-15);
@@ -218,7 +218,7 @@ TEST(HhtParameters, ConsistentParametersAreAccepted) {
 
 TEST(HhtParameters, PapersPrintedBetaGammaAreRejectedEitherWayRound) {
   // The paper's example prints beta = 9/20, gamma = 9025/40000 for
-  // alpha = -0.05: gamma < 1/2 (DESIGN.md).
+  // alpha = -0.05: gamma < 1/2.
   const HhtParameters printed{-0.05, 9.0 / 20.0, 9025.0 / 40000.0};
   const HhtParameters swapped{-0.05, 9025.0 / 40000.0, 9.0 / 20.0};
   EXPECT_TRUE(hht_stability_problem(printed).has_value());

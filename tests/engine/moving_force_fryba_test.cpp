@@ -1,5 +1,6 @@
 // Moving constant force on a simply supported beam: the engine's FE/HHT run
-// against Frýba's modal series (reference/DATA.md "Analytical benchmarks"),
+// against Frýba's modal series (Fryba, Vibration of Solids and Structures under
+// Moving Loads, 1972, section 1.3),
 // evaluated here independently, undamped and with Rayleigh damping.
 #include <gtest/gtest.h>
 
@@ -22,7 +23,7 @@ using testing::kPi;
 
 TEST(FrybaSeries, ClosedFormMatchesDataMdUndampedExpression) {
   // Check of the reference itself: the oscillator solution above, summed,
-  // equals DATA.md's printed series for a non-resonant speed.
+  // equals Fryba's printed series for a non-resonant speed.
   const Beam b{25.0, 7.0e10, 15000.0};
   const double P = 1.0e5, a = 0.3, w1 = b.omega(1), v = a * w1 * b.L / kPi;
   const double v0 = 2.0 * P * std::pow(b.L, 3) / (std::pow(kPi, 4) * b.EI);
@@ -111,7 +112,7 @@ TEST_P(MovingForceOnSimplySupportedBeam, MidspanPeakMatchesFrybaSeriesWithinHalf
               "max history diff/peak=%.3e\n",
               c.speed_parameter, c.damping_ratio, steps, peak_engine, peak_series,
               peak_engine / peak_series - 1.0, max_diff / peak_series);
-  // Tolerance 0.5 % on the peak during the crossing (DESIGN.md verification).
+  // Tolerance 0.5 % on the peak during the crossing .
   EXPECT_NEAR(peak_engine / peak_series, 1.0, 5e-3);
   // The whole history, not only its peak: within 0.1 % of the peak (observed
   // <= 1e-4: the mesh and dt above leave room to spare; a wrong load or

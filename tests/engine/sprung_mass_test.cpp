@@ -1,5 +1,5 @@
-// Sprung mass crossing a simply supported beam (Biggs 1964; Yang & Wu 2001;
-// reference/DATA.md "Analytical benchmarks"): the engine's interaction run
+// Sprung mass crossing a simply supported beam (Biggs, Introduction to
+// Structural Dynamics, 1964; Yang & Wu 2001, Eng. Struct. 23, 452-469): the engine's interaction run
 // (FE deck, HHT, rigid bilateral contact) against an independent modal
 // integration of the beam and the sprung mass written here (classical RK4).
 #include <gtest/gtest.h>
@@ -22,7 +22,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kG = kGravity_mps2;  // the engine's gravity; an input of both models
 
-// Biggs' data (DATA.md).
+// Biggs' data (Biggs 1964, as used by Yang & Wu 2001).
 constexpr double kL = 25.0;
 constexpr double kEI = 2.87e9 * 2.90;
 constexpr double kMass = 2303.0;    // kg/m
@@ -177,7 +177,7 @@ TEST_P(BiggsSprungMass, MidspanDeflectionAndBodyAccelerationMatchModalIntegratio
   std::printf("[biggs] hht alpha=%.2f: max |w_mid| ref=%.6e engine=%.6e, rel diff %.3e; "
               "max |body acc| ref=%.6e engine=%.6e, rel diff %.3e; contact force rel diff %.3e\n",
               alpha, max_abs(ref.midspan_m), max_abs(u), du, max_abs(ref.body_acc_mps2), max_abs(a), da, dP);
-  // Tolerances (DESIGN.md verification): max abs difference over the
+  // Tolerances: max abs difference over the
   // crossing within 1 % of the reference's max abs value, per quantity.
   EXPECT_LT(du, 1e-2);
   EXPECT_LT(da, 1e-2);
@@ -190,7 +190,7 @@ INSTANTIATE_TEST_SUITE_P(HhtAlpha, BiggsSprungMass, ::testing::Values(0.0, -0.05
                          });
 
 // Frýba's undamped series for a constant force P (downward) entering at
-// x = 0 at t = 0 (DATA.md), deflection positive up at x, for t <= L/v.
+// x = 0 at t = 0 (Fryba 1972, section 1.3), deflection positive up at x, for t <= L/v.
 double fryba_midspan_up(double P, double t, int modes) {
   const double w1 = beam_omega(1), a = kSpeed * kPi / (kL * w1);
   const double v0 = 2.0 * P * std::pow(kL, 3) / (std::pow(kPi, 4) * kEI);

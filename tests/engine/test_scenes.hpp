@@ -11,7 +11,8 @@
 
 namespace railvsi::testing {
 
-// ICE3 coach of reference/DATA.md.
+// ICE3 coach (Goicolea 2014, AVE S-103 simplified description; see
+// jobs/trains/ICE3.json).
 inline Car2dOptions ice3_coach() {
   Car2dOptions c;
   c.name = "ICE3 coach";

@@ -1,4 +1,4 @@
-// Random track profiles from the spectra of reference/DATA.md: variance
+// Random track profiles from the spectra of track_spectrum.hpp: variance
 // against closed-form integrals of the spectra, the published ordering of
 // the track qualities, and reproducibility checked against the published
 // SplitMix64 reference rather than against the code under test.
@@ -35,7 +35,7 @@ std::uint64_t reference_splitmix64(std::uint64_t& x) {
 }
 
 // Integral of the one-sided PSD over [w1, w2] in closed form (partial
-// fractions of the DATA.md formulas), in m^2.
+// fractions of the spectrum formulas), in m^2.
 double german_band_variance(double A_v, double w1, double w2) {
   const double c = 0.8246, r = 0.0206;
   const auto F = [&](double w) { return A_v * c * c / (c * c - r * r) * (std::atan(w / r) / r - std::atan(w / c) / c); };
@@ -50,7 +50,7 @@ double fra_band_variance(double A_v_cm2, double w1, double w2) {
 struct NamedSpectrum {
   const char* name;
   bool german;
-  double A_v;  // as in DATA.md
+  double A_v;  // as in the cited spectra
 };
 const NamedSpectrum kDataMd[] = {
     {"german-low", true, 4.032e-7}, {"german-high", true, 1.080e-6}, {"fra-1", false, 1.2107},
@@ -134,7 +134,7 @@ TEST(TrackSpectrum, HasTheSpectraOfTheReferenceData) {
     SCOPED_TRACE(n.name);
     const TrackSpectrum& s = spectrum(n.name);
     EXPECT_EQ(s.A_v, n.A_v);
-    // The PSD at one frequency, from the DATA.md formula written out here.
+    // The PSD at one frequency, from the spectrum formula written out here.
     const double w = 0.5;
     const double expected = n.german ? n.A_v * 0.8246 * 0.8246 / ((w * w + 0.0206 * 0.0206) * (w * w + 0.8246 * 0.8246))
                                      : 1e-4 * 0.25 * n.A_v * 0.8245 * 0.8245 / (w * w * (w * w + 0.8245 * 0.8245));

@@ -3,6 +3,8 @@
 // byte for byte as a single-process run, merging twice changes nothing,
 // foreign or other-version shards are refused with exit 2 before anything
 // is written, missing and unfinished shards are reported.
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 
@@ -110,6 +112,20 @@ TEST_F(ShardCommands, ShardsAreOrdinaryStoresAndTheMergeAnswersQueryAsOneRun) {
   const std::string csv = query_csv(merged, id);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 18 * 11);
   EXPECT_EQ(csv, reference_csv(study, id)) << "the merged store differs from a single-process run";
+  // ... and its compliance report too, byte for byte (date line fixed).
+  ::setenv("SOURCE_DATE_EPOCH", "0", 1);
+  const auto report_of = [&](const std::filesystem::path& store, const std::string& name) {
+    const auto file = dir_ / name;
+    const VsiResult r =
+        vsi({"report", "--db", store.string(), "--study", id, "--out", file.string(), "--no-histories"}, name);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const std::string merged_report = report_of(merged, "merged.html");
+  EXPECT_EQ(merged_report, report_of(dir_ / "reference.sqlite", "reference.html"));
+  EXPECT_NE(merged_report.find("Overall"), std::string::npos);
+  ::unsetenv("SOURCE_DATE_EPOCH");
   Database db(merged.string());
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done' AND attempts = 1"), 18);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM shard"), 0) << "the merged store is not a shard";

@@ -1,0 +1,111 @@
+// Messages that tell a user what to do: a scene given to vsi submit is
+// named as a scene with the command that runs it; vsi inspect reads a
+// study; vsi generate deck-3d needs --dofs, keeps an existing directory
+// unless --force, and its errors name only options that exist.
+#include <cmath>
+
+#include "vsi_test_support.hpp"
+
+namespace railvsi::test {
+namespace {
+
+using nlohmann::json;
+
+const std::filesystem::path kJobs = std::filesystem::path(RAILVSI_SOURCE_DIR) / "jobs";
+
+class Messages : public VsiCliTest {};
+
+TEST_F(Messages, SubmitOfASceneSaysItIsASceneAndToUseSimulate) {
+  const auto scene = write_json("scene.json", small_scene());
+  const VsiRun run = vsi("submit '" + scene.string() + "' --db '" + (dir_ / "r.sqlite").string() + "'");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("this is a scene, not a study: run it with `vsi simulate " + scene.string() + "`"),
+            std::string::npos)
+      << run.err;
+  EXPECT_EQ(run.err.find("unknown property"), std::string::npos) << run.err;
+}
+
+TEST_F(Messages, SubmitOfATrainSaysWhatAStudyIs) {
+  const VsiRun run = vsi("submit '" + (kJobs / "trains/ICE3.json").string() + "' --db '" +
+                         (dir_ / "r.sqlite").string() + "'");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("this is a train document, not a study"), std::string::npos) << run.err;
+}
+
+TEST_F(Messages, InspectReadsAStudyStructureTrainsSpeedsAndResonances) {
+  const auto file = (kJobs / "examples/hslm-sweep.json").string();
+  const VsiRun run = vsi("inspect --format json '" + file + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json r = json::parse(run.out);
+  EXPECT_EQ(r["document"], "study");
+  EXPECT_GT(r["structure"]["dofs"].get<int>(), 0);
+  EXPECT_EQ(r["modal_analysis"]["status"], "ok");
+  ASSERT_EQ(r["trains"].size(), 10u);
+  EXPECT_EQ(r["trains"][0]["name"], "HSLM-A1");
+  EXPECT_EQ(r["trains"][0]["axles"], 50);
+  EXPECT_EQ(r["speeds_kmh"].size(), 33u);
+  // HSLM-A1, D = 18 m: v_i = f0 D / i, within 100..420 km/h: i = 1, 2, 3
+  // (i = 4 is 92 km/h). f0 independently: pi/(2 L^2) sqrt(EI/m) of the
+  // example's beam (L = 25 m, EI = 7.694e10 N m^2, m = 15,000 kg/m), 5.69 Hz;
+  // the FE value is within 0.5 % of it.
+  const double f0 = 3.14159265358979 / (2.0 * 25.0 * 25.0) * std::sqrt(7.694e10 / 15000.0);
+  EXPECT_NEAR(r["f0_hz"].get<double>(), f0, 5e-3 * f0);
+  const json& a1 = r["resonance_speeds"][0];
+  EXPECT_EQ(a1["train"], "HSLM-A1");
+  EXPECT_EQ(a1["coach_length_m"], 18.0);
+  ASSERT_EQ(a1["speeds"].size(), 3u);
+  for (int i = 1; i <= 3; ++i) {
+    EXPECT_EQ(a1["speeds"][i - 1]["i"], i);
+    EXPECT_NEAR(a1["speeds"][i - 1]["speed_kmh"].get<double>(), r["f0_hz"].get<double>() * 18.0 / i * 3.6, 1e-9);
+  }
+  const VsiRun text = vsi("inspect '" + file + "'");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("HSLM resonance speeds"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("train 'HSLM-A10'"), std::string::npos) << text.out;
+}
+
+TEST_F(Messages, InspectOfAnHslmSceneListsItsResonanceSpeeds) {
+  json scene = small_scene();
+  scene["train"] = "HSLM-A1";
+  const auto file = write_json("scene.json", scene);
+  const VsiRun run = vsi("inspect --format json '" + file.string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json r = json::parse(run.out);
+  ASSERT_EQ(r["resonance_speeds"].size(), 1u);
+  for (const auto& s : r["resonance_speeds"][0]["speeds"])
+    EXPECT_NEAR(s["speed_kmh"].get<double>(), r["f0_hz"].get<double>() * 18.0 / s["i"].get<int>() * 3.6, 1e-9);
+}
+
+TEST_F(Messages, GenerateDeck3dRequiresDofs) {
+  const VsiRun run = vsi("generate deck-3d --out '" + (dir_ / "deck").string() + "'");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--dofs"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "deck"));
+}
+
+TEST_F(Messages, GenerateDeck3dRefusesANonEmptyOutWithoutForce) {
+  const auto out = dir_ / "deck";
+  std::filesystem::create_directories(out);
+  std::ofstream(out / "K.mtx") << "mine";
+  const VsiRun refused = vsi("generate deck-3d --dofs 5000 --out '" + out.string() + "'");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("error: --out: " + out.string() + " is not empty; pass --force"), std::string::npos)
+      << refused.err;
+  EXPECT_EQ(read_text(out / "K.mtx"), "mine");
+  EXPECT_FALSE(std::filesystem::exists(out / "map.json"));
+  const VsiRun forced = vsi("generate deck-3d --dofs 5000 --force --out '" + out.string() + "'");
+  EXPECT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_NE(read_text(out / "K.mtx"), "mine");
+}
+
+TEST_F(Messages, GenerateDeck3dErrorsNameOnlyOptionsThatExist) {
+  const VsiRun run = vsi("generate deck-3d --dofs 1000 --out '" + (dir_ / "deck").string() + "'");
+  EXPECT_EQ(run.exit_code, 2);
+  for (const char* absent : {"exit_m", "approach_m", "--exit"}) EXPECT_EQ(run.err.find(absent), std::string::npos) << run.err;
+  const VsiRun help = vsi("generate deck-3d --help");
+  for (const char* option : {"--dofs", "--out", "--spans", "--approach", "--force"})
+    EXPECT_NE(help.out.find(option), std::string::npos) << option;
+}
+
+}  // namespace
+}  // namespace railvsi::test
