@@ -7,9 +7,10 @@
 
 namespace railvsi::cli {
 
-std::unique_ptr<scheduler::Database> open_store(const std::string& file) {
-  auto db = std::make_unique<scheduler::Database>(file);
-  scheduler::migrate(*db);
+std::unique_ptr<scheduler::Database> open_store(const std::string& file, scheduler::OpenMode mode) {
+  auto db = std::make_unique<scheduler::Database>(file, mode);
+  if (mode == scheduler::OpenMode::kReadOnly) scheduler::require_current_schema(*db);
+  else scheduler::migrate(*db);
   return db;
 }
 

@@ -27,7 +27,7 @@ Submitted submit(const ServiceArgs& args) {
   scheduler::ExpandOptions options;
   options.allow_large = args.allow_large;
   const scheduler::StudyPlan plan = scheduler::load_study(args.study_file, options);
-  Submitted s{open_store(args.db), {}};
+  Submitted s{open_store(args.db, scheduler::OpenMode::kCreate), {}};
   s.result = scheduler::submit_study(*s.db, plan, args.max_attempts);
   return s;
 }
@@ -38,6 +38,7 @@ scheduler::WorkSummary work(const ServiceArgs& args) {
   options.threads = args.threads;
   options.lease_s = args.lease_s;
   options.cache_budget_bytes = static_cast<std::size_t>(args.cache_mb * 1024.0 * 1024.0);
+  options.db_retry_s = args.db_retry_s;
   ProgressDisplay display(::isatty(STDERR_FILENO) == 1);
   const scheduler::WorkSummary s = scheduler::run_workers(
       options, [&](const scheduler::StateCounts& c, double elapsed_s, bool final) { display.update(c, elapsed_s, final); });
@@ -45,6 +46,7 @@ scheduler::WorkSummary work(const ServiceArgs& args) {
                s.jobs_done, s.jobs_failed, format_duration(s.wall_s), s.cache.factorizations, s.cache.factorization_s,
                s.cache.hits, s.cache.evictions);
   if (s.lost_leases > 0) spdlog::warn("{} results dropped: their jobs were taken over or cancelled", s.lost_leases);
+  if (!s.error.empty()) std::cerr << "error: " << s.error << '\n';
   return s;
 }
 
@@ -57,8 +59,9 @@ int submit_command(const ServiceArgs& args) {
 }
 
 int work_command(const ServiceArgs& args) {
-  open_store(args.db);  // create and migrate before the workers start
+  open_store(args.db, scheduler::OpenMode::kExisting);  // migrate before the workers start; never create
   const scheduler::WorkSummary s = work(args);
+  if (!s.error.empty()) return kExitRuntimeFailure;
   return s.jobs_failed > 0 ? kExitStudyFailedJobs : kExitOk;
 }
 
@@ -67,7 +70,7 @@ int run_command(const ServiceArgs& args) {
   const scheduler::SubmitResult& r = submitted.result;
   scheduler::Database& db = *submitted.db;
   spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id, r.jobs, r.new_jobs, args.db);
-  work(args);
+  if (!work(args).error.empty()) return kExitRuntimeFailure;
   const scheduler::StudyInfo info = scheduler::study_info(db, r.study_id);
   std::cout << scheduler::format_table(info, scheduler::study_results(db, {r.study_id, {}, {}, {}, {}}));
   const scheduler::StateCounts c = scheduler::state_counts(db, r.study_id);

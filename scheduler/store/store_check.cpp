@@ -1,0 +1,80 @@
+#include "store/store_check.hpp"
+
+#include <fmt/format.h>
+
+#include "store/store_schema.hpp"
+
+namespace railvsi::scheduler {
+namespace {
+
+// A query whose rows each describe one problem (its first column).
+void collect(Database& db, std::string_view sql, std::vector<std::string>& problems) {
+  Statement s = db.prepare(sql);
+  while (s.step()) problems.push_back(s.text(0));
+}
+
+// A count that must be zero, with what a non-zero count means.
+struct Invariant {
+  const char* sql;
+  const char* meaning;
+};
+
+const Invariant kInvariants[] = {
+    {"SELECT count(*) FROM jobs WHERE state = 'running' AND (lease_expires IS NULL OR worker IS NULL)",
+     "running jobs without a lease or a worker (they would never return to the queue)"},
+    {"SELECT count(*) FROM jobs WHERE state != 'running' AND lease_expires IS NOT NULL",
+     "jobs under a lease that are not running"},
+    {"SELECT count(*) FROM jobs WHERE state IN ('done', 'failed', 'cancelled') AND finished_at IS NULL",
+     "finished jobs without a finish time"},
+    {"SELECT count(*) FROM jobs j WHERE state = 'done' AND NOT EXISTS (SELECT 1 FROM envelopes e WHERE e.job_id = j.id)",
+     "done jobs without envelopes"},
+    {"SELECT count(*) FROM (SELECT DISTINCT e.job_id FROM envelopes e JOIN jobs j ON j.id = e.job_id "
+     "WHERE j.state != 'done')",
+     "jobs with envelopes that are not done"},
+    {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM study_jobs sj WHERE sj.job_id = j.id)",
+     "jobs of no study"},
+    {"SELECT count(*) FROM studies s WHERE job_count != (SELECT count(*) FROM study_jobs sj WHERE sj.study_id = s.id)",
+     "studies whose job count differs from their jobs in study_jobs"},
+    {"SELECT count(*) FROM jobs WHERE attempts > max_attempts OR attempts < 0",
+     "jobs with more attempts than allowed"},
+};
+
+}  // namespace
+
+StoreCheck check_store(Database& db) {
+  StoreCheck check;
+  auto& problems = check.problems;
+  try {
+    std::vector<std::string> integrity;
+    collect(db, "PRAGMA integrity_check(100)", integrity);
+    if (!(integrity.size() == 1 && integrity.front() == "ok"))
+      for (const std::string& line : integrity) problems.push_back("integrity: " + line);
+  } catch (const SqliteError& e) {
+    problems.push_back(fmt::format("integrity check could not run: {}", e.what()));
+    return check;  // the file is not readable enough for the rest
+  }
+  try {
+    Statement s = db.prepare("PRAGMA user_version");
+    s.step();
+    if (s.int64(0) != kStoreSchemaVersion)
+      problems.push_back(fmt::format("schema version {}, this vsi's is {}", s.int64(0), kStoreSchemaVersion));
+    collect(db,
+            "SELECT 'foreign key: ' || fk.\"table\" || ' refers to a missing row of ' || fk.parent "
+            "FROM pragma_foreign_key_check AS fk LIMIT 100",
+            problems);
+    for (const Invariant& inv : kInvariants) {
+      Statement c = db.prepare(inv.sql);
+      c.step();
+      if (const std::int64_t n = c.int64(0); n > 0) problems.push_back(fmt::format("{} {}", n, inv.meaning));
+    }
+    Statement counts = db.prepare("SELECT (SELECT count(*) FROM studies), (SELECT count(*) FROM jobs)");
+    counts.step();
+    check.studies = counts.int64(0);
+    check.jobs = counts.int64(1);
+  } catch (const SqliteError& e) {
+    problems.push_back(fmt::format("queue check could not run: {}", e.what()));
+  }
+  return check;
+}
+
+}  // namespace railvsi::scheduler
