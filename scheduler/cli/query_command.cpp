@@ -5,6 +5,7 @@
 #include "cli/service_store.hpp"
 #include "query/study_report.hpp"
 #include "queue/job_queue.hpp"
+#include "store/store_check.hpp"
 
 namespace railvsi::cli {
 
@@ -12,6 +13,7 @@ int query_command(const ServiceArgs& args) {
   const auto db = open_store(args.db, scheduler::OpenMode::kReadOnly);
   const auto id = find_study(*db, args.study_id);
   if (!id) return kExitInvalidInput;
+  scheduler::require_consistent_study(*db, *id);
   const scheduler::QueryFilter filter{*id, args.train, args.speed_min_kmh, args.speed_max_kmh, args.irregularity};
   if (const auto why = scheduler::filter_error(*db, filter)) {
     std::cerr << "error: " << *why << '\n';

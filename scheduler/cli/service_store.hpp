@@ -10,7 +10,7 @@
 namespace railvsi::cli {
 
 // kCreate and kExisting migrate the file; kReadOnly requires the current
-// schema. A missing file throws scheduler::NoSuchDatabase (exit 2) unless
+// schema and a sound file (require_sound). A missing file throws scheduler::NoSuchDatabase (exit 2) unless
 // the mode creates it.
 std::unique_ptr<scheduler::Database> open_store(const std::string& file, scheduler::OpenMode mode);
 

@@ -26,6 +26,7 @@ int status_command(const ServiceArgs& args) {
   std::ostringstream out;
   if (ids.empty()) out << "no studies in " << args.db << '\n';
   for (const std::string& id : ids) {
+    scheduler::require_consistent_study(*db, id);
     const scheduler::StudyStatus s = scheduler::study_status(*db, id);
     const auto& c = s.counts;
     out << fmt::format("study {} ({})\n", s.id, s.name);

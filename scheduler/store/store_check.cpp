@@ -1,5 +1,7 @@
 #include "store/store_check.hpp"
 
+#include <stdexcept>
+
 #include <fmt/format.h>
 
 #include "store/store_schema.hpp"
@@ -75,6 +77,34 @@ StoreCheck check_store(Database& db) {
     problems.push_back(fmt::format("queue check could not run: {}", e.what()));
   }
   return check;
+}
+
+void require_sound(Database& db) {
+  Statement s = db.prepare("PRAGMA quick_check(1)");
+  std::string first;
+  if (s.step()) first = s.text(0);
+  if (first != "ok")
+    throw std::runtime_error(fmt::format("{} is damaged (PRAGMA quick_check: {}); vsi check --db {} lists the problems",
+                                         db.file(), first, db.file()));
+}
+
+void require_consistent_study(Database& db, const std::string& study_id) {
+  Statement s = db.prepare(
+      "SELECT (SELECT job_count FROM studies WHERE id = ?1), "
+      "(SELECT count(*) FROM study_jobs WHERE study_id = ?1), "
+      "(SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1), "
+      "(SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1 AND j.state = 'done' "
+      " AND NOT EXISTS (SELECT 1 FROM envelopes e WHERE e.job_id = j.id))");
+  s.bind(1, study_id).step();
+  const std::int64_t listed = s.int64(0), linked = s.int64(1), found = s.int64(2), bare = s.int64(3);
+  std::string why;
+  if (linked != listed || found != listed)
+    why = fmt::format("the study lists {} jobs, {} are linked to it and {} found", listed, linked, found);
+  else if (bare > 0)
+    why = fmt::format("{} done jobs have no envelopes", bare);
+  if (!why.empty())
+    throw std::runtime_error(fmt::format("{} is damaged or inconsistent: study {}: {}; vsi check --db {} lists the problems",
+                                         db.file(), study_id.substr(0, 12), why, db.file()));
 }
 
 }  // namespace railvsi::scheduler
