@@ -12,7 +12,9 @@ namespace railvsi::cli {
 // kCreate and kExisting migrate the file; kReadOnly requires the current
 // schema and a sound file (require_sound). A missing file throws scheduler::NoSuchDatabase (exit 2) unless
 // the mode creates it.
-std::unique_ptr<scheduler::Database> open_store(const std::string& file, scheduler::OpenMode mode);
+// The default is for read commands: a command that writes says so.
+std::unique_ptr<scheduler::Database> open_store(const std::string& file,
+                                                scheduler::OpenMode mode = scheduler::OpenMode::kReadOnly);
 
 // The full id of --study (a unique prefix is enough); prints an error and
 // returns nullopt when there is no such study.
