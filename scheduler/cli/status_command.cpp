@@ -52,8 +52,13 @@ int status_command(const ServiceArgs& args) {
 
 int check_command(const ServiceArgs& args) {
   // Read-only, without the schema check: a damaged file must still be examined.
-  scheduler::Database db(args.db, scheduler::OpenMode::kReadOnly);
-  const scheduler::StoreCheck check = scheduler::check_store(db);
+  scheduler::StoreCheck check;
+  try {
+    scheduler::Database db(args.db, scheduler::OpenMode::kReadOnly);
+    check = scheduler::check_store(db);
+  } catch (const scheduler::SqliteError& e) {  // damage where opening reads (the schema)
+    check.problems.push_back(fmt::format("cannot be read: {}", e.what()));
+  }
   for (const std::string& problem : check.problems) std::cout << "problem: " << problem << '\n';
   if (check.problems.empty()) {
     std::cout << fmt::format("ok: {}: {} studies, {} jobs; integrity, foreign keys and queue consistent\n", args.db,

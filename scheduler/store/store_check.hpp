@@ -27,9 +27,9 @@ StoreCheck check_store(Database& db);
 void require_sound(Database& db);
 
 // What quick_check cannot see (a page replaced by a copy of another reads as
-// a sound page with other rows): the study's job count against its jobs
-// counted through two different b-trees, and its done jobs all with
-// envelopes. Throws std::runtime_error when they disagree. Rows missing
+// a sound page with other rows): the study's jobs counted through three
+// different b-trees (its links, the links' job index, the jobs), no more
+// than its job count, and its done jobs all with envelopes. Throws std::runtime_error when they disagree. Rows missing
 // inside one job's envelopes remain for vsi check to find.
 void require_consistent_study(Database& db, const std::string& study_id);
 
