@@ -5,16 +5,22 @@
 #include "cli/service_store.hpp"
 #include "query/study_report.hpp"
 #include "queue/job_queue.hpp"
+#include "store/store_check.hpp"
 
 namespace railvsi::cli {
 
 int query_command(const ServiceArgs& args) {
-  const auto db = open_store(args.db);
+  const auto db = open_store(args.db, scheduler::OpenMode::kReadOnly);
   const auto id = find_study(*db, args.study_id);
   if (!id) return kExitInvalidInput;
+  scheduler::require_consistent_study(*db, *id);
+  const scheduler::QueryFilter filter{*id, args.train, args.speed_min_kmh, args.speed_max_kmh, args.irregularity};
+  if (const auto why = scheduler::filter_error(*db, filter)) {
+    std::cerr << "error: " << *why << '\n';
+    return kExitInvalidInput;
+  }
   const scheduler::StudyInfo info = scheduler::study_info(*db, *id);
-  const auto jobs = scheduler::study_results(
-      *db, {*id, args.train, args.speed_min_kmh, args.speed_max_kmh, args.irregularity});
+  const auto jobs = scheduler::study_results(*db, filter);
   if (args.format == "csv")
     std::cout << scheduler::format_csv(jobs);
   else if (args.format == "json")
@@ -29,7 +35,7 @@ namespace {
 // A change to the jobs of --study: prints "study <id>: <n> <what>".
 int change_study(const ServiceArgs& args, std::int64_t (*change)(scheduler::Database&, const std::string&),
                  const char* what) {
-  const auto db = open_store(args.db);
+  const auto db = open_store(args.db, scheduler::OpenMode::kExisting);
   const auto id = find_study(*db, args.study_id);
   if (!id) return kExitInvalidInput;
   std::cout << "study " << *id << ": " << change(*db, *id) << " " << what << "\n";

@@ -13,6 +13,7 @@
 #include "cli/service_store.hpp"
 #include "query/compliance_data.hpp"
 #include "report/compliance_report.hpp"
+#include "store/store_check.hpp"
 
 namespace railvsi::cli {
 namespace {
@@ -60,6 +61,8 @@ int report_command(const ReportArgs& args) {
   const auto db = open_store(args.db);
   const auto id = find_study(*db, args.study_id);
   if (!id) return kExitInvalidInput;
+  // A damaged file is reported, never turned into a partial report.
+  scheduler::require_consistent_study(*db, *id);
   scheduler::ComplianceOptions options;
   options.version = RAILVSI_VERSION_STRING;
   options.date = report_date();

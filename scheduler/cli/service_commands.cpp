@@ -1,28 +1,54 @@
 #include "cli/service_commands.hpp"
 
+#include <cmath>
+#include <iostream>
 #include <thread>
+
+#include <fmt/format.h>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "cli/commands.hpp"
+#include "store/sqlite.hpp"
 #include "workers/worker_pool.hpp"
 
 namespace railvsi::cli {
 namespace {
 
-void add_db_option(CLI::App* command, ServiceArgs& a) {
-  command->add_option("--db", a.db, "Study database (SQLite file; created if needed)")->capture_default_str();
+// A finite number in [lo, hi]. CLI11's PositiveNumber lets nan and inf
+// through (nan <= 0 is false): a NaN lease was stored NULL and never expired.
+CLI::Validator finite_in(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double v = 0.0;
+        if (!CLI::detail::lexical_cast(text, v)) return "'" + text + "' is not a number";
+        if (!std::isfinite(v) || v < lo || v > hi)
+          return fmt::format("{} is out of range: give a finite number from {} to {}", text, lo, hi);
+        return {};
+      },
+      fmt::format("FLOAT in [{} - {}]", lo, hi));
+}
+
+void add_db_option(CLI::App* command, ServiceArgs& a, bool creates) {
+  command->add_option("--db", a.db, creates ? "Study database (SQLite file; created if needed)"
+                                            : "Study database (SQLite file; must exist)")
+      ->capture_default_str();
 }
 
 void add_work_options(CLI::App* command, ServiceArgs& a) {
-  command->add_option("--threads", a.threads, "Worker threads (default: one per core)")->check(CLI::NonNegativeNumber);
+  command->add_option("--threads", a.threads, "Worker threads (default: one per core)")->check(CLI::Range(1, 256));
   command->add_option("--lease-s", a.lease_s, "Lease of a claimed job in s; a job whose worker stops renewing it "
                                               "returns to the queue when it expires")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(0.5, 86400.0));
   command->add_option("--cache-mb", a.cache_mb, "Memory budget of the factorization cache in MB")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(1.0, 1.0e7));
+  command->add_option("--db-retry-s", a.db_retry_s,
+                      "How long to retry a database that refuses claims (disk full, locked) before exiting 1")
+      ->capture_default_str()
+      ->check(finite_in(1.0, 86400.0));
 }
 
 void add_submit_options(CLI::App* command, ServiceArgs& a) {
@@ -31,7 +57,7 @@ void add_submit_options(CLI::App* command, ServiceArgs& a) {
   command->add_option("--max-attempts", a.max_attempts,
                       "Attempts of a job before it ends failed (a worker that died counts as one)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 100));
 }
 
 void add_study_id(CLI::App* command, ServiceArgs& a, bool required) {
@@ -44,45 +70,49 @@ void add_study_id(CLI::App* command, ServiceArgs& a, bool required) {
 ServiceCommands::ServiceCommands(CLI::App& app) {
   submit_ = app.add_subcommand("submit", "Expand a study into jobs and queue them; prints the study id and job count");
   add_submit_options(submit_, args_);
-  add_db_option(submit_, args_);
+  add_db_option(submit_, args_, true);
 
   work_ = app.add_subcommand("work", "Run queued jobs until none is left (several processes may share a database)");
-  add_db_option(work_, args_);
+  add_db_option(work_, args_, false);
   add_work_options(work_, args_);
 
   run_ = app.add_subcommand("run", "Submit a study, work until the queue is empty, print the study's envelope table");
   add_submit_options(run_, args_);
-  add_db_option(run_, args_);
+  add_db_option(run_, args_, true);
   add_work_options(run_, args_);
 
   status_ = app.add_subcommand("status", "Jobs per state, throughput, ETA and factorization cache of each study");
-  add_db_option(status_, args_);
+  add_db_option(status_, args_, false);
   add_study_id(status_, args_, false);
 
   query_ = app.add_subcommand("query", "Envelopes of a study: per job and per train over speeds");
-  add_db_option(query_, args_);
+  add_db_option(query_, args_, false);
   add_study_id(query_, args_, true);
   query_->add_option("--format", args_.format, "table, csv (envelope values only) or json")
       ->capture_default_str()
       ->check(CLI::IsMember({"table", "csv", "json"}));
   query_->add_option("--train", args_.train, "Only this train (its name as shown)");
-  query_->add_option("--speed-min", args_.speed_min_kmh, "Only speeds >= this, km/h");
-  query_->add_option("--speed-max", args_.speed_max_kmh, "Only speeds <= this, km/h");
+  query_->add_option("--speed-min", args_.speed_min_kmh, "Only speeds >= this, km/h")->check(finite_in(0.0, 1.0e4));
+  query_->add_option("--speed-max", args_.speed_max_kmh, "Only speeds <= this, km/h")->check(finite_in(0.0, 1.0e4));
   query_->add_option("--irregularity", args_.irregularity, "Only this irregularity profile (its label as shown)");
 
   cancel_ = app.add_subcommand("cancel", "Cancel the queued and running jobs of a study");
-  add_db_option(cancel_, args_);
+  add_db_option(cancel_, args_, false);
   add_study_id(cancel_, args_, true);
 
   retry_ = app.add_subcommand("retry", "Queue the failed and cancelled jobs of a study again");
-  add_db_option(retry_, args_);
+  add_db_option(retry_, args_, false);
   add_study_id(retry_, args_, true);
+
+  check_ = app.add_subcommand("check", "Check a study database: SQLite integrity, foreign keys and the queue's "
+                                       "invariants; exit 0 when sound, 1 when not");
+  add_db_option(check_, args_, false);
 }
 
 std::optional<int> ServiceCommands::run_parsed() const {
   const std::pair<CLI::App*, int (*)(const ServiceArgs&)> commands[] = {
       {submit_, submit_command}, {work_, work_command},     {run_, run_command},    {status_, status_command},
-      {query_, query_command},   {cancel_, cancel_command}, {retry_, retry_command}};
+      {query_, query_command},   {cancel_, cancel_command}, {retry_, retry_command},  {check_, check_command}};
   for (const auto& [command, run] : commands) {
     if (!command->parsed()) continue;
     // Logs go to stderr: stdout carries the results.
@@ -90,7 +120,12 @@ std::optional<int> ServiceCommands::run_parsed() const {
     scheduler::single_threaded_blas();
     ServiceArgs args = args_;
     if (args.threads == 0) args.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    return run(args);
+    try {
+      return run(args);
+    } catch (const scheduler::NoSuchDatabase& e) {  // a typo in --db must not become an empty database
+      std::cerr << "error: " << e.what() << '\n';
+      return kExitInvalidInput;
+    }
   }
   return std::nullopt;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // The study service's subcommands of vsi: submit, work, run, status, query,
-// cancel, retry (README "Studies" and "Commands"). They share one
-// database option, default ./vsi-results.sqlite.
+// cancel, retry, check. They share one database option, default
+// ./vsi-results.sqlite; only submit and run create it.
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +18,7 @@ struct ServiceArgs {
   double lease_s = 60.0;
   int max_attempts = 3;
   double cache_mb = 2048.0;
+  double db_retry_s = 300.0;
   bool allow_large = false;
   std::string format = "table";
   std::optional<std::string> train, irregularity;
@@ -35,7 +36,7 @@ class ServiceCommands {
  private:
   ServiceArgs args_;
   CLI::App *submit_ = nullptr, *work_ = nullptr, *run_ = nullptr, *status_ = nullptr, *query_ = nullptr,
-           *cancel_ = nullptr, *retry_ = nullptr;
+           *cancel_ = nullptr, *retry_ = nullptr, *check_ = nullptr;
 };
 
 int submit_command(const ServiceArgs& args);
@@ -45,5 +46,6 @@ int status_command(const ServiceArgs& args);
 int query_command(const ServiceArgs& args);
 int cancel_command(const ServiceArgs& args);
 int retry_command(const ServiceArgs& args);
+int check_command(const ServiceArgs& args);
 
 }  // namespace railvsi::cli

@@ -4,13 +4,19 @@
 
 #include "core/terminal_text.hpp"
 #include "queue/job_queue.hpp"
+#include "store/store_check.hpp"
 #include "store/store_schema.hpp"
 
 namespace railvsi::cli {
 
-std::unique_ptr<scheduler::Database> open_store(const std::string& file) {
-  auto db = std::make_unique<scheduler::Database>(file);
-  scheduler::migrate(*db);
+std::unique_ptr<scheduler::Database> open_store(const std::string& file, scheduler::OpenMode mode) {
+  auto db = std::make_unique<scheduler::Database>(file, mode);
+  if (mode == scheduler::OpenMode::kReadOnly) {
+    scheduler::require_current_schema(*db);
+    scheduler::require_sound(*db);
+  } else {
+    scheduler::migrate(*db);
+  }
   return db;
 }
 

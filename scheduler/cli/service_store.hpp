@@ -1,6 +1,6 @@
 #pragma once
-// What the service commands share: the database, opened and migrated, and
-// study ids given on the command line.
+// What the service commands share: the database, opened (and migrated when
+// writable), and study ids given on the command line.
 #include <memory>
 #include <optional>
 #include <string>
@@ -9,7 +9,12 @@
 
 namespace railvsi::cli {
 
-std::unique_ptr<scheduler::Database> open_store(const std::string& file);
+// kCreate and kExisting migrate the file; kReadOnly requires the current
+// schema and a sound file (require_sound). A missing file throws scheduler::NoSuchDatabase (exit 2) unless
+// the mode creates it.
+// The default is for read commands: a command that writes says so.
+std::unique_ptr<scheduler::Database> open_store(const std::string& file,
+                                                scheduler::OpenMode mode = scheduler::OpenMode::kReadOnly);
 
 // The full id of --study (a unique prefix is enough); prints an error and
 // returns nullopt when there is no such study.

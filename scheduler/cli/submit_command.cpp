@@ -30,7 +30,7 @@ Submitted submit(const ServiceArgs& args) {
   options.allow_large = args.allow_large;
   require_study_file(args.study_file);
   const scheduler::StudyPlan plan = scheduler::load_study(args.study_file, options);
-  Submitted s{open_store(args.db), {}};
+  Submitted s{open_store(args.db, scheduler::OpenMode::kCreate), {}};
   s.result = scheduler::submit_study(*s.db, plan, args.max_attempts);
   return s;
 }
@@ -41,6 +41,7 @@ scheduler::WorkSummary work(const ServiceArgs& args) {
   options.threads = args.threads;
   options.lease_s = args.lease_s;
   options.cache_budget_bytes = static_cast<std::size_t>(args.cache_mb * 1024.0 * 1024.0);
+  options.db_retry_s = args.db_retry_s;
   ProgressDisplay display(::isatty(STDERR_FILENO) == 1);
   const scheduler::WorkSummary s = scheduler::run_workers(
       options, [&](const scheduler::StateCounts& c, double elapsed_s, bool final) { display.update(c, elapsed_s, final); });
@@ -48,6 +49,7 @@ scheduler::WorkSummary work(const ServiceArgs& args) {
                s.jobs_done, s.jobs_failed, format_duration(s.wall_s), s.cache.factorizations, s.cache.factorization_s,
                s.cache.hits, s.cache.evictions);
   if (s.lost_leases > 0) spdlog::warn("{} results dropped: their jobs were taken over or cancelled", s.lost_leases);
+  if (!s.error.empty()) std::cerr << "error: " << s.error << '\n';
   return s;
 }
 
@@ -63,12 +65,20 @@ namespace {
 
 // Work until the queue is empty; then studies that ask for refinement
 // ("refine": true) get their next pass of speeds, which are worked in turn,
-// until every peak is resolved (a bounded number of passes).
-bool work_and_refine(const ServiceArgs& args, scheduler::Database& db, const std::vector<std::string>& studies) {
+// until every peak is resolved (a bounded number of passes). Failed jobs are
+// counted over all passes; an error of the workers ends the passes.
+scheduler::WorkSummary work_and_refine(const ServiceArgs& args, scheduler::Database& db,
+                                       const std::vector<std::string>& studies) {
   constexpr int kMaxPasses = 12;  // 10 km/h to 1 km/h takes 4; a wide range of peaks a few more
-  bool failed = false;
+  scheduler::WorkSummary total;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
-    failed = work(args).jobs_failed > 0 || failed;
+    const scheduler::WorkSummary s = work(args);
+    total.jobs_done += s.jobs_done;
+    total.jobs_failed += s.jobs_failed;
+    if (!s.error.empty()) {
+      total.error = s.error;
+      break;
+    }
     std::size_t added = 0;
     for (const std::string& id : studies) {
       const std::size_t n = scheduler::refine_study(db, id, args.max_attempts);
@@ -77,14 +87,16 @@ bool work_and_refine(const ServiceArgs& args, scheduler::Database& db, const std
     }
     if (added == 0) break;
   }
-  return failed;
+  return total;
 }
 
 }  // namespace
 
 int work_command(const ServiceArgs& args) {
-  const auto db = open_store(args.db);  // create and migrate before the workers start
-  return work_and_refine(args, *db, scheduler::study_ids(*db)) ? kExitStudyFailedJobs : kExitOk;
+  const auto db = open_store(args.db, scheduler::OpenMode::kExisting);  // migrate before the workers start; never create
+  const scheduler::WorkSummary s = work_and_refine(args, *db, scheduler::study_ids(*db));
+  if (!s.error.empty()) return kExitRuntimeFailure;
+  return s.jobs_failed > 0 ? kExitStudyFailedJobs : kExitOk;
 }
 
 int run_command(const ServiceArgs& args) {
@@ -92,7 +104,7 @@ int run_command(const ServiceArgs& args) {
   const scheduler::SubmitResult& r = submitted.result;
   scheduler::Database& db = *submitted.db;
   spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id, r.jobs, r.new_jobs, scheduler::terminal_safe(args.db));
-  work_and_refine(args, db, {r.study_id});
+  if (!work_and_refine(args, db, {r.study_id}).error.empty()) return kExitRuntimeFailure;
   const scheduler::StudyInfo info = scheduler::study_info(db, r.study_id);
   std::cout << scheduler::format_table(info, scheduler::study_results(db, {r.study_id, {}, {}, {}, {}}));
   const scheduler::StateCounts c = scheduler::state_counts(db, r.study_id);

@@ -1,5 +1,7 @@
 #include "query/study_results.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -79,6 +81,63 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     jobs[it->second].envelopes[e.text(1)][e.text(2)] = e.optional_real(3);
   }
   return jobs;
+}
+
+namespace {
+
+// Distinct labels of one column of a study's jobs, in study order. `column`
+// is one of ours (train, irregularity), never user text.
+std::vector<std::string> study_labels(Database& db, const std::string& study_id, std::string_view column) {
+  Statement s = db.prepare(fmt::format("SELECT j.{0} FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+                                       "WHERE sj.study_id = ? GROUP BY j.{0} ORDER BY min(sj.position)",
+                                       column));
+  s.bind(1, study_id);
+  std::vector<std::string> labels;
+  while (s.step()) labels.push_back(s.text(0));
+  return labels;
+}
+
+std::string lower(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+std::optional<std::string> unknown_label(Database& db, const std::string& study_id, std::string_view column,
+                                         std::string_view option, const std::string& value) {
+  const std::vector<std::string> known = study_labels(db, study_id, column);
+  if (std::find(known.begin(), known.end(), value) != known.end()) return std::nullopt;
+  std::string hint;
+  for (const std::string& k : known)
+    if (lower(k) == lower(value)) hint = fmt::format(" (names are case-sensitive: '{}')", k);
+  std::string list;
+  for (const std::string& k : known) list += fmt::format("{}'{}'", list.empty() ? "" : ", ", k);
+  return fmt::format("{} '{}': the study {} has no such {}{}; it has: {}", option, value, study_id.substr(0, 12),
+                     column == "train" ? "train" : "irregularity profile", hint, list);
+}
+
+}  // namespace
+
+std::optional<std::string> filter_error(Database& db, const QueryFilter& f) {
+  if (f.speed_min_kmh && f.speed_max_kmh && *f.speed_min_kmh > *f.speed_max_kmh)
+    return fmt::format("--speed-min {} is above --speed-max {}: no speed can match", *f.speed_min_kmh,
+                       *f.speed_max_kmh);
+  if (f.train)
+    if (auto why = unknown_label(db, f.study_id, "train", "--train", *f.train)) return why;
+  if (f.irregularity)
+    if (auto why = unknown_label(db, f.study_id, "irregularity", "--irregularity", *f.irregularity)) return why;
+  if (f.speed_min_kmh || f.speed_max_kmh) {
+    Statement s = db.prepare("SELECT min(j.speed_kmh), max(j.speed_kmh) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+                             "WHERE sj.study_id = ?");
+    s.bind(1, f.study_id).step();
+    if (!s.is_null(0)) {
+      const double lo = s.real(0), hi = s.real(1);
+      if ((f.speed_min_kmh && *f.speed_min_kmh > hi) || (f.speed_max_kmh && *f.speed_max_kmh < lo))
+        return fmt::format("the speed range [{}, {}] km/h holds no speed of the study, whose speeds run from {} to {} km/h",
+                           f.speed_min_kmh ? fmt::format("{}", *f.speed_min_kmh) : std::string("-"),
+                           f.speed_max_kmh ? fmt::format("{}", *f.speed_max_kmh) : std::string("-"), lo, hi);
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace railvsi::scheduler

@@ -52,4 +52,10 @@ struct StudyInfo {
 StudyInfo study_info(Database& db, const std::string& study_id);
 std::vector<JobResult> study_results(Database& db, const QueryFilter& filter);
 
+// Why a filter cannot mean what the user asked (nullopt when it can): a
+// train or profile the study does not have (with the list of those it has),
+// --speed-min above --speed-max, or a speed range outside the study's. A
+// silent "0 jobs shown" would read as "no result".
+std::optional<std::string> filter_error(Database& db, const QueryFilter& filter);
+
 }  // namespace railvsi::scheduler

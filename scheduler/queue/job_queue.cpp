@@ -1,5 +1,6 @@
 #include "queue/job_queue.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -59,7 +60,11 @@ std::size_t insert_study_jobs(Database& db, const std::string& study_id, const s
 }
 
 JobQueue::JobQueue(Database& db, std::string worker, double lease_s)
-    : db_(db), worker_(std::move(worker)), lease_s_(lease_s) {}
+    : db_(db), worker_(std::move(worker)), lease_s_(lease_s) {
+  // A NaN lease is stored NULL and never expires: the job could never return.
+  if (!std::isfinite(lease_s) || lease_s <= 0.0)
+    throw std::invalid_argument(fmt::format("lease of {} s: it must be a positive number of seconds", lease_s));
+}
 
 std::optional<ClaimedJob> JobQueue::claim_row(const std::string& id, double now_s) {
   db_.prepare("UPDATE jobs SET state = 'running', attempts = attempts + 1, worker = ?, lease_expires = ?, "
@@ -112,14 +117,17 @@ std::optional<ClaimedJob> JobQueue::claim(const std::string& preferred_key) {
   return job;
 }
 
-void JobQueue::heartbeat() {
+bool JobQueue::renew(const std::string& job_id) {
   const double now = unix_now_s();
   Transaction tx(db_);
-  db_.prepare("UPDATE jobs SET lease_expires = ? WHERE state = 'running' AND worker = ?")
+  db_.prepare("UPDATE jobs SET lease_expires = ? WHERE id = ? AND state = 'running' AND worker = ?")
       .bind(1, now + lease_s_)
-      .bind(2, worker_)
+      .bind(2, job_id)
+      .bind(3, worker_)
       .run();
+  const bool held = db_.changes() > 0;
   tx.commit();
+  return held;
 }
 
 namespace {

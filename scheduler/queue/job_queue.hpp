@@ -4,7 +4,8 @@
 // of threads (each with its own connection) and processes may share a file:
 // - claim: the next queued job (or one whose lease expired: its worker died)
 //   becomes 'running' under a lease owned by the worker;
-// - heartbeat: a live worker renews its leases;
+// - renew: a live worker renews the lease of each job it holds, by job id
+//   and worker name (a reused name never renews someone else's job);
 // - complete: the envelopes are stored and the job marked 'done' in one
 //   transaction, only if the worker still holds the job (a result is never
 //   lost nor stored twice).
@@ -69,14 +70,16 @@ struct StateCounts {
 
 class JobQueue {
  public:
-  // `worker` names the claimant in the jobs table (host:pid:thread).
+  // `worker` names the claimant in the jobs table (host:pid:start:thread).
+  // Throws std::invalid_argument unless lease_s is finite and positive.
   JobQueue(Database& db, std::string worker, double lease_s = 60.0);
 
   // A job whose lease has expired more than max_attempts times ends
   // 'failed'. Prefers jobs with preferred_key (their factor is cached).
   std::optional<ClaimedJob> claim(const std::string& preferred_key = {});
-  // Renews the lease of every job this worker holds.
-  void heartbeat();
+  // Renews the lease of the job if this worker still holds it; false when
+  // it does not (taken over after an expired lease, or cancelled).
+  bool renew(const std::string& job_id);
   // false (and nothing stored) when the job is no longer this worker's:
   // its lease expired and another worker took it, or it was cancelled.
   bool complete(const ClaimedJob& job, const JobOutcome& outcome);

@@ -2,6 +2,8 @@
 
 #include <sqlite3.h>
 
+#include <filesystem>
+
 #include <fmt/format.h>
 
 namespace railvsi::scheduler {
@@ -15,12 +17,65 @@ namespace {
 
 void Database::Closer::operator()(sqlite3* db) const { sqlite3_close_v2(db); }
 
-Database::Database(const std::string& file, int busy_timeout_ms) : file_(file) {
+namespace {
+
+// file: URI of a path: '%', '?' and '#' are the characters SQLite decodes.
+std::string file_uri(const std::string& path) {
+  std::string uri = "file:";
+  for (const char c : path) {
+    if (c == '%' || c == '?' || c == '#') uri += fmt::format("%{:02X}", static_cast<unsigned char>(c));
+    else uri += c;
+  }
+  return uri;
+}
+
+// SQLITE_ROW when the schema can be read, else the error code.
+int read_schema(sqlite3* db) {
+  sqlite3_stmt* raw = nullptr;
+  int rc = sqlite3_prepare_v2(db, "SELECT count(*) FROM sqlite_schema", -1, &raw, nullptr);
+  if (rc == SQLITE_OK) rc = sqlite3_step(raw);
+  sqlite3_finalize(raw);
+  return rc;
+}
+
+}  // namespace
+
+void Database::open(const std::string& name, int flags) {
   sqlite3* raw = nullptr;
-  const int rc = sqlite3_open_v2(file.c_str(), &raw, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX,
-                                 nullptr);
+  const int rc = sqlite3_open_v2(name.c_str(), &raw, flags | SQLITE_OPEN_NOMUTEX, nullptr);
   db_.reset(raw);  // closed even when the open failed
-  if (rc != SQLITE_OK) fail(raw, rc, fmt::format("cannot open {}", file));
+  if (rc != SQLITE_OK) fail(raw, rc, fmt::format("cannot open {}", file_));
+}
+
+Database::Database(const std::string& file, OpenMode mode, int busy_timeout_ms) : file_(file) {
+  if (mode != OpenMode::kCreate && !std::filesystem::exists(file)) throw NoSuchDatabase(file);
+  if (mode == OpenMode::kReadOnly) {
+    read_only_ = true;
+    open(file, SQLITE_OPEN_READONLY);
+    sqlite3_busy_timeout(db_.get(), busy_timeout_ms);
+    sqlite3_extended_result_codes(db_.get(), 1);
+    const int rc = read_schema(db_.get());
+    if (rc == SQLITE_ROW) return;
+    if ((rc & 0xff) != SQLITE_CANTOPEN && (rc & 0xff) != SQLITE_READONLY) fail(db_.get(), rc, fmt::format("read {}", file));
+    // A WAL database needs its -shm, which a read-only connection cannot
+    // create on a read-only directory or mount. immutable=1 reads the main
+    // file alone: right only when no -wal holds commits not yet
+    // checkpointed (the last writer to close checkpoints and removes it).
+    std::error_code ec;
+    const auto wal_bytes = std::filesystem::file_size(file + "-wal", ec);
+    if (!ec && wal_bytes > 0)
+      throw SqliteError(SQLITE_CANTOPEN,
+                        fmt::format("sqlite: cannot read {} read-only: its -wal file holds changes not yet in the "
+                                    "database and the -shm file cannot be created here; open it once with write "
+                                    "access to checkpoint it (sqlite3 FILE 'PRAGMA wal_checkpoint')",
+                                    file));
+    open(file_uri(file) + "?immutable=1", SQLITE_OPEN_READONLY | SQLITE_OPEN_URI);
+    sqlite3_extended_result_codes(db_.get(), 1);
+    immutable_ = true;
+    return;
+  }
+  open(file, mode == OpenMode::kCreate ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READWRITE);
+  sqlite3* raw = db_.get();
   sqlite3_busy_timeout(raw, busy_timeout_ms);
   sqlite3_extended_result_codes(raw, 1);
   exec("PRAGMA journal_mode=WAL");

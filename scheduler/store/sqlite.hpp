@@ -29,11 +29,24 @@ using SqlValue = std::variant<Null, std::int64_t, double, std::string>;
 
 class Statement;
 
+// The file is not there (and the mode does not create it).
+class NoSuchDatabase : public std::runtime_error {
+ public:
+  explicit NoSuchDatabase(const std::string& file) : std::runtime_error("no such database: " + file) {}
+};
+
+enum class OpenMode {
+  kCreate,    // read-write, created when missing (submit, run)
+  kExisting,  // read-write, NoSuchDatabase when missing (work, cancel, retry)
+  kReadOnly,  // SQLITE_OPEN_READONLY, NoSuchDatabase when missing (status, query, check)
+};
+
 class Database {
  public:
-  // Opens (creating) the file in WAL mode with a busy timeout, so that
-  // several processes and threads can share it.
-  explicit Database(const std::string& file, int busy_timeout_ms = 60000);
+  // Read-write modes set WAL with a busy timeout, so that several processes
+  // and threads can share the file. Read-only never writes: it works on a
+  // 0444 file or a read-only mount (see open_read_only in sqlite.cpp).
+  explicit Database(const std::string& file, OpenMode mode = OpenMode::kCreate, int busy_timeout_ms = 60000);
   ~Database();
   Database(const Database&) = delete;
   Database& operator=(const Database&) = delete;
@@ -44,13 +57,20 @@ class Database {
   std::int64_t changes() const;
   const std::string& file() const { return file_; }
   sqlite3* handle() const { return db_.get(); }
+  bool read_only() const { return read_only_; }
+  // True when the read-only open fell back to immutable=1 (the -shm could
+  // not be created): a write by another process would not be seen.
+  bool immutable() const { return immutable_; }
 
  private:
   struct Closer {
     void operator()(sqlite3* db) const;
   };
+  void open(const std::string& name, int flags);
   std::string file_;
   std::unique_ptr<sqlite3, Closer> db_;
+  bool read_only_ = false;
+  bool immutable_ = false;
 };
 
 class Statement {

@@ -130,6 +130,18 @@ int user_version(Database& db) {
 
 }  // namespace
 
+void require_current_schema(Database& db) {
+  const int version = user_version(db);
+  if (version == kStoreSchemaVersion) return;
+  if (version == 0) throw std::runtime_error(fmt::format("{} is not a vsi study database (it has no vsi schema)", db.file()));
+  if (version > kStoreSchemaVersion)
+    throw std::runtime_error(fmt::format("{} has schema version {}; this vsi knows up to {}: use a newer vsi",
+                                         db.file(), version, kStoreSchemaVersion));
+  throw std::runtime_error(fmt::format("{} has schema version {}, older than this vsi's {}; a writing command "
+                                       "(vsi work, vsi submit) upgrades it",
+                                       db.file(), version, kStoreSchemaVersion));
+}
+
 void migrate(Database& db) {
   static_assert(kStoreSchemaVersion > 0);
   if (migrations().size() != static_cast<std::size_t>(kStoreSchemaVersion))

@@ -13,4 +13,8 @@ inline constexpr int kStoreSchemaVersion = 3;
 // std::runtime_error for a file written by a newer vsi.
 void migrate(Database& db);
 
+// For a read-only connection, which cannot migrate: throws
+// std::runtime_error unless the file has this vsi's schema version.
+void require_current_schema(Database& db);
+
 }  // namespace railvsi::scheduler

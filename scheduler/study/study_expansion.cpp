@@ -149,8 +149,13 @@ JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequenci
 
 }  // namespace
 
-StudyPlan expand_study(const json& doc, const std::filesystem::path& base_dir, const std::string& file,
+StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, const std::string& file,
                        const ExpandOptions& options) {
+  // Absolute from the start: a relative directory ("d3", or "" for a study
+  // in the working directory) would leave names relative in the stored
+  // scenes, and the check below would resolve them against it a second time.
+  const std::filesystem::path base_dir =
+      (study_dir.empty() ? std::filesystem::current_path() : std::filesystem::absolute(study_dir)).lexically_normal();
   SchemaValidator("study.schema.json").validate(doc, file);
   const bool dt_given = doc.at("analysis").contains("dt_s");
   const std::size_t max_jobs = options.allow_large ? SIZE_MAX : options.max_jobs;

@@ -44,8 +44,10 @@ struct ExpandOptions {
 // train, every profile, and a dry run of the engine's setup (factorization,
 // static equilibrium) for every train. Throws InputError naming the study
 // file (or the library file at fault) and the JSON path in the study, e.g.
-// /trains/2/vehicles/0/primary/k_N_per_m.
-StudyPlan expand_study(const nlohmann::json& doc, const std::filesystem::path& base_dir, const std::string& file,
+// /trains/2/vehicles/0/primary/k_N_per_m. File names in the study are
+// relative to study_dir (itself relative to the working directory or
+// absolute); the scenes of the jobs hold them absolute.
+StudyPlan expand_study(const nlohmann::json& doc, const std::filesystem::path& study_dir, const std::string& file,
                        const ExpandOptions& options = {});
 // The label of a study's train as jobs carry it: its library name ("X as
 // Y" for a renamed library train) or its name.

@@ -3,11 +3,14 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdlib>
 #include <mutex>
+#include <optional>
+#include <random>
 #include <thread>
 #include <vector>
 
@@ -15,6 +18,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/terminal_text.hpp"
+#include "core/unix_time.hpp"
 #include "store/store_schema.hpp"
 #include "workers/job_runner.hpp"
 
@@ -29,9 +33,37 @@ std::string host_name() {
   return name;
 }
 
-// What the worker threads report back; only atomics cross threads.
+// What the worker threads report back; only atomics and the mutex-guarded
+// error cross threads.
 struct Tally {
   std::atomic<std::int64_t> done{0}, failed{0}, lost{0};
+  std::mutex mutex;
+  std::string error;  // the first thread that stopped early says why
+  void stopped(const std::string& why) {
+    std::lock_guard lock(mutex);
+    if (error.empty()) error = why;
+  }
+};
+
+// The job each thread holds, for the heartbeat: it renews exactly these
+// (by job id and worker name), nothing else the name might match.
+class HeldJobs {
+ public:
+  explicit HeldJobs(std::size_t threads) : job_of_thread_(threads) {}
+  void hold(std::size_t thread, const std::string& job_id) {
+    std::lock_guard lock(mutex_);
+    job_of_thread_[thread] = job_id;
+  }
+  void drop(std::size_t thread) { hold(thread, {}); }
+  // thread -> job id; empty when it holds none.
+  std::vector<std::string> snapshot() {
+    std::lock_guard lock(mutex_);
+    return job_of_thread_;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::string> job_of_thread_;
 };
 
 // A stop flag the heartbeat and the progress loop can sleep on.
@@ -58,27 +90,68 @@ class StopSignal {
 
 bool nothing_left(Database& db) { return state_counts(db).unfinished() == 0; }
 
-void worker_loop(const WorkOptions& options, const std::string& name, FactorizationCache& cache, Tally& tally) {
-  Database db(options.db_file);
+// Claim retries after a database error: 0.2 s doubling to 10 s, until the
+// errors have lasted options.db_retry_s.
+class ClaimBackoff {
+ public:
+  explicit ClaimBackoff(double give_up_after_s) : give_up_after_s_(give_up_after_s) {}
+  void succeeded() {
+    failing_ = false;
+    wait_s_ = kFirstWait_s;
+  }
+  // Sleeps before the next attempt; throws when the errors have lasted too long.
+  void failed(const std::string& name, const std::string& error) {
+    const auto now = Clock::now();
+    if (!failing_) failing_since_ = now;
+    failing_ = true;
+    const double failing_s = std::chrono::duration<double>(now - failing_since_).count();
+    if (failing_s >= give_up_after_s_)
+      throw std::runtime_error(fmt::format(
+          "the database refused claims for {:.0f} s (--db-retry-s {}), giving up: {}. Nothing is lost: queued jobs "
+          "stay queued and a job in hand returns to the queue when its lease expires; free space (or the lock) and "
+          "run vsi work again",
+          failing_s, give_up_after_s_, error));
+    const double wait_s = std::min(wait_s_, give_up_after_s_ - failing_s);
+    spdlog::warn("{}: claim failed, retrying in {:.1f} s (giving up after {} s of failures): {}", name, wait_s,
+                 give_up_after_s_, error);
+    std::this_thread::sleep_for(std::chrono::duration<double>(wait_s));
+    wait_s_ = std::min(2.0 * wait_s_, kMaxWait_s);
+  }
+
+ private:
+  static constexpr double kFirstWait_s = 0.2, kMaxWait_s = 10.0;
+  double give_up_after_s_;
+  double wait_s_ = kFirstWait_s;
+  bool failing_ = false;
+  Clock::time_point failing_since_{};
+};
+
+void worker_loop(const WorkOptions& options, std::size_t thread, const std::string& name, FactorizationCache& cache,
+                 HeldJobs& held, Tally& tally) {
+  Database db(options.db_file, OpenMode::kExisting);
   JobQueue queue(db, name, options.lease_s);
+  ClaimBackoff backoff(options.db_retry_s);
   std::string last_key;
   const double idle_wait_s = std::clamp(options.lease_s / 4.0, 0.02, 0.2);
   for (;;) {
     std::optional<ClaimedJob> job;
     try {
       job = queue.claim(last_key);
+      backoff.succeeded();
     } catch (const SqliteError& e) {
-      spdlog::warn("{}: claim failed, retrying: {}", name, e.what());
-      std::this_thread::sleep_for(std::chrono::duration<double>(idle_wait_s));
+      backoff.failed(name, e.what());
       continue;
     }
     if (!job) {
       // Jobs still running elsewhere may come back if their worker dies:
-      // wait for them rather than leave them behind.
+      // wait for them rather than leave them behind. A job this process
+      // could not put back is no longer renewed, so its lease expires and
+      // the next claim takes it: the wait ends.
       if (nothing_left(db)) return;
       std::this_thread::sleep_for(std::chrono::duration<double>(idle_wait_s));
       continue;
     }
+    held.hold(thread, job->id);
     last_key = job->operator_key;
     try {
       const JobOutcome outcome = run_job(*job, cache);
@@ -99,19 +172,25 @@ void worker_loop(const WorkOptions& options, const std::string& name, Factorizat
       try {
         queue.release_after_error(*job, e.what());
       } catch (const std::exception& e2) {
-        spdlog::error("{}: could not release job {}: {} (its lease will expire)", name, job->id.substr(0, 12), e2.what());
+        spdlog::error("{}: could not put job {} back in the queue: {}; its lease is no longer renewed and it returns "
+                      "to the queue when the lease expires",
+                      name, job->id.substr(0, 12), e2.what());
       }
     }
+    held.drop(thread);
   }
 }
 
-void heartbeat_loop(const WorkOptions& options, const std::vector<std::string>& names, StopSignal& stop) {
+void heartbeat_loop(const WorkOptions& options, const std::vector<std::string>& names, HeldJobs& held,
+                    StopSignal& stop) {
   std::unique_ptr<Database> db;
   const double period_s = options.lease_s / 3.0;
   while (!stop.wait_for(period_s)) {
     try {
-      if (!db) db = std::make_unique<Database>(options.db_file);
-      for (const std::string& name : names) JobQueue(*db, name, options.lease_s).heartbeat();
+      if (!db) db = std::make_unique<Database>(options.db_file, OpenMode::kExisting);
+      const std::vector<std::string> jobs = held.snapshot();
+      for (std::size_t k = 0; k < names.size(); ++k)
+        if (!jobs[k].empty()) JobQueue(*db, names[k], options.lease_s).renew(jobs[k]);
     } catch (const std::exception& e) {
       spdlog::warn("heartbeat failed (will retry): {}", e.what());
       db.reset();
@@ -120,6 +199,14 @@ void heartbeat_loop(const WorkOptions& options, const std::vector<std::string>& 
 }
 
 }  // namespace
+
+std::string worker_name_prefix() {
+  // The start time alone could repeat within a second (a restart loop);
+  // 32 random bits make a collision negligible.
+  std::random_device random;
+  const auto start_s = static_cast<std::int64_t>(unix_now_s());
+  return fmt::format("{}:{}:{}-{:08x}", host_name(), ::getpid(), start_s, random());
+}
 
 void single_threaded_blas() {
   ::setenv("OPENBLAS_NUM_THREADS", "1", 1);
@@ -132,21 +219,22 @@ void single_threaded_blas() {
 WorkSummary run_workers(const WorkOptions& options, const ProgressCallback& progress) {
   const auto start = Clock::now();
   {
-    Database db(options.db_file);
+    Database db(options.db_file, OpenMode::kExisting);
     migrate(db);
   }
   FactorizationCache cache(options.cache_budget_bytes);
   Tally tally;
   const int threads = std::max(1, options.threads);
   std::vector<std::string> names;
-  const std::string prefix = fmt::format("{}:{}", host_name(), ::getpid());
+  const std::string prefix = worker_name_prefix();
   for (int k = 0; k < threads; ++k) names.push_back(fmt::format("{}:t{}", prefix, k));
+  HeldJobs held(names.size());
 
   std::unique_ptr<Database> monitor;
   const auto report = [&](bool final) {
     if (!progress) return;
     try {
-      if (!monitor) monitor = std::make_unique<Database>(options.db_file);
+      if (!monitor) monitor = std::make_unique<Database>(options.db_file, OpenMode::kExisting);
       progress(state_counts(*monitor), std::chrono::duration<double>(Clock::now() - start).count(), final);
     } catch (const SqliteError& e) {
       spdlog::warn("progress: {}", e.what());
@@ -155,15 +243,16 @@ WorkSummary run_workers(const WorkOptions& options, const ProgressCallback& prog
   report(false);  // the state before this process starts: the baseline of its rate
 
   StopSignal stop_heartbeat, workers_finished;
-  std::thread heartbeat([&] { heartbeat_loop(options, names, stop_heartbeat); });
+  std::thread heartbeat([&] { heartbeat_loop(options, names, held, stop_heartbeat); });
   std::atomic<int> running{threads};
   std::vector<std::thread> workers;
-  for (const std::string& name : names)
-    workers.emplace_back([&, name] {
+  for (std::size_t k = 0; k < names.size(); ++k)
+    workers.emplace_back([&, k] {
       try {
-        worker_loop(options, name, cache, tally);
+        worker_loop(options, k, names[k], cache, held, tally);
       } catch (const std::exception& e) {
-        spdlog::error("{}: stopped: {}", name, e.what());
+        spdlog::error("{}: stopped: {}", names[k], e.what());
+        tally.stopped(e.what());
       }
       if (--running == 0) workers_finished.stop();
     });
@@ -179,6 +268,7 @@ WorkSummary run_workers(const WorkOptions& options, const ProgressCallback& prog
   summary.jobs_failed = tally.failed;
   summary.lost_leases = tally.lost;
   summary.cache = cache.stats();
+  summary.error = tally.error;
   summary.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;
 }

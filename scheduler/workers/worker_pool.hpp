@@ -1,8 +1,9 @@
 #pragma once
 // `vsi work`: worker threads, each with its own database connection, claim
 // jobs until the database has none queued or running, and share one
-// factorization cache. A heartbeat thread renews the leases of the jobs in
-// hand, so that only the jobs of a dead worker return to the queue.
+// factorization cache. A heartbeat thread renews the lease of each job a
+// thread holds (by job id and worker name), so that only the jobs of a dead
+// worker return to the queue.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -19,6 +20,9 @@ struct WorkOptions {
   std::size_t cache_budget_bytes = std::size_t{2} << 30;
   // How often the progress callback is called, s.
   double progress_interval_s = 0.5;
+  // How long a thread keeps retrying a database that refuses its claims
+  // (disk full, locked past the busy timeout) before the process gives up.
+  double db_retry_s = 300.0;
 };
 
 struct WorkSummary {
@@ -27,7 +31,15 @@ struct WorkSummary {
   std::int64_t lost_leases = 0;   // results dropped: the job was taken over or cancelled
   double wall_s = 0.0;
   CacheStats cache;
+  // Why the workers stopped before the queue was empty (empty: they did
+  // not); e.g. the database refused writes for longer than db_retry_s.
+  std::string error;
 };
+
+// host:pid:start-nonce, new at every call: the names of a process's threads
+// append :tN. A container restarted as PID 1 on the same host name gets a
+// new name, so it never renews the leases of its dead predecessor.
+std::string worker_name_prefix();
 
 // Called from the calling thread while the workers run, then once at the end.
 using ProgressCallback = std::function<void(const StateCounts& counts, double elapsed_s, bool final)>;
@@ -36,6 +48,7 @@ using ProgressCallback = std::function<void(const StateCounts& counts, double el
 // is across jobs. Call before any BLAS call (vsi calls it in main).
 void single_threaded_blas();
 
+// Opens an existing database (NoSuchDatabase otherwise).
 WorkSummary run_workers(const WorkOptions& options, const ProgressCallback& progress = {});
 
 }  // namespace railvsi::scheduler

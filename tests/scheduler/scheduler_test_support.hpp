@@ -67,15 +67,25 @@ inline nlohmann::json one_car_train() {
   return {{"name", "one coach"}, {"vehicles", nlohmann::json::array({car(2.4e6)})}};
 }
 
+// How a child process starts: its working directory, and whether it drops
+// root privileges (to nobody) so that file permissions apply to it.
+struct ChildSetup {
+  std::filesystem::path cwd;
+  bool unprivileged = false;
+};
+
 // A child process with its output in files.
 class Child {
  public:
-  Child(const std::vector<std::string>& args, const std::filesystem::path& out, const std::filesystem::path& err) {
+  Child(const std::vector<std::string>& args, const std::filesystem::path& out, const std::filesystem::path& err,
+        const ChildSetup& setup = {}) {
     pid_ = ::fork();
     if (pid_ == 0) {
       std::FILE* o = std::freopen(out.c_str(), "w", stdout);
       std::FILE* e = std::freopen(err.c_str(), "w", stderr);
       if (o == nullptr || e == nullptr) ::_exit(127);
+      if (!setup.cwd.empty() && ::chdir(setup.cwd.c_str()) != 0) ::_exit(126);
+      if (setup.unprivileged && ::geteuid() == 0 && (::setgid(65534) != 0 || ::setuid(65534) != 0)) ::_exit(125);
       std::vector<char*> argv;
       for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
       argv.push_back(nullptr);
@@ -100,6 +110,8 @@ class Child {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
   }
   void kill9() { ::kill(pid_, SIGKILL); }
+  // After a waitpid done by the caller.
+  void mark_waited() { waited_ = true; }
   pid_t pid() const { return pid_; }
 
  private:
@@ -129,14 +141,15 @@ class ServiceTest : public ::testing::Test {
     return file;
   }
 
-  std::unique_ptr<Child> start_vsi(const std::vector<std::string>& args, const std::string& tag) const {
+  std::unique_ptr<Child> start_vsi(const std::vector<std::string>& args, const std::string& tag,
+                                   const ChildSetup& setup = {}) const {
     std::vector<std::string> all{VSI_BINARY};
     all.insert(all.end(), args.begin(), args.end());
-    return std::make_unique<Child>(all, dir_ / (tag + ".out"), dir_ / (tag + ".err"));
+    return std::make_unique<Child>(all, dir_ / (tag + ".out"), dir_ / (tag + ".err"), setup);
   }
 
-  VsiResult vsi(const std::vector<std::string>& args, const std::string& tag = "vsi") const {
-    auto child = start_vsi(args, tag);
+  VsiResult vsi(const std::vector<std::string>& args, const std::string& tag = "vsi", const ChildSetup& setup = {}) const {
+    auto child = start_vsi(args, tag, setup);
     VsiResult r;
     r.exit_code = child->wait();
     r.out = read_text(dir_ / (tag + ".out"));

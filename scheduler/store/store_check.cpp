@@ -1,0 +1,116 @@
+#include "store/store_check.hpp"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "store/store_schema.hpp"
+
+namespace railvsi::scheduler {
+namespace {
+
+// A query whose rows each describe one problem (its first column).
+void collect(Database& db, std::string_view sql, std::vector<std::string>& problems) {
+  Statement s = db.prepare(sql);
+  while (s.step()) problems.push_back(s.text(0));
+}
+
+// A count that must be zero, with what a non-zero count means.
+struct Invariant {
+  const char* sql;
+  const char* meaning;
+};
+
+const Invariant kInvariants[] = {
+    {"SELECT count(*) FROM jobs WHERE state = 'running' AND (lease_expires IS NULL OR worker IS NULL)",
+     "running jobs without a lease or a worker (they would never return to the queue)"},
+    {"SELECT count(*) FROM jobs WHERE state != 'running' AND lease_expires IS NOT NULL",
+     "jobs under a lease that are not running"},
+    {"SELECT count(*) FROM jobs WHERE state IN ('done', 'failed', 'cancelled') AND finished_at IS NULL",
+     "finished jobs without a finish time"},
+    {"SELECT count(*) FROM jobs j WHERE state = 'done' AND NOT EXISTS (SELECT 1 FROM envelopes e WHERE e.job_id = j.id)",
+     "done jobs without envelopes"},
+    {"SELECT count(*) FROM (SELECT DISTINCT e.job_id FROM envelopes e JOIN jobs j ON j.id = e.job_id "
+     "WHERE j.state != 'done')",
+     "jobs with envelopes that are not done"},
+    {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM study_jobs sj WHERE sj.job_id = j.id)",
+     "jobs of no study"},
+    // A shard store links part of its study's jobs: fewer is not a problem.
+    {"SELECT count(*) FROM studies s WHERE job_count < (SELECT count(*) FROM study_jobs sj WHERE sj.study_id = s.id)",
+     "studies with more jobs linked than they have"},
+    {"SELECT count(*) FROM jobs WHERE attempts > max_attempts OR attempts < 0",
+     "jobs with more attempts than allowed"},
+};
+
+}  // namespace
+
+StoreCheck check_store(Database& db) {
+  StoreCheck check;
+  auto& problems = check.problems;
+  try {
+    std::vector<std::string> integrity;
+    collect(db, "PRAGMA integrity_check(100)", integrity);
+    if (!(integrity.size() == 1 && integrity.front() == "ok"))
+      for (const std::string& line : integrity) problems.push_back("integrity: " + line);
+  } catch (const SqliteError& e) {
+    problems.push_back(fmt::format("integrity check could not run: {}", e.what()));
+    return check;  // the file is not readable enough for the rest
+  }
+  try {
+    Statement s = db.prepare("PRAGMA user_version");
+    s.step();
+    if (s.int64(0) != kStoreSchemaVersion)
+      problems.push_back(fmt::format("schema version {}, this vsi's is {}", s.int64(0), kStoreSchemaVersion));
+    collect(db,
+            "SELECT 'foreign key: ' || fk.\"table\" || ' refers to a missing row of ' || fk.parent "
+            "FROM pragma_foreign_key_check AS fk LIMIT 100",
+            problems);
+    for (const Invariant& inv : kInvariants) {
+      Statement c = db.prepare(inv.sql);
+      c.step();
+      if (const std::int64_t n = c.int64(0); n > 0) problems.push_back(fmt::format("{} {}", n, inv.meaning));
+    }
+    Statement counts = db.prepare("SELECT (SELECT count(*) FROM studies), (SELECT count(*) FROM jobs)");
+    counts.step();
+    check.studies = counts.int64(0);
+    check.jobs = counts.int64(1);
+  } catch (const SqliteError& e) {
+    problems.push_back(fmt::format("queue check could not run: {}", e.what()));
+  }
+  return check;
+}
+
+void require_sound(Database& db) {
+  Statement s = db.prepare("PRAGMA quick_check(1)");
+  std::string first;
+  if (s.step()) first = s.text(0);
+  if (first != "ok")
+    throw std::runtime_error(fmt::format("{} is damaged (PRAGMA quick_check: {}); vsi check --db {} lists the problems",
+                                         db.file(), first, db.file()));
+}
+
+void require_consistent_study(Database& db, const std::string& study_id) {
+  // A shard store holds part of a study: job_count bounds the links, it
+  // need not equal them.
+  Statement s = db.prepare(
+      "SELECT (SELECT job_count FROM studies WHERE id = ?1), "
+      "(SELECT count(*) FROM study_jobs WHERE study_id = ?1), "
+      "(SELECT count(*) FROM study_jobs INDEXED BY study_jobs_job WHERE study_id = ?1), "
+      "(SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1), "
+      "(SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1 AND j.state = 'done' "
+      " AND NOT EXISTS (SELECT 1 FROM envelopes e WHERE e.job_id = j.id))");
+  s.bind(1, study_id).step();
+  const std::int64_t listed = s.int64(0), linked = s.int64(1), indexed = s.int64(2), found = s.int64(3),
+                     bare = s.int64(4);
+  std::string why;
+  if (linked != indexed || linked != found || linked > listed)
+    why = fmt::format("the study lists {} jobs; {} are linked to it, {} through the job index and {} found", listed,
+                      linked, indexed, found);
+  else if (bare > 0)
+    why = fmt::format("{} done jobs have no envelopes", bare);
+  if (!why.empty())
+    throw std::runtime_error(fmt::format("{} is damaged or inconsistent: study {}: {}; vsi check --db {} lists the problems",
+                                         db.file(), study_id.substr(0, 12), why, db.file()));
+}
+
+}  // namespace railvsi::scheduler
