@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "io/input_file.hpp"
 #include "io/text_fields.hpp"
 
 namespace railvsi {
@@ -73,6 +75,7 @@ bool read_header(MatrixMarketLines& lines) {
 }  // namespace
 
 SparseMatrix read_matrix_market(const std::filesystem::path& file, const std::string& json_path) {
+  const std::uintmax_t bytes = check_input_file(file, kMaxMatrixFileBytes, json_path);
   MatrixMarketLines lines(file, json_path);
   const bool symmetric = read_header(lines);
   std::string line;
@@ -81,6 +84,16 @@ SparseMatrix read_matrix_market(const std::filesystem::path& file, const std::st
   if (!parse_fields(line, rows, cols, nnz) || rows <= 0 || cols <= 0 || nnz < 0)
     throw lines.error(fmt::format("expected the size line 'rows columns entries', found '{}'", line));
   if (rows != cols) throw lines.error(fmt::format("matrix is {} x {}; a structure matrix must be square", rows, cols));
+  // Checked before anything is allocated from the size line: an entry line
+  // "i j v" has at least 6 bytes, and a structure matrix (positive definite,
+  // or a mass matrix with its diagonal) has at least one entry per row.
+  if (nnz > static_cast<long>(bytes / 6))
+    throw lines.error(fmt::format("the size line promises {} entries, more than a file of {} bytes can hold", nnz,
+                                  bytes));
+  if (rows > std::numeric_limits<int>::max() || rows > std::max(nnz, 1L))
+    throw lines.error(fmt::format("the size line gives {} rows for {} entries: a structure matrix has at least "
+                                  "one entry per row (and at most {} rows)",
+                                  rows, nnz, std::numeric_limits<int>::max()));
 
   std::vector<Triplet> triplets;
   triplets.reserve(static_cast<std::size_t>(symmetric ? 2 * nnz : nnz));

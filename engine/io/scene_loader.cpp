@@ -58,6 +58,10 @@ double speed_mps(const json& doc, const AnalysisOptions& analysis) {
   const double speed_kmh = doc.at("speed_kmh").get<double>();
   if (speed_kmh == 0.0 && !analysis.duration_s)
     throw InputError("/speed_kmh", "a speed of 0 needs analysis.duration_s (the train would never leave the bridge)");
+  if (speed_kmh != 0.0 && !(speed_kmh >= 1.0 && speed_kmh <= 1000.0))
+    throw InputError("/speed_kmh", fmt::format("{:g} km/h is not a train speed: give 0 (with analysis.duration_s) or "
+                                               "a speed in [1, 1000] km/h",
+                                               speed_kmh));
   return speed_kmh / 3.6;
 }
 

@@ -49,7 +49,10 @@ struct TimeStepPolicy {
   // at 20 steps per period needs 1.67 ms) and its halvings are round
   // numbers: 1, 0.5, 0.25, 0.125 ms.
   double dt_max_s = 2.0e-3;
-  double steps_per_period = 20.0;               // at the code frequency f_cut
+  // At the code frequency f_cut: the HHT period elongation of the scene's
+  // scheme stays below this (see bound 1).
+  double max_period_error = 0.0025;
+  HhtParameters hht = HhtParameters::from_alpha(-0.05);
   double max_travel_fraction_of_element = 0.25;  // of the shortest rail element, per step
   double contact_steps_per_period = 10.0;        // at the Hertz contact frequency f_H
 };
@@ -83,6 +86,8 @@ TimeStepChoice choose_time_step(const StructureModel& structure, const Train& tr
                                 const ContactOptions& contact, double f0_hz, double f3_hz,
                                 const TimeStepPolicy& policy = {});
 
+// Largest omega*dt at which the HHT period elongation is <= max_period_error.
+double max_omega_dt(const HhtParameters& hht, double max_period_error);
 // Shortest element of all rail lines, m.
 double shortest_rail_element_m(const StructureModel& structure);
 // Highest linearized Hertz frequency of the train's wheels, Hz; 0 for moving

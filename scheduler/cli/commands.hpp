@@ -17,6 +17,7 @@ enum ExitCode : int {
 struct SimulateArgs {
   std::string scene_file;
   std::optional<std::string> histories_dir;
+  bool allow_large = false;  // run beyond the size limits (steps, history memory)
 };
 
 struct InspectArgs {

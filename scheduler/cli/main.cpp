@@ -1,6 +1,7 @@
 // vsi: the railvsi command line. Exit codes: 0 success, 1 runtime failure,
 // 2 invalid input or usage; whatever happens, main reports it and returns.
 #include <exception>
+#include <new>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -23,6 +24,8 @@ int run(int argc, char** argv) {
   simulate->add_option("--histories", simulate_args.histories_dir,
                        "Directory for the time histories: deck.csv, and for multibody trains contact_forces.csv "
                        "and carbody.csv (created if needed)");
+  simulate->add_flag("--allow-large", simulate_args.allow_large,
+                     "Run even when the estimated step count, history memory or work exceeds the limits");
 
   std::string validate_file;
   CLI::App* validate = app.add_subcommand(
@@ -67,6 +70,10 @@ int main(int argc, char** argv) {
   } catch (const railvsi::InputError& e) {
     report_input_error(e);
     return kExitInvalidInput;
+  } catch (const std::bad_alloc&) {
+    // Inputs are sized before allocating; this is a last resort, not a path.
+    std::cerr << "error: out of memory\n";
+    return kExitRuntimeFailure;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitRuntimeFailure;

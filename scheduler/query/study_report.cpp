@@ -43,6 +43,18 @@ std::string csv_field(const std::string& s) {
   return out + "\"";
 }
 
+// A value of a run with warnings carries a mark (README "Run health").
+constexpr const char* kWarningMark = "*";
+
+std::string marked(const std::string& text, bool warned) { return warned ? text + kWarningMark : text; }
+
+const JobResult* governing_job(const std::vector<JobResult>& jobs, const TrainEnvelope& e) {
+  for (const JobResult& j : jobs)
+    if (j.train == e.train && j.speed_kmh == e.governing_speed_kmh && j.irregularity == e.governing_irregularity)
+      return &j;
+  return nullptr;
+}
+
 bool any_value(const std::vector<JobResult>& jobs, const char* quantity) {
   return std::any_of(jobs.begin(), jobs.end(), [&](const JobResult& j) { return j.overall(quantity).has_value(); });
 }
@@ -79,7 +91,9 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
   for (const JobResult& j : jobs) {
     out += fmt::format("{:<{}}  {:>7}  {:<{}}  {:>9.3g}", j.train, train_w, speed_text(j.speed_kmh), j.irregularity,
                        irr_w, j.dt_s);
-    for (const Column* c : columns) out += fmt::format("  {:>13}", shown(j.overall(c->quantity), c->scale));
+    for (const Column* c : columns)
+      out += fmt::format("  {:>13}", marked(shown(j.overall(c->quantity), c->scale),
+                                            j.has_warnings() && j.overall(c->quantity).has_value()));
     out += "  " + (j.state == "failed" && !j.status.empty() ? j.state + " (" + j.status + ")" : j.state) + "\n";
   }
 
@@ -95,10 +109,14 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
       }
       if (e.cases_without_value > 0)
         note += fmt::format("{}{} of {} cases without a value", note.empty() ? "" : "; ", e.cases_without_value, e.cases);
+      const JobResult* g = e.value ? governing_job(jobs, e) : nullptr;
       out += fmt::format("{:<{}}  {:<15}  {:>10}  {:>7}  {:<{}}  {}\n", e.train, train_w, c->heading,
-                         shown(e.value, c->scale), e.value ? speed_text(e.governing_speed_kmh) : "-",
+                         marked(shown(e.value, c->scale), g && g->has_warnings()), e.value ? speed_text(e.governing_speed_kmh) : "-",
                          e.value ? e.governing_irregularity : "-", irr_w, note);
     }
+  if (std::any_of(jobs.begin(), jobs.end(), [](const JobResult& j) { return j.has_warnings(); }))
+    out += fmt::format("\n{} the run that gave this value has warnings (vsi query --format json lists them per job)\n",
+                       kWarningMark);
   return out;
 }
 
@@ -133,6 +151,7 @@ ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& j
                         {"wall_s", number(j.wall_s)},
                         {"loop_s", number(j.loop_s)},
                         {"fidelity", j.fidelity.empty() ? ordered_json(nullptr) : ordered_json::parse(j.fidelity)},
+                        {"warnings", j.warnings.empty() ? ordered_json::array() : ordered_json::parse(j.warnings)},
                         {"envelopes", envelopes}};
     if (!j.error.empty()) job["error"] = j.error;
     list.push_back(std::move(job));

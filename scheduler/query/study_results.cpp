@@ -41,7 +41,7 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
   std::unordered_map<std::string, std::size_t> index;
   Statement s = db.prepare(fmt::format(
       "SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, j.error, j.dt_s, j.dt_reason, "
-      "j.cutoff_hz, j.wall_s, j.loop_s, j.fidelity FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+      "j.cutoff_hz, j.wall_s, j.loop_s, j.fidelity, j.warnings FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
       "WHERE {} ORDER BY sj.position",
       kFilter));
   bind_filter(s, filter);
@@ -60,6 +60,7 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     r.wall_s = s.optional_real(10);
     r.loop_s = s.optional_real(11);
     r.fidelity = s.text(12);
+    r.warnings = s.text(13);
     index.emplace(r.id, jobs.size());
     jobs.push_back(std::move(r));
   }

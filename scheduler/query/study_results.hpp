@@ -33,6 +33,8 @@ struct JobResult {
   double cutoff_hz = 0.0;
   std::optional<double> wall_s, loop_s;
   std::string fidelity;  // JSON, empty before a run
+  std::string warnings;  // JSON array of the run's warnings, empty before a run
+  bool has_warnings() const { return !warnings.empty() && warnings != "[]"; }
   // quantity -> location ("" for the whole job) -> value (nullopt: not produced)
   std::map<std::string, std::map<std::string, std::optional<double>>> envelopes;
   std::optional<double> overall(const std::string& quantity) const;
