@@ -62,10 +62,12 @@ double hht_spectral_radius(const HhtParameters& p, double omega_dt) {
 
 double hht_period_error(const HhtParameters& p, double omega_dt) {
   // The principal roots are the complex pair rho exp(+-i Omega_bar); the
-  // numerical period is 2 pi / Omega_bar.
+  // numerical period is 2 pi / Omega_bar. The spurious root is real (for
+  // alpha < 0 it may be negative: its phase pi is not a period).
   const Eigen::Vector3cd lambda = amplification_matrix(p, omega_dt).eigenvalues();
   double omega_bar = 0.0;
-  for (const auto& l : lambda) omega_bar = std::max(omega_bar, std::abs(std::arg(l)));
+  for (const auto& l : lambda)
+    if (std::abs(l.imag()) > 1e-12 * std::abs(l)) omega_bar = std::max(omega_bar, std::abs(std::arg(l)));
   return omega_bar > 0.0 ? omega_dt / omega_bar - 1.0 : std::numeric_limits<double>::infinity();
 }
 

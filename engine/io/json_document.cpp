@@ -49,14 +49,24 @@ class DuplicateKeyCheck {
     std::set<std::string> keys;
     std::string key;
   };
+  // No input needs longer arrays (long profiles come as CSV files); the
+  // schema checks after parsing would take minutes on millions of items.
+  static constexpr std::size_t kMaxArrayElements = 50000;
   void element_done() {
-    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+    if (frames_.empty() || !frames_.back().array) return;
+    if (++frames_.back().index > kMaxArrayElements)
+      throw InputError(path(frames_.size() - 1),
+                       fmt::format("an array of more than {} elements is not a plausible input", kMaxArrayElements),
+                       file_);
   }
-  std::string path() const {
+  // JSON pointer of the value being parsed in the first `depth` frames.
+  std::string path(std::size_t depth) const {
     std::string p = "/";
-    for (const Frame& f : frames_) p = f.array ? child_path(p, f.index) : child_path(p, f.key);
+    for (std::size_t i = 0; i < depth; ++i)
+      p = frames_[i].array ? child_path(p, frames_[i].index) : child_path(p, frames_[i].key);
     return p;
   }
+  std::string path() const { return path(frames_.size()); }
   std::string file_;
   std::vector<Frame> frames_;
 };

@@ -93,6 +93,9 @@ std::shared_ptr<const Irregularity> scene_irregularity(const json& doc, const st
 AnalysisOptions parse_analysis(const json& a) {
   AnalysisOptions o;
   o.dt_s = a.at("dt_s").get<double>();
+  // Checked here rather than by the schema's minimum, whose message prints 1e-7 as 0.000000.
+  if (!(o.dt_s >= 1e-7))
+    throw InputError("/analysis/dt_s", fmt::format("dt_s = {:g} s is below 1e-7 s: not a plausible time step", o.dt_s));
   o.hht = hht_parameters(a);
   if (a.contains("solver"))
     o.solver = a.at("solver").get<std::string>() == "reference" ? SolverPath::kReference : SolverPath::kCondensed;

@@ -30,10 +30,12 @@ RunMonitor::RunMonitor(const Scene& scene, const TrainLayout& layout, double sta
     warn_once("irregularity_ignored",
               "moving forces do not feel the track irregularity: it has no effect on this run (use a multibody "
               "train for its effect)");
-  // Axles that start behind the modelled track enter it during the run: the
-  // entry is a transient (an axle load applied at once, or a wheel leaving
-  // the rigid path). It is inside the evaluation window when the train's
-  // first axle is already in the window at that moment.
+  // Axles that start behind a modelled approach track enter it at its rail
+  // end during the run: a transient (an axle load applied at once, or a
+  // wheel leaving the rigid path) that a real track does not have. It is
+  // inside the evaluation window when the train's first axle is already in
+  // the window at that moment. Without an approach (the rail starts at the
+  // bridge) the entry is the bridge's own.
   const double rail_start = st.rails().front().start_m();
   const double window_start = b0 - scene.analysis.evaluation_margin_m;
   std::vector<double> offsets;
@@ -43,7 +45,7 @@ RunMonitor::RunMonitor(const Scene& scene, const TrainLayout& layout, double sta
   for (double off : offsets)
     if (TrainLayout::position_m(start_x_m, off) < rail_start)
       worst_front_m = std::max(worst_front_m, rail_start + off);  // front when this axle enters
-  if (worst_front_m >= window_start && scene.speed_mps > 0.0)
+  if (rail_start < b0 && worst_front_m >= window_start && scene.speed_mps > 0.0)
     warn_once("entry_inside_window",
               fmt::format("axles enter the modelled track (x = {:.1f} m) while the first axle is at x = {:.1f} m, "
                           "inside the evaluation window from {:.1f} m: the entry transient is part of the results; "

@@ -156,7 +156,6 @@ void RunState::summarize(RunSummary& sum) const {
   sum.max_unloading_ratio = kNone;
   sum.contact_loss_s = kNone;
   if (!min_P_.empty()) {
-    sum.min_contact_force_N = std::numeric_limits<double>::infinity();
     for (std::size_t c = 0; c < min_P_.size(); ++c) {
       const ContactSpec& cs = layout_.contacts[c];
       WheelSummary w;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 
+#include "envelopes/code_filter.hpp"
 #include "planning/time_step_policy.hpp"
 
 namespace railvsi {
@@ -20,10 +21,16 @@ std::vector<RunWarning> time_step_warnings(const Scene& scene, double cutoff_hz)
   if (dt > c.required_dt_s * (1.0 + 1e-9)) {
     const auto binding = std::find_if(c.bounds.begin(), c.bounds.end(),
                                       [&](const TimeStepBound& b) { return b.name == c.binding; });
+    // The code-frequency detail names f0 and f3, which are not known here.
+    const std::string detail =
+        c.binding == "code frequency"
+            ? fmt::format("f_cut = {:.1f} Hz with HHT period error <= {:g} %", code_cutoff_hz(0.0, cutoff_hz),
+                          100.0 * policy.max_period_error)
+            : binding->detail;
     out.push_back({"dt_above_policy",
                    fmt::format("dt = {:.3g} s is {:.3g} x the time-step policy's {:.3g} s (binding bound: {}, {}); "
                                "results are not converged to the policy's accuracy",
-                               dt, dt / c.required_dt_s, c.required_dt_s, c.binding, binding->detail),
+                               dt, dt / c.required_dt_s, c.required_dt_s, c.binding, detail),
                    std::nullopt, std::nullopt, dt / c.required_dt_s});
   }
   const double nyquist_hz = 0.5 / dt;
