@@ -75,7 +75,14 @@ bool read_header(MatrixMarketLines& lines) {
 }  // namespace
 
 SparseMatrix read_matrix_market(const std::filesystem::path& file, const std::string& json_path) {
-  const std::uintmax_t bytes = check_input_file(file, kMaxMatrixFileBytes, json_path);
+  // Errors in a matrix file are reported at the path that names it.
+  const std::uintmax_t bytes = [&] {
+    try {
+      return check_input_file(file, kMaxMatrixFileBytes, json_path);
+    } catch (const InputError& e) {
+      throw InputError(json_path, fmt::format("{}: {}", file.string(), e.what()));
+    }
+  }();
   MatrixMarketLines lines(file, json_path);
   const bool symmetric = read_header(lines);
   std::string line;
@@ -90,10 +97,8 @@ SparseMatrix read_matrix_market(const std::filesystem::path& file, const std::st
   if (nnz > static_cast<long>(bytes / 6))
     throw lines.error(fmt::format("the size line promises {} entries, more than a file of {} bytes can hold", nnz,
                                   bytes));
-  if (rows > std::numeric_limits<int>::max() || rows > std::max(nnz, 1L))
-    throw lines.error(fmt::format("the size line gives {} rows for {} entries: a structure matrix has at least "
-                                  "one entry per row (and at most {} rows)",
-                                  rows, nnz, std::numeric_limits<int>::max()));
+  if (rows > std::numeric_limits<int>::max())
+    throw lines.error(fmt::format("the size line gives {} rows, more than {}", rows, std::numeric_limits<int>::max()));
 
   std::vector<Triplet> triplets;
   triplets.reserve(static_cast<std::size_t>(symmetric ? 2 * nnz : nnz));
@@ -109,6 +114,9 @@ SparseMatrix read_matrix_market(const std::filesystem::path& file, const std::st
     if (symmetric && i != j) triplets.emplace_back(static_cast<int>(j - 1), static_cast<int>(i - 1), v);
   }
   if (lines.next_data(line)) throw lines.error(fmt::format("more entries than the {} of the size line", nnz));
+  if (rows > std::max(nnz, 1L))  // before the column array of `rows` entries is allocated
+    throw lines.error(fmt::format("{} rows but only {} entries: a structure matrix has at least one entry per row",
+                                  rows, nnz));
   SparseMatrix A(static_cast<int>(rows), static_cast<int>(cols));
   A.setFromTriplets(triplets.begin(), triplets.end());
   return A;

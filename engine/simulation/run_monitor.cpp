@@ -158,7 +158,12 @@ double RunMonitor::energy_residual() const {
   };
   add(structure_energy_);
   for (const auto& a : vehicle_energy_) add(a);
-  return scale > 0.0 ? max_residual_J_ / scale : 0.0;
+  // A run where nothing moves (a stationary load) has no energy flow: its
+  // residual is round-off of the initial energy, not a relative error.
+  double initial = std::abs(structure_energy_.initial_mechanical_J());
+  for (const auto& a : vehicle_energy_) initial += std::abs(a.initial_mechanical_J());
+  scale = std::max({scale, 1e-6 * initial, 1e-9});
+  return max_residual_J_ / scale;
 }
 
 void RunMonitor::summarize(RunSummary& summary) const {

@@ -14,13 +14,13 @@
 //     acceleration envelope keeps, stays <= max_period_error (0.25 %),
 //     computed from the phase of the amplification matrix's principal
 //     roots for the scene's alpha (hht_period_error). For alpha = -0.05 that
-//     is 38.6 steps per period of f_cut. Steps per period alone did not
+//     is 38.7 steps per period of f_cut. Steps per period alone did not
 //     keep the promise: at 20 steps the period error is 0.93 %, and a mode
 //     near f_cut excited at resonance (the third bending mode of a span,
-//     f3 = 9 f0) then carried it into the filtered acceleration (2 %
-//     measured on an HSLM sweep). The bound on the filtered deck
-//     acceleration this gives is measured, not derived: see
-//     tests/results/time_step_policy_test.cpp and the README. Lower modes
+//     f3 = 9 f0) then carried it into the filtered acceleration (up to 2 %
+//     reported on an HSLM sweep; 1.18 % measured in time_step_policy_test
+//     at 1 ms, 0.27 % at the 0.5 ms this bound gives). The bound on the
+//     filtered deck acceleration is measured on that case, not derived. Lower modes
 //     get more steps and smaller errors (as dt^2).
 //  2. wheel travel: a wheel moves at most max_travel_fraction_of_element of
 //     the shortest rail element per step. Loads enter through the Hermite
