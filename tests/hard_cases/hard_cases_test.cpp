@@ -79,8 +79,7 @@ struct Outcome {
   std::set<std::string> codes;
 };
 
-Outcome run(const json& doc, double cutoff_hz) {
-  const Scene scene = parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs", "hard case");
+Outcome run(const Scene& scene, double cutoff_hz) {
   const Simulation sim(scene);
   Outcome o;
   o.result = sim.run();
@@ -88,6 +87,10 @@ Outcome run(const json& doc, double cutoff_hz) {
   o.env = compute_envelopes(o.result, scene.analysis.dt_s, scene.analysis.history_stride, cutoff_hz);
   for (const RunWarning& w : o.result.summary.warnings) o.codes.insert(w.code);
   return o;
+}
+
+Outcome run(const json& doc, double cutoff_hz) {
+  return run(parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs", "hard case"), cutoff_hz);
 }
 
 double rel(std::optional<double> a, std::optional<double> b) {
@@ -305,12 +308,7 @@ TEST(HardCases, ThreeDimensionalDeckAtFiveThousandDofs) {
   const auto run_at = [&](double dt) {
     Scene s = scene;
     s.analysis.dt_s = dt;
-    Outcome out;
-    out.result = Simulation(s).run();
-    for (RunWarning& w : time_step_warnings(s, cutoff)) out.result.summary.warnings.push_back(std::move(w));
-    out.env = compute_envelopes(out.result, dt, 1, cutoff);
-    for (const RunWarning& w : out.result.summary.warnings) out.codes.insert(w.code);
-    return out;
+    return run(s, cutoff);
   };
   const Outcome coarse = run_at(5e-4), fine = run_at(2.5e-4);
   EXPECT_NEAR(scene.structure->num_dofs(), 5000, 250);
