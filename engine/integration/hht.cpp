@@ -1,6 +1,9 @@
 #include "integration/hht.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
+#include <limits>
 #include <fmt/format.h>
 
 namespace railvsi {
@@ -28,8 +31,10 @@ void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new,
   }
 }
 
-double hht_spectral_radius(const HhtParameters& p, double omega_dt) {
-  // One step of m=1, k=Omega^2, c=0, dt=1 applied to the unit states.
+namespace {
+
+// One step of m=1, k=Omega^2, c=0, dt=1 applied to the unit states.
+Eigen::Matrix3d amplification_matrix(const HhtParameters& p, double omega_dt) {
   const HhtCoefficients h(p, 1.0);
   const double k = omega_dt * omega_dt;
   const double kbar = h.c0 + (1.0 + h.alpha) * k;
@@ -46,7 +51,24 @@ double hht_spectral_radius(const HhtParameters& p, double omega_dt) {
     hht_update(h, u_new, s);
     A.col(j) << s.u[0], s.v[0], s.a[0];
   }
-  return A.eigenvalues().cwiseAbs().maxCoeff();
+  return A;
+}
+
+}  // namespace
+
+double hht_spectral_radius(const HhtParameters& p, double omega_dt) {
+  return amplification_matrix(p, omega_dt).eigenvalues().cwiseAbs().maxCoeff();
+}
+
+double hht_period_error(const HhtParameters& p, double omega_dt) {
+  // The principal roots are the complex pair rho exp(+-i Omega_bar); the
+  // numerical period is 2 pi / Omega_bar. The spurious root is real (for
+  // alpha < 0 it may be negative: its phase pi is not a period).
+  const Eigen::Vector3cd lambda = amplification_matrix(p, omega_dt).eigenvalues();
+  double omega_bar = 0.0;
+  for (const auto& l : lambda)
+    if (std::abs(l.imag()) > 1e-12 * std::abs(l)) omega_bar = std::max(omega_bar, std::abs(std::arg(l)));
+  return omega_bar > 0.0 ? omega_dt / omega_bar - 1.0 : std::numeric_limits<double>::infinity();
 }
 
 std::optional<std::string> hht_stability_problem(const HhtParameters& p) {

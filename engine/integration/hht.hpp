@@ -27,6 +27,10 @@ std::optional<std::string> hht_stability_problem(const HhtParameters& p);
 // Spectral radius of the amplification matrix of an undamped oscillator at
 // Omega = omega * dt.
 double hht_spectral_radius(const HhtParameters& p, double omega_dt);
+// Relative period elongation T_bar/T - 1 of an undamped oscillator at
+// Omega = omega * dt (from the phase of the principal roots); infinite when
+// the roots are real (Omega beyond the scheme's bifurcation).
+double hht_period_error(const HhtParameters& p, double omega_dt);
 
 struct HhtCoefficients {
   HhtCoefficients(const HhtParameters& p, double dt_s);

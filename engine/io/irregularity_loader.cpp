@@ -12,6 +12,7 @@
 #include "core/input_error.hpp"
 #include "generators/track_defect.hpp"
 #include "generators/track_spectrum.hpp"
+#include "io/input_file.hpp"
 #include "io/json_document.hpp"
 #include "io/schema_validator.hpp"
 #include "io/text_fields.hpp"
@@ -43,6 +44,13 @@ bool looks_like_header(const std::string& line) {
 // Two columns x_m, r_m separated by a comma, a semicolon or blanks; one
 // header line allowed before the first sample; '#' starts a comment line.
 ProfileSamples read_profile_csv(const std::filesystem::path& file) {
+  if (std::filesystem::exists(file)) {
+    try {
+      check_input_file(file, kMaxTableFileBytes);
+    } catch (const InputError& e) {
+      throw csv_error(file, 0, e.what());
+    }
+  }
   std::ifstream in(file);
   if (!in) throw csv_error(file, 0, "cannot open the profile file");
   ProfileSamples s;

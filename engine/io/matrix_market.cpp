@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "io/input_file.hpp"
 #include "io/matrix_text.hpp"
 #include "io/text_fields.hpp"
 
@@ -65,6 +66,14 @@ bool parse_entry(const std::string& line, long& i, long& j, double& v) {
 }  // namespace
 
 MatrixFile MatrixMarketReader::read(const std::filesystem::path& file, const std::string& json_path) const {
+  // Errors in a matrix file are reported at the path that names it.
+  const std::uintmax_t bytes = [&] {
+    try {
+      return check_input_file(file, kMaxMatrixFileBytes, json_path);
+    } catch (const InputError& e) {
+      throw InputError(json_path, fmt::format("{}: {}", file.string(), e.what()));
+    }
+  }();
   TextLines lines(file, json_path);
   const bool symmetric = read_header(lines);
   std::string line;
@@ -73,6 +82,16 @@ MatrixFile MatrixMarketReader::read(const std::filesystem::path& file, const std
   if (!parse_fields(line, rows, cols, nnz) || rows <= 0 || cols <= 0 || nnz < 0)
     throw lines.error(fmt::format("expected the size line 'rows columns entries', found '{}'", line));
   if (rows != cols) throw lines.error(fmt::format("matrix is {} x {}; a structure matrix must be square", rows, cols));
+  // Checked before anything is allocated from the size line: an entry line
+  // "i j v" has at least 6 bytes, and a structure matrix (positive definite,
+  // or a mass matrix with its diagonal) has about one entry per row, so a
+  // file cannot describe more rows than it has bytes.
+  if (nnz > static_cast<long>(bytes / 6))
+    throw lines.error(fmt::format("the size line promises {} entries, more than a file of {} bytes can hold", nnz,
+                                  bytes));
+  if (rows > static_cast<long>(std::max<std::uintmax_t>(bytes, 1)))
+    throw lines.error(fmt::format("the size line gives {} rows, more than a file of {} bytes can describe", rows,
+                                  bytes));
   if (rows > std::numeric_limits<int>::max() || nnz > std::numeric_limits<int>::max())
     throw lines.error(fmt::format("{} rows and {} entries: more than this program indexes", rows, nnz));
 

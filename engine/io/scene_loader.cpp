@@ -45,6 +45,10 @@ double speed_mps(const json& doc, const AnalysisOptions& analysis) {
   const double speed_kmh = doc.at("speed_kmh").get<double>();
   if (speed_kmh == 0.0 && !analysis.duration_s)
     throw InputError("/speed_kmh", "a speed of 0 needs analysis.duration_s (the train would never leave the bridge)");
+  if (speed_kmh != 0.0 && !(speed_kmh >= 1.0 && speed_kmh <= 1000.0))
+    throw InputError("/speed_kmh", fmt::format("{:g} km/h is not a train speed: give 0 (with analysis.duration_s) or "
+                                               "a speed in [1, 1000] km/h",
+                                               speed_kmh));
   return speed_kmh / 3.6;
 }
 
@@ -76,6 +80,9 @@ std::shared_ptr<const Irregularity> scene_irregularity(const json& doc, const st
 AnalysisOptions parse_analysis(const json& a) {
   AnalysisOptions o;
   o.dt_s = a.at("dt_s").get<double>();
+  // Checked here rather than by the schema's minimum, whose message prints 1e-7 as 0.000000.
+  if (!(o.dt_s >= 1e-7))
+    throw InputError("/analysis/dt_s", fmt::format("dt_s = {:g} s is below 1e-7 s: not a plausible time step", o.dt_s));
   o.hht = hht_parameters(a);
   if (a.contains("solver"))
     o.solver = a.at("solver").get<std::string>() == "reference" ? SolverPath::kReference : SolverPath::kCondensed;

@@ -64,6 +64,16 @@ Bridge2dOptions bridge_options(const json& s, const json& outputs, double min_ap
   o.damping_f1_hz = damping.value("f1_hz", o.damping_f1_hz);
   o.damping_f2_hz = damping.value("f2_hz", o.damping_f2_hz);
   o.element_length_m = s.value("element_length_m", o.element_length_m);
+  {  // Checked before the generator allocates: a plane model beyond this is a typo.
+    double length_m = 0.0;
+    for (double L : o.spans_m) length_m += L;
+    const double elements = length_m / o.element_length_m;
+    constexpr double kMaxDeckElements = 1.0e6;
+    if (elements > kMaxDeckElements)
+      throw InputError("/structure/element_length_m",
+                       fmt::format("{:.3g} m of deck in elements of {:g} m makes {:.3g} elements, more than {:g}",
+                                   length_m, o.element_length_m, elements, kMaxDeckElements));
+  }
   if (s.contains("bearing_k_N_per_m")) o.bearing_k_N_per_m = s.at("bearing_k_N_per_m").get<double>();
   if (s.contains("track") && !s.at("track").is_null()) {
     o.track = track_options(s.at("track"));

@@ -38,6 +38,7 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
   const auto [b0, b1] = bridge_extent_m(*scene.structure);
   window_start_m_ = b0 - scene.analysis.evaluation_margin_m;
   window_end_m_ = b1 + scene.analysis.evaluation_margin_m;
+  monitor_.emplace(scene, layout, start_x_m, s_, vehicles_, f_s_, P_);
 }
 
 bool RunState::in_window(double front_x_m, const ContactSpec& c) const {
@@ -80,6 +81,10 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   if (u_max > 1e3)
     return {StatusCode::kDiverged, fmt::format("structure displacement {:.3e} m: the solution diverged", u_max)};
 
+  s_old_ = s_;
+  vehicles_old_ = vehicles_;
+  P_old_ = P_;
+  f_s_old_ = f_s_;
   hht_update(h, solution_.u_s, s_);
   for (std::size_t i = 0; i < layout_.vehicles.size(); ++i)
     hht_update(h, solution_.u_v.segment(layout_.vehicles[i].first_dof, layout_.vehicles[i].model->num_dofs()),
@@ -88,7 +93,7 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   P_ = solution_.P;
   f_s_ = f_new_;
   add_rail_loads(rows_, P_, 1.0, f_s_);
-  return Status::Ok();
+  return monitor_->after_step(h, t_new, s_old_, s_, vehicles_old_, vehicles_, f_s_old_, f_s_, P_old_, P_, iterations);
 }
 
 void RunState::record(long step_index, double t_s, Histories& hist, bool store) {
@@ -106,7 +111,9 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
     if (!in_window(x, cs)) continue;
     vehicle_in[cs.vehicle] = true;
     min_P_[c] = std::min(min_P_[c], P_[c]);
-    if (step_index > 0 && P_[c] <= 0.0) no_contact_s_[c] += dt;
+    // A bilateral law holds the wheel on the rail in tension: that is not a
+    // loss of contact (the monitor warns tensile_contact instead).
+    if (step_index > 0 && P_[c] <= 0.0 && cs.law->unilateral()) no_contact_s_[c] += dt;
   }
   for (std::size_t v = 0; v < layout_.vehicles.size(); ++v) {
     if (!vehicle_in[v]) continue;
@@ -147,9 +154,12 @@ void RunState::summarize(RunSummary& sum) const {
     sum.max_abs_displacement_m = std::max(sum.max_abs_displacement_m, max_abs_u_[p]);
     sum.max_abs_acceleration_mps2 = std::max(sum.max_abs_acceleration_mps2, max_abs_a_[p]);
   }
-  sum.min_contact_force_N = 0.0;
+  // No wheel inside the evaluation window (or no wheels): no wheel values.
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  sum.min_contact_force_N = kNone;
+  sum.max_unloading_ratio = kNone;
+  sum.contact_loss_s = kNone;
   if (!min_P_.empty()) {
-    sum.min_contact_force_N = std::numeric_limits<double>::infinity();
     for (std::size_t c = 0; c < min_P_.size(); ++c) {
       const ContactSpec& cs = layout_.contacts[c];
       WheelSummary w;
@@ -163,13 +173,17 @@ void RunState::summarize(RunSummary& sum) const {
       }
       sum.wheels.push_back(w);
       if (!w.evaluated) continue;  // never in the evaluation window
+      if (std::isnan(sum.min_contact_force_N)) {  // the first evaluated wheel
+        sum.min_contact_force_N = std::numeric_limits<double>::infinity();
+        sum.max_unloading_ratio = sum.contact_loss_s = 0.0;
+      }
       sum.min_contact_force_N = std::min(sum.min_contact_force_N, min_P_[c]);
       const double q0 = Q0_[static_cast<Eigen::Index>(c)];
       if (q0 > 0.0) sum.max_unloading_ratio = std::max(sum.max_unloading_ratio, (q0 - min_P_[c]) / q0);
       sum.contact_loss_s = std::max(sum.contact_loss_s, no_contact_s_[c]);
     }
-    if (!std::isfinite(sum.min_contact_force_N)) sum.min_contact_force_N = 0.0;
   }
+  monitor_->summarize(sum);
   sum.max_abs_carbody_acceleration_mps2 = max_abs_body_a_;
   rigid_.add_warnings(sum.warnings);
 }

@@ -8,6 +8,7 @@
 #include "integration/history_operator.hpp"
 #include "simulation/result.hpp"
 #include "simulation/rigid_wheels.hpp"
+#include "simulation/run_monitor.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "simulation/step_solver.hpp"
@@ -24,6 +25,7 @@ class RunState {
   // when `store`.
   void record(long step_index, double t_s, Histories& histories, bool store);
   void summarize(RunSummary& summary) const;
+  const RunMonitor& monitor() const { return *monitor_; }
 
  private:
   double front_x(double t_s) const { return start_x_m_ + scene_.speed_mps * t_s; }
@@ -43,6 +45,11 @@ class RunState {
   Vector r_, rhs_s_, rhs_v_, f_new_;
   StepSolution solution_;
   RigidWheels rigid_;
+  // The state at t_n while stepping (for the monitor's energy balance).
+  KinematicState s_old_;
+  std::vector<KinematicState> vehicles_old_;
+  Vector P_old_, f_s_old_;
+  std::optional<RunMonitor> monitor_;
   // Envelopes, updated every step (not only at stored samples).
   std::vector<double> max_abs_u_, max_abs_a_, min_P_, no_contact_s_;
   double max_abs_body_a_ = 0.0;

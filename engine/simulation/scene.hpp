@@ -33,6 +33,9 @@ struct AnalysisOptions {
   double extra_time_s = 0.0;
   // Store every n-th step in the histories.
   int history_stride = 1;
+  // Runs beyond the size limits (RunLimits) are refused unless this is set
+  // (vsi simulate --allow-large). Not part of a scene document.
+  bool allow_large_run = false;
 };
 
 struct Scene {

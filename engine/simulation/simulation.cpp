@@ -29,6 +29,33 @@ double default_duration_s(const Scene& scene, double start_x_m) {
   return travel_m / scene.speed_mps + scene.analysis.extra_time_s;
 }
 
+namespace {
+
+// An operator given by the caller (a cache) must be the one this scene
+// needs: built for its structure, dt and HHT parameters, with the rail
+// flexibility when wheels are in contact. Anything else would be read past
+// its tables or silently integrate another scheme.
+void check_operator(const StructureOperator& op, const Scene& scene, const HhtCoefficients& h) {
+  const StructureModel& s = *scene.structure;
+  if (op.num_dofs() != s.num_dofs())
+    throw InputError("/structure", fmt::format("the structure operator has {} DOFs, the structure {}", op.num_dofs(),
+                                               s.num_dofs()));
+  const EffectiveMatrixFactors want = structure_factors(h);
+  const EffectiveMatrixFactors& got = op.factors();
+  const auto same = [](double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); };
+  if (!same(want.mass, got.mass) || !same(want.damping, got.damping) || !same(want.stiffness, got.stiffness))
+    throw InputError("/analysis", fmt::format("the structure operator was built for another dt or HHT alpha "
+                                              "(K_bar factors {:g}, {:g}, {:g}; this scene needs {:g}, {:g}, {:g})",
+                                              got.mass, got.damping, got.stiffness, want.mass, want.damping,
+                                              want.stiffness));
+  if (!scene.train.is_moving_forces() &&
+      op.rail_flexibility().rows() != static_cast<Eigen::Index>(s.rail_dofs().size()))
+    throw InputError("/structure", "the structure operator was built without the rail flexibility a multibody "
+                                   "train needs");
+}
+
+}  // namespace
+
 std::pair<double, double> bridge_extent_m(const StructureModel& structure) {
   const StructureInfo& info = structure.info();
   const RailLine& rail = structure.rails().front();
@@ -66,12 +93,29 @@ std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& sc
   return std::make_shared<const CholmodOperator>(*scene.structure, structure_factors(h), options);
 }
 
+RunEstimate estimate_run(const Scene& scene, double duration_s) {
+  RunEstimate e;
+  const AnalysisOptions& an = scene.analysis;
+  e.steps = std::ceil(duration_s / an.dt_s);
+  double wheels = 0.0, bodies = 0.0;
+  for (const TrainVehicle& v : scene.train.vehicles) {
+    wheels += static_cast<double>(v.model->wheels().size() * an.contact.rail_lines.size());
+    bodies += static_cast<double>(v.model->body_dofs().size());
+  }
+  const double channels = 1.0 + 2.0 * static_cast<double>(scene.structure->outputs().size()) + wheels + bodies;
+  e.history_bytes = (e.steps / std::max(1, an.history_stride) + 1.0) * channels * sizeof(double);
+  e.work = e.steps * (static_cast<double>(scene.structure->num_dofs()) +
+                      4.0 * static_cast<double>(scene.train.moving_forces.size()) + wheels);
+  return e;
+}
+
 // What the constructor prepares once and every run() reads.
 struct SimulationSetup {
   HhtCoefficients h;
   double start_x_m = 0.0;
   double duration_s = 0.0;
   TrainLayout layout;
+  std::vector<VehicleOperator> vehicle_ops;  // factorized once, copied per run
   StaticState statics;
   double setup_s = 0.0;
 };
@@ -84,6 +128,21 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
   const double duration = planned_duration_s(scene_, x0);
   if (!(duration > 0.0) || !std::isfinite(duration))
     throw InputError("/analysis/duration_s", "the run has no duration: give speed_kmh > 0 or analysis.duration_s");
+  if (!an.allow_large_run) {
+    const RunEstimate e = estimate_run(scene_, duration);
+    const RunLimits limits;
+    const auto refuse = [&](const char* what, double value, double limit) {
+      throw InputError("/analysis/dt_s",
+                       fmt::format("the run would take {:.3g} {} (limit {:.3g}): {:.6g} s of simulated time at "
+                                   "dt = {:.3g} s; check dt_s, duration_s and speed_kmh, or run it with "
+                                   "--allow-large",
+                                   value, what, limit, duration, an.dt_s));
+    };
+    if (!(e.steps <= limits.max_steps)) refuse("steps", e.steps, limits.max_steps);
+    if (!(e.history_bytes <= limits.max_history_bytes))
+      refuse("bytes of histories", e.history_bytes, limits.max_history_bytes);
+    if (!(e.work <= limits.max_work)) refuse("DOF-steps", e.work, limits.max_work);
+  }
   const auto& rails = an.contact.rail_lines;
   for (std::size_t i = 0; i < rails.size(); ++i)
     if (rails[i] < 0 || rails[i] >= static_cast<int>(scene_.structure->rails().size()))
@@ -95,13 +154,15 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
                      "a rigid wheelset on several rails has an indeterminate load split where it runs "
                      "on the rigid path: use a compliant law (hertz or linear-hertz)");
   auto setup = std::make_unique<SimulationSetup>(
-      SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, 0.0});
+      SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, {}, 0.0});
   check_rigid_contact_alpha(setup->layout, an.hht.alpha);
+  setup->vehicle_ops = make_vehicle_operators(setup->layout, setup->h);
   setup->statics = static_equilibrium(scene_, setup->layout, x0);
   for (std::size_t c = 0; c < setup->layout.contacts.size(); ++c)
     setup->layout.contacts[c].law =
         setup->layout.contacts[c].law->at_static_load(setup->statics.P[static_cast<Eigen::Index>(c)]);
   if (!op_ && an.solver == SolverPath::kCondensed) op_ = make_structure_operator(scene_);
+  if (op_ && an.solver == SolverPath::kCondensed) check_operator(*op_, scene_, setup->h);
   setup->setup_s = std::chrono::duration<double>(Clock::now() - t_start).count();
   setup_ = std::move(setup);
 }
@@ -130,7 +191,7 @@ Result Simulation::run() const {
     solver = make_reference_step_solver(*sc.structure, structure_factors(h), layout, h, so);
     sum.fidelity.structure_backend = "umfpack-bordered";
   } else {
-    solver = make_condensed_step_solver(op_, layout, make_vehicle_operators(layout, h), so);
+    solver = make_condensed_step_solver(op_, layout, setup.vehicle_ops, so);
     sum.fidelity.structure_backend = op_->backend_name();
   }
 

@@ -21,6 +21,18 @@ double default_duration_s(const Scene& scene, double start_x_m);
 // Time steps a run of the scene takes (its duration over dt, as run()
 // counts them); 0 when the scene has no duration. Cost estimates use it.
 long planned_steps(const Scene& scene);
+// What a run will cost, estimated before anything is allocated.
+struct RunEstimate {
+  double steps = 0.0;
+  double history_bytes = 0.0;  // the stored histories
+  double work = 0.0;           // steps x (structure DOFs + axle loads): the time loop's operations, roughly
+};
+struct RunLimits {
+  double max_steps = 2.0e6;
+  double max_history_bytes = 2.0 * (1ull << 30);
+  double max_work = 2.0e11;
+};
+RunEstimate estimate_run(const Scene& scene, double duration_s);
 
 class Simulation {
  public:
@@ -28,7 +40,10 @@ class Simulation {
   // structure operator when `op` is null (shareable between runs with the
   // same structure, dt and HHT parameters). Throws InputError when the
   // scene cannot be run (a mechanism, a train its wheels cannot carry, no
-  // duration). The scene is copied: it holds only shared immutable models.
+  // duration, a run beyond RunLimits unless analysis.allow_large_run, an
+  // operator `op` built for another dt, HHT alpha or without the rail
+  // flexibility the train needs). The scene is copied: it holds only shared
+  // immutable models.
   explicit Simulation(Scene scene, std::shared_ptr<const StructureOperator> op = nullptr);
   ~Simulation();
   Simulation(const Simulation&) = delete;

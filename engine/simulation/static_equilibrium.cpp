@@ -72,6 +72,16 @@ void add_moving_force_loads(const Scene& scene, double front_x_m, Vector& f) {
 namespace {
 
 constexpr double kNominalLoad_N = 1.0e5;
+constexpr int kStaticNewtonIterations = 60;
+
+// The static state is set up before the run: a failed solve is a scene that
+// cannot be run.
+void solve_static(const CholmodOperator& op, const Vector& f, Vector& u, SolveWorkspace& ws) {
+  if (f.squaredNorm() == 0.0) return;
+  const Status st = op.solve(f, u, ws);
+  if (!st.ok()) throw InputError("/structure", "static deflection under the train: " + st.message());
+  if (!u.allFinite()) throw InputError("/structure", "static deflection under the train is not finite");
+}
 
 // Moving forces: the loads at t = 0, structure only.
 StaticState moving_force_statics(const Scene& scene, const CholmodOperator& op, double front_x_m) {
@@ -81,7 +91,7 @@ StaticState moving_force_statics(const Scene& scene, const CholmodOperator& op, 
   add_moving_force_loads(scene, front_x_m, f);
   auto ws = op.make_workspace();
   st.u_s = Vector::Zero(s.num_dofs());
-  if (f.squaredNorm() > 0.0) (void)op.solve(f, st.u_s, *ws);
+  solve_static(op, f, st.u_s, *ws);
   return st;
 }
 
@@ -136,7 +146,9 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
   // rigid path, where a rigid split is indeterminate).
   Vector z = Vector::Zero(nv + nc), R(nv + nc);
   const auto& laws = layout.contacts;
-  for (int it = 0; it < 60; ++it) {
+  bool converged = false;
+  double last_step_norm = 0.0;
+  for (int it = 0; it < kStaticNewtonIterations; ++it) {
     const bool compliant = it > 0;
     const Vector u_v = z.head(nv), P = z.tail(nc);
     DenseMatrix J = DenseMatrix::Zero(nv + nc, nv + nc);
@@ -181,18 +193,28 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
                            fmt::format("wheel {} of vehicle {} carries no static load ({:.1f} N): "
                                        "the vehicle does not rest on its wheels",
                                        laws[c].local_wheel, laws[c].vehicle, z[nv + c]));
-      if (laws.empty() || laws.front().law->is_constraint()) break;
-    } else if (step * dz.norm() <= 1e-13 * z.norm()) {
+      if (laws.empty() || laws.front().law->is_constraint()) {
+        converged = true;
+        break;
+      }
+    } else if ((last_step_norm = step * dz.norm()) <= 1e-13 * z.norm()) {
+      converged = true;
       break;
     }
   }
+  // Round-off may keep the last correction just above 1e-13: accept 1e-9.
+  if (!converged && last_step_norm <= 1e-9 * z.norm()) converged = true;
+  if (!converged || !z.allFinite())
+    throw InputError("/train", fmt::format("the static equilibrium of the train on the structure did not converge "
+                                           "in {} Newton iterations (last correction {:.3e} of {:.3e})",
+                                           kStaticNewtonIterations, last_step_norm, z.norm()));
   StaticState st;
   st.u_v = z.head(nv);
   st.P = z.tail(nc);
   Vector f = Vector::Zero(s.num_dofs());
   add_rail_loads(rows, st.P, 1.0, f);
   st.u_s = Vector::Zero(s.num_dofs());
-  if (f.squaredNorm() > 0.0) (void)op.solve(f, st.u_s, *ws);
+  solve_static(op, f, st.u_s, *ws);
   return st;
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <fmt/format.h>
 
+#include "core/input_error.hpp"
+
 namespace railvsi {
 
 TrainLayout::TrainLayout(const Train& train, const ContactOptions& contact) {
@@ -51,6 +53,11 @@ std::vector<VehicleOperator> make_vehicle_operators(const TrainLayout& layout,
   for (const VehicleModel* model : layout.types) {
     VehicleOperator op;
     op.factor.compute(vehicle_effective_matrix(*model, h));
+    // K_bar_v of a vehicle with mass on every DOF is positive definite.
+    if (op.factor.info() != Eigen::Success || !op.factor.isPositive())
+      throw InputError("/train", fmt::format("vehicle '{}': its effective matrix (M, C, K at this dt) is not "
+                                             "positive definite, LDLT factorization failed",
+                                             model->name()));
     const auto nw = static_cast<Eigen::Index>(model->wheels().size());
     DenseMatrix Et = DenseMatrix::Zero(model->num_dofs(), nw);
     for (Eigen::Index w = 0; w < nw; ++w) Et(model->wheels()[w].dof, w) = 1.0;
@@ -58,6 +65,8 @@ std::vector<VehicleOperator> make_vehicle_operators(const TrainLayout& layout,
     op.wheel_flexibility = Et.transpose() * op.wheel_columns;
     op.mass_columns = op.factor.solve(model->M() * Et);
     op.damping_columns = op.factor.solve(model->C() * Et);
+    if (!op.wheel_columns.allFinite())
+      throw InputError("/train", fmt::format("vehicle '{}': its wheel flexibility is not finite", model->name()));
     ops.push_back(std::move(op));
   }
   return ops;

@@ -82,8 +82,8 @@ std::unique_ptr<SolveWorkspace> CholmodOperator::make_workspace() const {
 Status CholmodOperator::solve(const Vector& b, Vector& x, SolveWorkspace& ws_base) const {
   auto& ws = static_cast<CholmodWorkspace&>(ws_base);
   Eigen::Map<DenseMatrix> bmap(const_cast<double*>(b.data()), b.size(), 1);
-  if (!ws.solve(factor_.get(), bmap))
-    return {StatusCode::kDiverged, "CHOLMOD solve failed"};
+  if (!ws.solve(factor_.get(), bmap) || !ws.X)
+    return {StatusCode::kDiverged, fmt::format("CHOLMOD solve failed (status {})", ws.common.get()->status)};
   x = Eigen::Map<const Vector>(static_cast<const double*>(ws.X->x), n_);
   return Status::Ok();
 }
@@ -96,7 +96,9 @@ DenseMatrix CholmodOperator::flexibility_block(const std::vector<int>& dofs, Sol
     const Eigen::Index nb = std::min<Eigen::Index>(block_columns_, m - j0);
     DenseMatrix B = DenseMatrix::Zero(n_, nb);
     for (Eigen::Index j = 0; j < nb; ++j) B(dofs[j0 + j], j) = 1.0;
-    ws.solve(factor_.get(), B);
+    if (!ws.solve(factor_.get(), B) || !ws.X)
+      throw InputError("/structure", fmt::format("rail flexibility: CHOLMOD solve failed (status {})",
+                                                 ws.common.get()->status));
     const Eigen::Map<const DenseMatrix> X(static_cast<const double*>(ws.X->x), n_, nb);
     for (Eigen::Index j = 0; j < nb; ++j)
       for (Eigen::Index i = 0; i < m; ++i) F(i, j0 + j) = X(dofs[i], j);

@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "core/input_error.hpp"
+
 namespace railvsi {
 
 SparseMatrix effective_matrix(const StructureModel& model, const EffectiveMatrixFactors& f) {
@@ -18,7 +20,8 @@ DenseMatrix StructureOperator::flexibility_block(const std::vector<int>& dofs, S
   Vector e = Vector::Zero(num_dofs()), x(num_dofs());
   for (Eigen::Index j = 0; j < m; ++j) {
     e[dofs[j]] = 1.0;
-    (void)solve(e, x, ws);
+    const Status st = solve(e, x, ws);
+    if (!st.ok()) throw InputError("/structure", "rail flexibility: " + st.message());
     e[dofs[j]] = 0.0;
     for (Eigen::Index i = 0; i < m; ++i) F(i, j) = x[dofs[i]];
   }

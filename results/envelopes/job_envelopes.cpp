@@ -46,8 +46,13 @@ std::optional<double> extreme(const std::vector<Item>& items, std::optional<doub
 }
 
 // Why the histories cannot give a filtered acceleration, or "" when they can.
-std::string filter_obstacle(const Result& r, double dt_s, int history_stride) {
+std::string filter_obstacle(const Result& r, double dt_s, int history_stride, double cutoff_hz) {
   const Histories& h = r.histories;
+  // The filter keeps content up to cutoff_hz; sampled below twice that,
+  // the band it should keep is not in the histories (aliased into it).
+  if (0.5 / dt_s < cutoff_hz)
+    return fmt::format("the Nyquist frequency 1/(2 dt) = {:.3g} Hz is below the code cut-off {:.3g} Hz", 0.5 / dt_s,
+                       cutoff_hz);
   if (history_stride != 1)
     return fmt::format("histories store every {}th step: decimation would alias content above {:.1f} Hz into the "
                        "filtered band; run with history_stride = 1",
@@ -84,7 +89,7 @@ JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_st
   // Deck.
   e.cutoff_hz = cutoff_hz;
   e.filter = code_filter_description(dt_s, cutoff_hz);
-  const std::string obstacle = filter_obstacle(result, dt_s, history_stride);
+  const std::string obstacle = filter_obstacle(result, dt_s, history_stride, cutoff_hz);
   if (!obstacle.empty()) e.notes.push_back("filtered deck acceleration left out: " + obstacle);
   for (std::size_t p = 0; p < s.points.size(); ++p) {
     const PointSummary& ps = s.points[p];
@@ -132,6 +137,8 @@ JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_st
   e.wall_s = std::isfinite(s.wall_s) ? s.wall_s : 0.0;
   e.setup_s = std::isfinite(s.setup_s) ? s.setup_s : 0.0;
   e.fidelity = s.fidelity;
+  e.warnings = s.warnings;
+  e.energy_residual = s.energy_residual;
   return e;
 }
 

@@ -71,6 +71,9 @@ struct JobEnvelopes {
   double wall_s = 0.0;
   double setup_s = 0.0;
   FidelityRecord fidelity;
+  // Run health (RunSummary): stored with the job.
+  std::vector<RunWarning> warnings;
+  double energy_residual = 0.0;
 
   bool ok() const { return status == "ok"; }
 };

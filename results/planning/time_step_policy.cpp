@@ -23,6 +23,18 @@ bool finite_non_negative(double v) { return std::isfinite(v) && v >= 0.0; }
 
 }  // namespace
 
+double max_omega_dt(const HhtParameters& hht, double max_period_error) {
+  // The period error grows monotonically with Omega = omega dt (as Omega^2
+  // for small Omega): bisect on [0, 1] (Omega = 1 is 6.3 steps per period).
+  double lo = 0.0, hi = 1.0;
+  if (hht_period_error(hht, hi) <= max_period_error) return hi;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (hht_period_error(hht, mid) <= max_period_error ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 double shortest_rail_element_m(const StructureModel& structure) {
   double h = std::numeric_limits<double>::infinity();
   for (const RailLine& rail : structure.rails())
@@ -56,15 +68,18 @@ TimeStepChoice choose_time_step(const StructureModel& structure, const Train& tr
                                 const TimeStepPolicy& policy) {
   require(finite_non_negative(speed_mps), "speed_mps must be finite and >= 0");
   require(finite_non_negative(f0_hz) && finite_non_negative(f3_hz), "f0_hz and f3_hz must be finite and >= 0");
-  require(policy.dt_max_s > 0.0 && policy.steps_per_period > 0.0 && policy.max_travel_fraction_of_element > 0.0 &&
+  require(policy.dt_max_s > 0.0 && policy.max_period_error > 0.0 && policy.max_travel_fraction_of_element > 0.0 &&
               policy.contact_steps_per_period > 0.0,
           "policy values must be > 0");
 
   TimeStepChoice c;
   const double f_cut = code_cutoff_hz(f0_hz, f3_hz);
-  c.bounds.push_back({"code frequency", 1.0 / (policy.steps_per_period * f_cut),
-                      fmt::format("f_cut = max(30, 1.5 f0 = {:.1f}, f3 = {:.1f}) = {:.1f} Hz at {:g} steps/period",
-                                  1.5 * f0_hz, f3_hz, f_cut, policy.steps_per_period)});
+  const double omega_dt = max_omega_dt(policy.hht, policy.max_period_error);
+  c.bounds.push_back({"code frequency", omega_dt / (2.0 * std::numbers::pi * f_cut),
+                      fmt::format("f_cut = max(30, 1.5 f0 = {:.1f}, f3 = {:.1f}) = {:.1f} Hz with HHT period error "
+                                  "<= {:g} % (alpha = {:g}: {:.1f} steps/period)",
+                                  1.5 * f0_hz, f3_hz, f_cut, 100.0 * policy.max_period_error, policy.hht.alpha,
+                                  2.0 * std::numbers::pi / omega_dt)});
   const double h = shortest_rail_element_m(structure);
   if (speed_mps > 0.0 && std::isfinite(h))
     c.bounds.push_back({"wheel travel", policy.max_travel_fraction_of_element * h / speed_mps,

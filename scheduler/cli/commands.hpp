@@ -22,6 +22,7 @@ enum ExitCode : int {
 struct SimulateArgs {
   std::string scene_file;
   std::optional<std::string> histories_dir;
+  bool allow_large = false;  // run beyond the size limits (steps, history memory)
 };
 
 struct ReplayArgs {
@@ -39,9 +40,10 @@ struct InspectArgs {
 int simulate_command(const SimulateArgs& args);
 // Runs a scene, writes its histories when asked, prints the summary JSON.
 // cutoff_hz: the code filter's cut-off (a stored job's), else from the
-// structure. Exit 0 when the run is ok, else 1.
-int run_scene(const Scene& scene, const std::string& file_for_errors, std::optional<double> cutoff_hz,
-              const std::optional<std::string>& histories_dir);
+// structure. allow_large lifts the size limits of a run. Exit 0 when the
+// run is ok, else 1.
+int run_scene(Scene scene, const std::string& file_for_errors, std::optional<double> cutoff_hz,
+              const std::optional<std::string>& histories_dir, bool allow_large = false);
 // Runs a stored job again from jobs.scene (vsi replay).
 int replay_command(const ReplayArgs& args);
 int validate_command(const std::string& file);

@@ -1,6 +1,7 @@
 // vsi: the railvsi command line. Exit codes: 0 success, 1 runtime failure,
 // 2 invalid input or usage; whatever happens, main reports it and returns.
 #include <exception>
+#include <new>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -28,6 +29,8 @@ int run(int argc, char** argv) {
                        "Directory for the time histories: deck.csv (with the first axle's x, the evaluation window "
                        "and the filtered deck acceleration), and for multibody trains contact_forces.csv and "
                        "carbody.csv (created if needed)");
+  simulate->add_flag("--allow-large", simulate_args.allow_large,
+                     "Run even when the estimated step count, history memory or work exceeds the limits");
 
   ReplayArgs replay_args;
   CLI::App* replay = app.add_subcommand(
@@ -90,6 +93,10 @@ int main(int argc, char** argv) {
   } catch (const railvsi::InputError& e) {
     report_input_error(e);
     return kExitInvalidInput;
+  } catch (const std::bad_alloc&) {
+    // Inputs are sized before allocating; this is a last resort, not a path.
+    std::cerr << "error: out of memory\n";
+    return kExitRuntimeFailure;
   } catch (const std::exception& e) {
     std::cerr << "error: " << railvsi::scheduler::terminal_safe(e.what()) << '\n';
     return kExitRuntimeFailure;

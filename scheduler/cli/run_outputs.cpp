@@ -55,6 +55,9 @@ RunFrame run_frame(const Scene& scene, std::optional<double> cutoff_hz) {
 std::vector<std::vector<double>> filtered_deck_acceleration(const Histories& h, const RunFrame& frame) {
   std::vector<std::vector<double>> out;
   if (frame.history_stride != 1) return out;
+  // At or above the Nyquist frequency nothing can be filtered: no value
+  // rather than the raw one under the filtered name (filter_above_nyquist).
+  if (!(frame.cutoff_hz < 0.5 / frame.dt_s)) return out;
   for (const auto& a : h.deck_acceleration_mps2) out.push_back(code_low_pass(a, frame.dt_s, frame.cutoff_hz));
   return out;
 }

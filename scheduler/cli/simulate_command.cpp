@@ -1,18 +1,45 @@
 #include <iostream>
 #include <iterator>
 
+#include <fmt/format.h>
+
 #include "cli/commands.hpp"
 #include "cli/run_outputs.hpp"
+#include "envelopes/code_filter.hpp"
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
+#include "planning/time_step_warnings.hpp"
 #include "simulation/simulation.hpp"
+#include "study/deck_frequencies.hpp"
 
 namespace railvsi::cli {
+namespace {
 
-int run_scene(const Scene& scene, const std::string& file_for_errors, std::optional<double> cutoff_hz,
-              const std::optional<std::string>& histories_dir) {
+// Structures up to this size get their f0 and f3 (a few Lanczos pairs, well
+// under a second for plane models); larger ones use the code frequency's
+// floor of 30 Hz, which can only make the dt check more lenient.
+constexpr int kMaxDofsForModes = 20000;
+
+double code_cutoff_of(const Scene& scene, std::vector<RunWarning>& warnings) {
+  if (scene.structure->num_dofs() <= kMaxDofsForModes) {
+    const scheduler::DeckFrequencies f = scheduler::deck_frequencies(*scene.structure);
+    return code_cutoff_hz(f.f0_hz, f.f3_hz);
+  }
+  warnings.push_back({"cutoff_not_computed",
+                      fmt::format("the structure has {} DOFs: its deck frequencies were not computed, the time-step "
+                                  "checks use the code frequency's floor of 30 Hz",
+                                  scene.structure->num_dofs()),
+                      std::nullopt, std::nullopt, std::nullopt});
+  return code_cutoff_hz(0.0, 0.0);
+}
+
+}  // namespace
+
+int run_scene(Scene scene, const std::string& file_for_errors, std::optional<double> cutoff_hz,
+              const std::optional<std::string>& histories_dir, bool allow_large) {
+  scene.analysis.allow_large_run = allow_large;
   // Setup problems the engine finds (a mechanism, a train its wheels cannot
-  // carry) are input errors of this scene.
+  // carry, a run too large) are input errors of this scene.
   const Simulation simulation = [&] {
     try {
       return Simulation(scene);
@@ -20,8 +47,12 @@ int run_scene(const Scene& scene, const std::string& file_for_errors, std::optio
       throw e.with_file(file_for_errors);
     }
   }();
-  const RunFrame frame = run_frame(scene, cutoff_hz);
-  const Result result = simulation.run();
+  Result result = simulation.run();
+  std::vector<RunWarning> extra;
+  const double cutoff = cutoff_hz ? *cutoff_hz : code_cutoff_of(scene, extra);
+  for (RunWarning& w : time_step_warnings(scene, cutoff)) extra.push_back(std::move(w));
+  for (RunWarning& w : extra) result.summary.warnings.push_back(std::move(w));
+  const RunFrame frame = run_frame(scene, cutoff);
   if (histories_dir) write_run_histories(result.histories, frame, *histories_dir);
   std::cout << run_summary_json(result, scene, frame).dump(2) << '\n';
   return result.status.ok() ? kExitOk : kExitRuntimeFailure;
@@ -32,9 +63,9 @@ int simulate_command(const SimulateArgs& args) {
     // The scene on stdin: relative file names resolve from the working directory.
     const std::string text{std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>()};
     const Scene scene = parse_scene(parse_json_text(text, "<stdin>"), std::filesystem::current_path(), "<stdin>");
-    return run_scene(scene, "<stdin>", std::nullopt, args.histories_dir);
+    return run_scene(scene, "<stdin>", std::nullopt, args.histories_dir, args.allow_large);
   }
-  return run_scene(load_scene(args.scene_file), args.scene_file, std::nullopt, args.histories_dir);
+  return run_scene(load_scene(args.scene_file), args.scene_file, std::nullopt, args.histories_dir, args.allow_large);
 }
 
 }  // namespace railvsi::cli

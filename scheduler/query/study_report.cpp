@@ -48,6 +48,18 @@ std::string csv_field(const std::string& s) {
   return out + "\"";
 }
 
+// A value of a run with warnings carries a mark (README "Run health").
+constexpr const char* kWarningMark = "*";
+
+std::string marked(const std::string& text, bool warned) { return warned ? text + kWarningMark : text; }
+
+const JobResult* governing_job(const std::vector<JobResult>& jobs, const TrainEnvelope& e) {
+  for (const JobResult& j : jobs)
+    if (j.train == e.train && j.speed_kmh == e.governing_speed_kmh && j.irregularity == e.governing_irregularity)
+      return &j;
+  return nullptr;
+}
+
 bool any_value(const std::vector<JobResult>& jobs, const char* quantity) {
   return std::any_of(jobs.begin(), jobs.end(), [&](const JobResult& j) { return j.overall(quantity).has_value(); });
 }
@@ -136,7 +148,9 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
     train_w = std::max(train_w, terminal_safe(j.train).size());
     irr_w = std::max(irr_w, terminal_safe(j.irregularity).size());
     for (std::size_t k = 0; k < columns.size(); ++k)
-      value_w[k] = std::max(value_w[k], shown(j.overall(columns[k]->quantity), columns[k]->scale).size());
+      value_w[k] = std::max(value_w[k], marked(shown(j.overall(columns[k]->quantity), columns[k]->scale),
+                                                j.has_warnings() && j.overall(columns[k]->quantity).has_value())
+                                             .size());
   }
   std::size_t fixed = 2 + 5 + 2 + 2 + 8 + 2 + 6;  // km/h, dt, a short state
   for (std::size_t w : value_w) fixed += 2 + w;
@@ -155,7 +169,9 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
     std::string line = fmt::format("{:<{}}  {:>5}  {:<{}}  {:>8.3g}", fit(j.train, train_w), train_w,
                                    speed_text(j.speed_kmh), fit(j.irregularity, irr_w), irr_w, j.dt_s);
     for (std::size_t k = 0; k < columns.size(); ++k)
-      line += fmt::format("  {:>{}}", shown(j.overall(columns[k]->quantity), columns[k]->scale), value_w[k]);
+      line += fmt::format("  {:>{}}", marked(shown(j.overall(columns[k]->quantity), columns[k]->scale),
+                                            j.has_warnings() && j.overall(columns[k]->quantity).has_value()),
+                           value_w[k]);
     line += "  " + terminal_safe(j.state == "failed" && !j.status.empty() ? j.state + " (" + j.status + ")" : j.state);
     out += table_line(line);
   }
@@ -184,8 +200,9 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
       }
       if (e.cases_without_value > 0)
         notes.push_back(fmt::format("{} of {} cases without a value", e.cases_without_value, e.cases));
+      const JobResult* g = e.value ? governing_job(jobs, e) : nullptr;
       std::string line = fmt::format("{:<{}}  {:<8}  {:>10}  {:>5}  {:<{}}", fit(e.train, etrain_w), etrain_w,
-                                     c->heading, shown(e.value, c->scale),
+                                     c->heading, marked(shown(e.value, c->scale), g && g->has_warnings()),
                                      e.value ? speed_text(e.governing_speed_kmh) : "-",
                                      fit(e.value ? e.governing_irregularity : "-", eirr_w), eirr_w);
       std::string note_text;
@@ -197,6 +214,9 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
   if (any_edge)
     out += "EDGE: the governing value is at the first or last speed of the train's range;\n"
            "a larger value may lie beyond it (extend the speeds).\n";
+  if (std::any_of(jobs.begin(), jobs.end(), [](const JobResult& j) { return j.has_warnings(); }))
+    out += fmt::format("{} the run that gave this value has warnings (vsi query --format json lists them)\n",
+                       kWarningMark);
 
   // Several seeds of one random profile: mean, standard deviation and extreme.
   const auto labels = family_labels(jobs);
@@ -257,6 +277,7 @@ ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& j
                         {"wall_s", number(j.wall_s)},
                         {"loop_s", number(j.loop_s)},
                         {"fidelity", j.fidelity.empty() ? ordered_json(nullptr) : ordered_json::parse(j.fidelity)},
+                        {"warnings", j.warnings.empty() ? ordered_json::array() : ordered_json::parse(j.warnings)},
                         {"envelopes", envelopes}};
     if (!j.error.empty()) job["error"] = j.error;
     list.push_back(std::move(job));

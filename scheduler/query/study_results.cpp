@@ -43,7 +43,7 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
   std::unordered_map<std::string, std::size_t> index;
   Statement s = db.prepare(fmt::format(
       "SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, j.error, j.dt_s, j.dt_reason, "
-      "j.cutoff_hz, j.wall_s, j.loop_s, j.fidelity, "
+      "j.cutoff_hz, j.wall_s, j.loop_s, j.fidelity, j.warnings, "
       "CASE WHEN json_extract(j.scene, '$.irregularity.seed') IS NOT NULL "
       "THEN json_remove(json_extract(j.scene, '$.irregularity'), '$.seed') END, "
       "json_extract(j.scene, '$.irregularity.spectrum') FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
@@ -65,8 +65,9 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     r.wall_s = s.optional_real(10);
     r.loop_s = s.optional_real(11);
     r.fidelity = s.text(12);
-    r.profile_family = s.text(13);
-    if (!r.profile_family.empty()) r.family_label = s.text(14);
+    r.warnings = s.text(13);
+    r.profile_family = s.text(14);
+    if (!r.profile_family.empty()) r.family_label = s.text(15);
     index.emplace(r.id, jobs.size());
     jobs.push_back(std::move(r));
   }

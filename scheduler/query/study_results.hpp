@@ -37,6 +37,8 @@ struct JobResult {
   // (canonical JSON, the key that groups the seeds of one spectrum) and the
   // spectrum's name. Both empty for other profiles.
   std::string profile_family, family_label;
+  std::string warnings;  // JSON array of the run's warnings, empty before a run
+  bool has_warnings() const { return !warnings.empty() && warnings != "[]"; }
   // quantity -> location ("" for the whole job) -> value (nullopt: not produced)
   std::map<std::string, std::map<std::string, std::optional<double>>> envelopes;
   std::optional<double> overall(const std::string& quantity) const;

@@ -153,7 +153,7 @@ bool JobQueue::complete(const ClaimedJob& job, const JobOutcome& outcome) {
     }
   }
   db_.prepare("UPDATE jobs SET state = ?, status = ?, error = ?, fidelity = ?, steps = ?, wall_s = ?, loop_s = ?, "
-              "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ? WHERE id = ?")
+              "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ?, warnings = ? WHERE id = ?")
       .bind(1, outcome.ok ? "done" : "failed")
       .bind(2, outcome.status)
       .bind(3, outcome.ok ? SqlValue(Null{}) : SqlValue(outcome.error))
@@ -164,7 +164,8 @@ bool JobQueue::complete(const ClaimedJob& job, const JobOutcome& outcome) {
       .bind(8, outcome.setup_s)
       .bind(9, outcome.factorization_s)
       .bind(10, unix_now_s())
-      .bind(11, job.id)
+      .bind(11, outcome.warnings)
+      .bind(12, job.id)
       .run();
   // WHERE true: SQLite's upsert after INSERT ... SELECT needs a WHERE clause.
   db_.prepare("INSERT INTO cache_stats (study_id, jobs, factorizations, hits, factorization_s, evictions) "

@@ -55,6 +55,7 @@ struct JobOutcome {
   std::string status;           // engine status name
   std::string error;            // for a failure
   std::string fidelity;         // JSON
+  std::string warnings = "[]";  // JSON array of the run's warnings (RunWarning), also for a failure
   long steps = 0;
   double wall_s = 0.0, loop_s = 0.0, setup_s = 0.0, factorization_s = 0.0;
   bool factorized = false;      // the factorization cache missed and factorized for this job

@@ -142,8 +142,10 @@ struct JobTimeStep {
 // structure and speed.
 JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequencies& f) {
   if (dt_given) return {scene.analysis.dt_s, "given in the study (analysis.dt_s)"};
-  const TimeStepChoice c =
-      choose_time_step(*scene.structure, scene.train, scene.speed_mps, scene.analysis.contact, f.f0_hz, f.f3_hz);
+  TimeStepPolicy policy;
+  policy.hht = scene.analysis.hht;
+  const TimeStepChoice c = choose_time_step(*scene.structure, scene.train, scene.speed_mps, scene.analysis.contact,
+                                            f.f0_hz, f.f3_hz, policy);
   return {c.dt_s, c.reason};
 }
 

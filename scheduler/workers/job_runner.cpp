@@ -9,6 +9,7 @@
 #include "cli/summary_json.hpp"
 #include "envelopes/envelope_rows.hpp"
 #include "envelopes/job_envelopes.hpp"
+#include "planning/time_step_warnings.hpp"
 
 namespace railvsi::scheduler {
 
@@ -24,7 +25,9 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache) {
     out.factorization_s = lookup.factorization_s;
     out.evictions = lookup.evictions;
     const Simulation simulation(scene, lookup.op);
-    const Result result = simulation.run();
+    Result result = simulation.run();
+    for (RunWarning& w : time_step_warnings(scene, job.cutoff_hz)) result.summary.warnings.push_back(std::move(w));
+    out.warnings = cli::warnings_json(result.summary.warnings).dump();
     const RunSummary& s = result.summary;
     out.fidelity = cli::fidelity_json(s.fidelity).dump();
     out.steps = s.steps;

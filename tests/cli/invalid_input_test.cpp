@@ -1,6 +1,8 @@
 // Bad input never crashes and never half-runs: `vsi validate` and `vsi
 // simulate` exit with 2, print nothing on stdout, and name the file and the
 // JSON path of the offending value on stderr.
+#include <sys/stat.h>
+
 #include <optional>
 
 #include "exported_beam.hpp"
@@ -220,6 +222,76 @@ TEST_F(InvalidInput, UsageErrorsExitWithTwo) {
     EXPECT_EQ(run.out, "") << args;
     EXPECT_NE(run.err, "") << args;
   }
+}
+
+// Issue 7: inputs that used to hang, allocate without bound or run to "ok".
+// Each must end at once with exit 2 and the file and path on stderr (the
+// harness runs vsi under `timeout`, so a hang fails the test).
+
+TEST_F(InvalidInput, RefusesDevZeroWithoutReadingIt) {
+  expect_input_error(vsi("simulate /dev/zero"), "/dev/zero", "/");
+  EXPECT_NE(vsi("simulate /dev/zero").err.find("not a regular file"), std::string::npos);
+}
+
+TEST_F(InvalidInput, RefusesAFifoWithoutBlocking) {
+  const auto fifo = dir_ / "scene.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expect_input_error(vsi("simulate '" + fifo.string() + "'"), fifo, "/");
+}
+
+TEST_F(InvalidInput, RefusesAJsonFileOverTheSizeLimit) {
+  const auto big = dir_ / "big.json";
+  std::filesystem::resize_file(write("big.json", "{}"), (64ull << 20) + 1);  // sparse file
+  expect_input_error(vsi("simulate '" + big.string() + "'"), big, "/");
+}
+
+TEST_F(InvalidInput, DuplicateKeysAreAnErrorAtTheirPath) {
+  const auto scene = write("scene.json", R"({"structure": {"generator": "bridge-2d", "spans_m": [10],
+    "deck": {"EI_Nm2": 5e9, "mass_kg_per_m": 8000, "EI_Nm2": 6e9}, "damping": {"ratio": 0.01}},
+    "train": {"name": "f", "moving_forces": [{"offset_m": 0, "load_N": 1e5}]},
+    "speed_kmh": 100, "analysis": {"dt_s": 0.002}})");
+  expect_rejected(scene, "/structure/deck/EI_Nm2");
+  EXPECT_NE(vsi("simulate '" + scene.string() + "'").err.find("duplicate key 'EI_Nm2'"), std::string::npos);
+}
+
+TEST_F(InvalidInput, RefusesImplausiblePhysicalValuesAtTheirPath) {
+  const std::pair<const char*, json> cases[] = {
+      {"/speed_kmh", 1e-6},           {"/speed_kmh", 1e308},
+      {"/analysis/dt_s", 1e-9},       {"/analysis/dt_s", 1e308},
+      {"/analysis/duration_s", 1e308}, {"/structure/deck/EI_Nm2", 1e-300},
+      {"/structure/deck/mass_kg_per_m", 1e-3}, {"/structure/spans_m/0", 1e6}};
+  for (const auto& [path, value] : cases) {
+    SCOPED_TRACE(path);
+    expect_rejected(scene_with(path, value), path);
+  }
+}
+
+TEST_F(InvalidInput, RefusesAHundredThousandSpans) {
+  expect_rejected(scene_with("/structure/spans_m", json(std::vector<double>(100000, 10.0))), "/structure/spans_m");
+}
+
+TEST_F(InvalidInput, RefusesAMillionMovingForces) {
+  json forces = json::array();
+  for (int i = 0; i < 1000000; ++i) forces.push_back({{"offset_m", 0.1 * i}, {"load_N", 1e5}});
+  json scene = small_scene();
+  scene["train"]["moving_forces"] = std::move(forces);
+  const auto file = write("scene.json", scene.dump());  // compact: under the size limit
+  expect_input_error(vsi("simulate '" + file.string() + "'"), file, "/train/moving_forces");
+}
+
+TEST_F(InvalidInput, RefusesARunOverTheStepLimitUnlessAllowed) {
+  const auto scene = scene_with("/analysis/dt_s", 1e-7);  // about 1.4e7 steps
+  const VsiRun run = vsi("simulate '" + scene.string() + "'");
+  expect_input_error(run, scene, "/analysis/dt_s");
+  EXPECT_NE(run.err.find("--allow-large"), std::string::npos) << run.err;
+}
+
+TEST_F(InvalidInput, RefusesAHugeMatrixMarketSizeLineBeforeAllocating) {
+  const auto scene = imported_beam_scene(exported_beam(4, 10.0, true));
+  write("K.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2000000000 2000000000 4000000000000\n1 1 1.0\n");
+  expect_rejected(scene, "/structure/import/K");
+  write("K.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2000000000 2000000000 1\n1 1 1.0\n");
+  expect_rejected(scene, "/structure/import/K");
 }
 
 }  // namespace

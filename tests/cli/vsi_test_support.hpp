@@ -53,8 +53,10 @@ class VsiCliTest : public ::testing::Test {
 
   VsiRun vsi(const std::string& args) const {
     const auto out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    // Under a timeout: an input that makes vsi hang fails the test (124)
+    // instead of hanging the suite.
     const std::string command =
-        std::string(VSI_BINARY) + " " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+        "timeout 120 " + std::string(VSI_BINARY) + " " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
     const int status = std::system(command.c_str());
     VsiRun run;
     run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -1,0 +1,194 @@
+#include "simulation/run_monitor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+namespace railvsi {
+
+RunMonitor::RunMonitor(const Scene& scene, const TrainLayout& layout, double start_x_m, const KinematicState& s0,
+                       const std::vector<KinematicState>& vehicles0, const Vector& f_s0, const Vector& P0,
+                       MonitorLimits limits)
+    : scene_(scene), layout_(layout), limits_(limits) {
+  const StructureModel& st = *scene.structure;
+  const auto [b0, b1] = bridge_extent_m(st);
+  u_limit_m_ = std::max(limits_.min_implausible_m, (b1 - b0) / limits_.span_ratio);
+  structure_energy_ = EnergyAccount<SparseMatrix>(st.M(), st.C(), st.K(), s0, f_s0);
+  for (std::size_t v = 0; v < layout.vehicles.size(); ++v) {
+    const VehicleModel& m = *layout.vehicles[v].model;
+    u_v0_.push_back(vehicles0[v].u);
+    vehicle_energy_.emplace_back(m.M(), m.C(), m.K(), vehicles0[v], vehicle_load(v, P0, P0, 0.0));
+  }
+  for (const ContactSpec& c : layout.contacts)
+    if (c.law->is_constraint()) energy_checked_ = false;
+  Q0_ = P0;
+  dP_prev_ = Vector::Zero(P0.size());
+  alternations_.assign(static_cast<std::size_t>(P0.size()), 0);
+  min_tension_ratio_.assign(static_cast<std::size_t>(P0.size()), 0.0);
+
+  // Static inputs the run cannot honour.
+  if (scene.train.is_moving_forces() && scene.irregularity)
+    warn_once("irregularity_ignored",
+              "moving forces do not feel the track irregularity: it has no effect on this run (use a multibody "
+              "train for its effect)");
+  // Axles that start behind a modelled approach track enter it at its rail
+  // end during the run: a transient (an axle load applied at once, or a
+  // wheel leaving the rigid path) that a real track does not have. It is
+  // inside the evaluation window when the train's first axle is already in
+  // the window at that moment. Without an approach (the rail starts at the
+  // bridge) the entry is the bridge's own.
+  const double rail_start = st.rails().front().start_m();
+  const double window_start = b0 - scene.analysis.evaluation_margin_m;
+  std::vector<double> offsets;
+  for (const MovingForce& m : scene.train.moving_forces) offsets.push_back(m.offset_m);
+  for (const ContactSpec& c : layout.contacts) offsets.push_back(c.offset_m);
+  double worst_front_m = -std::numeric_limits<double>::infinity();
+  for (double off : offsets)
+    if (TrainLayout::position_m(start_x_m, off) < rail_start)
+      worst_front_m = std::max(worst_front_m, rail_start + off);  // front when this axle enters
+  if (rail_start < b0 && worst_front_m >= window_start && scene.speed_mps > 0.0)
+    warn_once("entry_inside_window",
+              fmt::format("axles enter the modelled track (x = {:.1f} m) while the first axle is at x = {:.1f} m, "
+                          "inside the evaluation window from {:.1f} m: the entry transient is part of the results; "
+                          "lengthen the approach track",
+                          rail_start, worst_front_m, window_start),
+              (worst_front_m - start_x_m) / scene.speed_mps);
+}
+
+Vector RunMonitor::vehicle_load(std::size_t v, const Vector& P_old, const Vector& P_new, double alpha) const {
+  const VehicleInstance& vi = layout_.vehicles[v];
+  Vector f = layout_.gravity_load_N.segment(vi.first_dof, vi.model->num_dofs());
+  for (std::size_t c = 0; c < layout_.contacts.size(); ++c) {
+    const ContactSpec& cs = layout_.contacts[c];
+    if (cs.vehicle != static_cast<int>(v)) continue;
+    const auto i = static_cast<Eigen::Index>(c);
+    f[cs.local_dof] += (1.0 + alpha) * P_new[i] - alpha * P_old[i];
+  }
+  return f;
+}
+
+void RunMonitor::warn_once(const std::string& code, std::string message, std::optional<double> t_s,
+                           std::optional<int> wheel, std::optional<double> factor) {
+  for (const RunWarning& w : warnings_)
+    if (w.code == code) return;
+  warnings_.push_back({code, std::move(message), t_s, wheel, factor});
+}
+
+Status RunMonitor::after_step(const HhtCoefficients& h, double t_new, const KinematicState& s_old,
+                              const KinematicState& s, const std::vector<KinematicState>& vehicles_old,
+                              const std::vector<KinematicState>& vehicles, const Vector& f_s_old,
+                              const Vector& f_s_new, const Vector& P_old, const Vector& P_new, int iterations) {
+  max_iterations_ = std::max(max_iterations_, iterations);
+  // Energy.
+  if (energy_checked_) {
+    structure_energy_.step(h, s_old, s, (1.0 + h.alpha) * f_s_new - h.alpha * f_s_old);
+    for (std::size_t v = 0; v < vehicle_energy_.size(); ++v)
+      vehicle_energy_[v].step(h, vehicles_old[v], vehicles[v], vehicle_load(v, P_old, P_new, h.alpha));
+    double residual = 0.0, mechanical = 0.0;
+    const auto add = [&](const auto& account) {
+      const EnergyTotals& e = account.totals();
+      const double change = e.kinetic_J + e.strain_J - account.initial_mechanical_J();
+      mechanical += change;
+      residual += change + e.damping_J + e.hht_J - e.work_J;
+    };
+    add(structure_energy_);
+    for (const auto& a : vehicle_energy_) add(a);
+    max_residual_J_ = std::max(max_residual_J_, std::abs(residual));
+    max_mechanical_change_J_ = std::max(max_mechanical_change_J_, std::abs(mechanical));
+    if (energy_residual() > limits_.energy_unstable)
+      return {StatusCode::kUnstable,
+              fmt::format("the energy balance is broken (relative residual {:.2e}): the step equations did not hold",
+                          energy_residual())};
+  }
+
+  // Displacements.
+  Eigen::Index i_max = 0;
+  const double u_max = s.u.size() ? s.u.cwiseAbs().maxCoeff(&i_max) : 0.0;
+  if (u_max > u_limit_m_)
+    return {StatusCode::kUnstable,
+            fmt::format("structure displacement {:.3g} m at DOF {} exceeds {:.3g} m (max(0.1 m, span/100)), "
+                        "implausible for this structure",
+                        u_max, i_max, u_limit_m_)};
+  for (std::size_t v = 0; v < vehicles.size(); ++v) {
+    const double dv = (vehicles[v].u - u_v0_[v]).cwiseAbs().maxCoeff();
+    if (dv > limits_.vehicle_limit)
+      return {StatusCode::kUnstable,
+              fmt::format("vehicle {} moved {:.3g} (m or rad) from its static position: implausible", v + 1, dv)};
+  }
+
+  // Contact forces: chatter and tension.
+  for (Eigen::Index c = 0; c < P_new.size(); ++c) {
+    const double q0 = std::max(std::abs(Q0_[c]), 1.0);
+    const double dP = P_new[c] - P_old[c];
+    const double big = limits_.chatter_fraction * q0;
+    auto& alt = alternations_[static_cast<std::size_t>(c)];
+    alt = (std::abs(dP) > big && std::abs(dP_prev_[c]) > big && dP * dP_prev_[c] < 0.0) ? alt + 1 : 0;
+    dP_prev_[c] = dP;
+    if (alt >= limits_.chatter_steps) {
+      warn_once("contact_chatter",
+                fmt::format("contact force of wheel {} alternates step to step ({:.3g} N to {:.3g} N, static "
+                            "{:.3g} N): the contact solution is not stable at this dt and alpha",
+                            wheel_name(layout_.contacts[static_cast<std::size_t>(c)]), P_old[c], P_new[c], Q0_[c]),
+                t_new, static_cast<int>(c), std::abs(dP) / q0);
+      return {StatusCode::kUnstable,
+              fmt::format("contact chatter: the force of wheel {} changes direction every step by more than {:g} of "
+                          "its static load",
+                          wheel_name(layout_.contacts[static_cast<std::size_t>(c)]), limits_.chatter_fraction)};
+    }
+    const ContactSpec& cs = layout_.contacts[static_cast<std::size_t>(c)];
+    if (!cs.law->unilateral() && P_new[c] < 0.0) {
+      auto& m = min_tension_ratio_[static_cast<std::size_t>(c)];
+      const double ratio = P_new[c] / q0;
+      if (m == 0.0 && !std::any_of(warnings_.begin(), warnings_.end(),
+                                   [](const RunWarning& w) { return w.code == "tensile_contact"; }))
+        warnings_.push_back({"tensile_contact",
+                             fmt::format("bilateral contact of wheel {} holds the wheel in tension ({:.3g} N): "
+                                         "a unilateral law would lift it; unloading beyond 1 is the model's, "
+                                         "not the train's",
+                                         wheel_name(cs), P_new[c]),
+                             t_new, static_cast<int>(c), std::nullopt});
+      m = std::min(m, ratio);
+    }
+  }
+  return Status::Ok();
+}
+
+double RunMonitor::energy_residual() const {
+  double scale = max_mechanical_change_J_;
+  const auto add = [&](const auto& account) {
+    const EnergyTotals& e = account.totals();
+    scale += e.abs_work_J + e.abs_damping_J + e.abs_hht_J;
+  };
+  add(structure_energy_);
+  for (const auto& a : vehicle_energy_) add(a);
+  // A run where nothing moves (a stationary load) has no energy flow: its
+  // residual is round-off of the initial energy, not a relative error.
+  double initial = std::abs(structure_energy_.initial_mechanical_J());
+  for (const auto& a : vehicle_energy_) initial += std::abs(a.initial_mechanical_J());
+  scale = std::max({scale, 1e-6 * initial, 1e-9});
+  return max_residual_J_ / scale;
+}
+
+void RunMonitor::summarize(RunSummary& summary) const {
+  summary.energy_residual = energy_checked_ ? energy_residual() : std::numeric_limits<double>::quiet_NaN();
+  summary.warnings = warnings_;
+  for (RunWarning& w : summary.warnings)
+    if (w.code == "tensile_contact" && w.wheel) w.factor = -min_tension_ratio_[static_cast<std::size_t>(*w.wheel)];
+  if (energy_checked_ && summary.energy_residual > limits_.energy_warning)
+    summary.warnings.push_back(
+        {"energy_balance",
+         fmt::format("the discrete energy balance (loads and contact work against kinetic, strain, damping and HHT "
+                     "energy) closes only to a relative {:.2e}: a step's equations held only approximately",
+                     summary.energy_residual),
+         std::nullopt, std::nullopt, summary.energy_residual});
+  const int high = std::max(10, scene_.analysis.max_newton_iterations / 2);
+  if (max_iterations_ > high)
+    summary.warnings.push_back({"newton_iterations_high",
+                                fmt::format("a step needed {} Newton iterations (more than {}): the contact problem "
+                                            "is hard at this dt; check with dt/2",
+                                            max_iterations_, high),
+                                std::nullopt, std::nullopt, static_cast<double>(max_iterations_)});
+}
+
+}  // namespace railvsi
