@@ -11,6 +11,7 @@
 
 #include "io/abaqus_matrix.hpp"
 #include "io/harwell_boeing.hpp"
+#include "io/input_file.hpp"
 #include "io/matrix_market.hpp"
 #include "io/matrix_text.hpp"
 
@@ -18,8 +19,24 @@ namespace railvsi {
 
 // ---- numbered lines
 
+namespace {
+
+// A regular file of bounded size, checked before it is opened: a FIFO
+// would block the open itself, /dev/zero would be read without end.
+void check_matrix_file(const std::filesystem::path& file, const std::string& json_path) {
+  try {
+    check_input_file(file, kMaxMatrixFileBytes, json_path);
+  } catch (const InputError& e) {
+    throw InputError(json_path, fmt::format("{}: {}", file.string(), e.what()));
+  }
+}
+
+}  // namespace
+
 TextLines::TextLines(const std::filesystem::path& file, std::string json_path)
-    : in_(file), file_(file.string()), json_path_(std::move(json_path)) {
+    : file_(file.string()), json_path_(std::move(json_path)) {
+  check_matrix_file(file, json_path_);
+  in_.open(file);
   if (!in_) throw InputError(json_path_, fmt::format("{}: cannot open the file", file_));
 }
 
@@ -172,6 +189,7 @@ std::string dof_component_name(int component, bool abaqus) {
 // ---- the factory
 
 std::unique_ptr<MatrixReader> make_matrix_reader(const std::filesystem::path& file, const std::string& json_path) {
+  check_matrix_file(file, json_path);  // before the content is sniffed
   if (!std::ifstream(file)) throw InputError(json_path, fmt::format("{}: cannot open the file", file.string()));
   if (upper(first_line(file, 0)).starts_with("%%MATRIXMARKET")) return std::make_unique<MatrixMarketReader>();
   if (looks_like_harwell_boeing(file)) return std::make_unique<HarwellBoeingReader>();

@@ -1,6 +1,8 @@
 // Every check on import, through the real vsi binary: exit code 2, nothing
 // on stdout, and stderr naming the scene, the JSON path, the matrix (or map,
 // or coordinates) file and the line. The unit check is a warning (exit 0).
+#include <sys/stat.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -49,6 +51,21 @@ TEST_F(ImportErrors, NonSquareMatrixNamesTheSizeLine) {
   write("K.mtx", "%%MatrixMarket matrix coordinate real general\n% a comment\n20 21 1\n1 1 1.0\n");
   expect_refused(scene("K.mtx", "beam_M_sym.mtx", "map_index.json"), "/structure/import/K", path("K.mtx") + ":3:",
                  "matrix is 20 x 21; a structure matrix must be square");
+}
+
+TEST_F(ImportErrors, AFifoGivenAsAMatrixIsRefusedBeforeItIsOpened) {
+  // Opening a FIFO for reading blocks until a writer comes: every reader
+  // must refuse it from its file type first (vsi() runs under a timeout, so
+  // a hang fails the test instead of the suite).
+  for (const char* name : {"K.rsa", "K.abq"}) {
+    SCOPED_TRACE(name);
+    const auto fifo = dir_ / name;
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const auto file = scene(name, "beam_M_sym.mtx", "map_index.json", std::string("scene-") + name + ".json");
+    const VsiRun run = vsi("validate '" + file.string() + "'");
+    expect_input_error(run, file, "/structure/import/K");
+    EXPECT_NE(run.err.find("not a regular file"), std::string::npos) << run.err;
+  }
 }
 
 TEST_F(ImportErrors, SizesOfKAndMMustAgree) {
