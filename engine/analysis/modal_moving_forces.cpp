@@ -98,26 +98,22 @@ Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis) {
   h.deck_displacement_m.resize(np);
   h.deck_acceleration_mps2.resize(np);
   std::vector<double> max_u(np, 0.0), max_a(np, 0.0);
-  Vector u_out(static_cast<Eigen::Index>(np)), a_out(static_cast<Eigen::Index>(np));
+  // Deck response at the output points from the modal coordinates; the
+  // maxima see every step, the histories every stride.
   const auto record = [&](double t, bool store) {
+    if (store) h.t_s.push_back(t);
     for (std::size_t i = 0; i < np; ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
       double u = 0.0, a = 0.0;
       for (Eigen::Index k = 0; k < n_modes; ++k) {
-        u += Phi_out(static_cast<Eigen::Index>(i), k) * q[k];
-        a += Phi_out(static_cast<Eigen::Index>(i), k) * qdd[k];
+        u += Phi_out(row, k) * q[k];
+        a += Phi_out(row, k) * qdd[k];
       }
-      u_out[static_cast<Eigen::Index>(i)] = u;
-      a_out[static_cast<Eigen::Index>(i)] = a;
-    }
-    for (std::size_t i = 0; i < np; ++i) {
-      max_u[i] = std::max(max_u[i], std::abs(u_out[static_cast<Eigen::Index>(i)]));
-      max_a[i] = std::max(max_a[i], std::abs(a_out[static_cast<Eigen::Index>(i)]));
-    }
-    if (!store) return;
-    h.t_s.push_back(t);
-    for (std::size_t i = 0; i < np; ++i) {
-      h.deck_displacement_m[i].push_back(u_out[static_cast<Eigen::Index>(i)]);
-      h.deck_acceleration_mps2[i].push_back(a_out[static_cast<Eigen::Index>(i)]);
+      max_u[i] = std::max(max_u[i], std::abs(u));
+      max_a[i] = std::max(max_a[i], std::abs(a));
+      if (!store) continue;
+      h.deck_displacement_m[i].push_back(u);
+      h.deck_acceleration_mps2[i].push_back(a);
     }
   };
   const long n_steps = static_cast<long>(std::ceil(duration / dt - 1e-9));

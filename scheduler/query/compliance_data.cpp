@@ -66,7 +66,6 @@ std::vector<std::pair<double, double>> per_speed_maximum(const std::vector<const
 struct TrainInfo {
   std::string name;
   std::string source;                 // description and sources of a library file
-  std::optional<double> coach_length_m;  // HSLM-A: D, for the resonance speeds
 };
 
 // What the study's train list says about each train (by the label the jobs
@@ -87,11 +86,10 @@ std::map<std::string, TrainInfo> train_infos(const json& study) {
       file = t;
       name = t.value("name", std::string("inline train"));
     }
-    TrainInfo info{name, "", std::nullopt};
+    TrainInfo info{name, ""};
     std::string source = file.value("description", std::string());
     for (const json& s : file.value("sources", json::array())) source += (source.empty() ? "" : " Source: ") + s.get<std::string>();
     info.source = source.empty() ? "given in the study document" : source;
-    if (file.contains("hslm_a")) info.coach_length_m = file.at("hslm_a").value("coach_length_m", 0.0);
     out[name] = info;
   }
   return out;
@@ -526,6 +524,9 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   report.overall = overall_verdict(report.checks);
 
   // Response against speed for each check on stored quantities.
+  std::set<std::string> profiles;
+  for (const JobResult& j : jobs) profiles.insert(j.irregularity);
+  const std::size_t profile_count = profiles.size();
   for (const CheckResult& c : report.checks) {
     if (c.quantity.empty() || c.verdict == Verdict::kNotEvaluated || c.id == "lm71_deflection" ||
         c.id == "dynamic_enhancement")
@@ -541,18 +542,17 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       plot.marked = std::pair{c.governing->speed_kmh, *c.governing->value};
       plot.marked_label = "governing";
     }
+    // HSLM-A trains carry their coach length D (resonance at v = f0 D / i).
     for (const std::string& t : train_order) {
-      const auto it = infos.find(t);
-      if (it == infos.end() || !it->second.coach_length_m || freq.f0_hz <= 0.0) continue;
-      for (int i = 1; i <= 4; ++i) plot.x_marks.push_back(freq.f0_hz * *it->second.coach_length_m / i * 3.6);
+      const double D = scenes.at(t).train.coach_length_m;
+      if (D <= 0.0 || freq.f0_hz <= 0.0) continue;
+      for (int i = 1; i <= 4; ++i) plot.x_marks.push_back(freq.f0_hz * D / i * 3.6);
     }
     std::sort(plot.x_marks.begin(), plot.x_marks.end());
     plot.x_marks_label = "v = f0 D / i (HSLM)";
-    const int profiles = static_cast<int>(std::set<std::string>(
-        [&] { std::set<std::string> s; for (const JobResult& j : jobs) s.insert(j.irregularity); return s; }()).size());
     report.check_figures.push_back(
         {plot, c.title + " against speed, one line per train" +
-                   (profiles > 1 ? ", the largest value over the profiles at each speed" : "") +
+                   (profile_count > 1 ? ", the largest value over the profiles at each speed" : "") +
                    "; the dashed red line is the limit and the circle the governing case." +
                    (plot.x_marks.empty() ? "" : " Dotted lines: resonance speeds v = f0 D / i of the HSLM trains.")});
   }

@@ -74,7 +74,7 @@ TEST_F(ReportTest, ReportShowsEveryTrainVerdictPlotAndInput) {
   const std::string html = read_text(dir_ / "report.html");
   for (const char* text : {"HSLM-A1", "HSLM-A2", "Peak deck acceleration", "EN 1990 A2.4.4.2.1(4)P", "FAIL",
                            "Deflection under alpha x Phi x LM71", "Dynamic load effect", "LM71", "Governing cases", "Deck acceleration at",
-                           "evaluation window", "f0, first deck bending frequency", id.c_str(), "report test &lt;HSLM&gt;"})
+                           "evaluation window", "class=\"mark\"", "f0, first deck bending frequency", id.c_str(), "report test &lt;HSLM&gt;"})
     EXPECT_NE(html.find(text), std::string::npos) << text;
   // Self-contained: no script, nothing loaded from anywhere.
   EXPECT_EQ(html.find("<script"), std::string::npos);
