@@ -9,7 +9,6 @@
 #include "core/input_error.hpp"
 #include "integration/modal_recurrence.hpp"
 #include "simulation/simulation.hpp"
-#include "simulation/static_equilibrium.hpp"
 
 namespace railvsi {
 namespace {

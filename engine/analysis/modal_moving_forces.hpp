@@ -7,7 +7,7 @@
 // What it gives up against the FE rung: the modes above the cut-off, and
 // the coupling terms of a non-proportional damping matrix (each mode keeps
 // phi^T C phi / (2 omega), recorded in the fidelity).
-#include "analysis/modal_basis.hpp"
+#include "solver/modal_basis.hpp"
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "simulation/static_equilibrium.hpp"
+#include "solver/structure_coordinates.hpp"
 
 namespace railvsi {
 namespace {
@@ -35,10 +35,11 @@ std::vector<std::vector<double>> deck_samples(const StructureModel& s, const Vec
     segments.push_back({start, end});
   }
   std::vector<std::vector<double>> w(segments.size());
+  const StructureCoordinates dofs(s);
   for (std::size_t k = 0; k < segments.size(); ++k)
     for (int j = 0; j < kSamplesPerSpan; ++j) {
       const double x = segments[k].start_m + (j + 0.5) / kSamplesPerSpan * (segments[k].end_m - segments[k].start_m);
-      w[k].push_back(rail_top(line.locate(x), shape));
+      w[k].push_back(rail_top(line.locate(x), shape, dofs));
     }
   return w;
 }

@@ -87,6 +87,15 @@ AnalysisOptions parse_analysis(const json& a) {
   if (a.contains("solver"))
     o.solver = a.at("solver").get<std::string>() == "reference" ? SolverPath::kReference : SolverPath::kCondensed;
   if (a.contains("contact")) o.contact = contact_options(a.at("contact"));
+  if (a.contains("structure") && a.at("structure").get<std::string>() == "modal")
+    o.structure_backend = StructureBackend::kModal;
+  o.modal_modes = a.value("modes", o.modal_modes);
+  o.modal_cutoff_hz = a.value("cutoff_hz", o.modal_cutoff_hz);
+  if ((a.contains("modes") || a.contains("cutoff_hz")) && o.structure_backend != StructureBackend::kModal)
+    throw InputError(a.contains("modes") ? "/analysis/modes" : "/analysis/cutoff_hz",
+                     "modes and cutoff_hz choose the modes of the modal structure: give \"structure\": \"modal\"");
+  if (a.contains("modes") && a.contains("cutoff_hz"))
+    throw InputError("/analysis/cutoff_hz", "give either modes or cutoff_hz, not both");
   o.max_newton_iterations = a.value("max_newton_iterations", o.max_newton_iterations);
   o.newton_tolerance = a.value("newton_tolerance", o.newton_tolerance);
   if (a.contains("duration_s")) o.duration_s = a.at("duration_s").get<double>();

@@ -11,9 +11,10 @@ namespace {
 
 class CondensedStepSolver final : public StepSolver {
  public:
-  CondensedStepSolver(std::shared_ptr<const StructureOperator> op, const TrainLayout& layout,
-                      std::vector<VehicleOperator> vehicles, const StepSolverOptions& options)
-      : op_(std::move(op)), layout_(layout), vehicles_(std::move(vehicles)), options_(options),
+  CondensedStepSolver(std::shared_ptr<const StructureOperator> op, const StructureCoordinates& coords,
+                      const TrainLayout& layout, std::vector<VehicleOperator> vehicles,
+                      const StepSolverOptions& options)
+      : op_(std::move(op)), coords_(coords), layout_(layout), vehicles_(std::move(vehicles)), options_(options),
         ws_(op_->make_workspace()) {
     const auto nc = static_cast<Eigen::Index>(layout_.contacts.size());
     A_.resize(nc, nc);
@@ -41,7 +42,7 @@ class CondensedStepSolver final : public StepSolver {
     if (p.rigid) add_wheel_following(p, s);
     for (Eigen::Index c = 0; c < nc; ++c) {
       const ContactSpec& cs = layout_.contacts[c];
-      delta_bar_[c] = rail_top(p.rows[c], s.u_s) + p.r[c] - s.u_v[cs.global_dof];
+      delta_bar_[c] = rail_top(p.rows[c], s.u_s, coords_) + p.r[c] - s.u_v[cs.global_dof];
     }
 
     // 4. The small contact problem.
@@ -57,7 +58,7 @@ class CondensedStepSolver final : public StepSolver {
     // 5. Back-substitution of the contact forces.
     if (any_on_track) {
       load_.setZero(op_->num_dofs());
-      add_rail_loads(p.rows, s.P, one_alpha, load_);
+      add_rail_loads(p.rows, s.P, one_alpha, load_, coords_);
       if (Status st2 = op_->solve(load_, correction_, *ws_); !st2.ok()) return st2;
       s.u_s += correction_;
     }
@@ -73,7 +74,7 @@ class CondensedStepSolver final : public StepSolver {
       for (Eigen::Index c = 0; c < nc; ++c) {
         const auto t = static_cast<std::size_t>(c);
         const WheelDefect d = wheel_defect((*p.rigid)[t], p.rows[t], s.u_s,
-                                           rail_top(p.rows[t], s.u_s) + p.r[c]);
+                                           rail_top(p.rows[t], s.u_s, coords_) + p.r[c], coords_);
         add_vehicle_defect(c, d.a - defect_[t].a, d.v - defect_[t].v, s.u_v);
       }
     }
@@ -134,7 +135,8 @@ class CondensedStepSolver final : public StepSolver {
     defect_.resize(static_cast<std::size_t>(nc));
     for (Eigen::Index c = 0; c < nc; ++c) {
       const auto t = static_cast<std::size_t>(c);
-      defect_[t] = wheel_defect((*p.rigid)[t], p.rows[t], s.u_s, rail_top(p.rows[t], s.u_s) + p.r[c]);
+      defect_[t] =
+          wheel_defect((*p.rigid)[t], p.rows[t], s.u_s, rail_top(p.rows[t], s.u_s, coords_) + p.r[c], coords_);
       add_vehicle_defect(c, defect_[t].a, defect_[t].v, s.u_v);
     }
     const DenseMatrix& F = op_->rail_flexibility();
@@ -177,6 +179,7 @@ class CondensedStepSolver final : public StepSolver {
   }
 
   std::shared_ptr<const StructureOperator> op_;
+  const StructureCoordinates& coords_;
   const TrainLayout& layout_;
   std::vector<VehicleOperator> vehicles_;
   StepSolverOptions options_;
@@ -191,10 +194,11 @@ class CondensedStepSolver final : public StepSolver {
 }  // namespace
 
 std::unique_ptr<StepSolver> make_condensed_step_solver(std::shared_ptr<const StructureOperator> op,
+                                                       const StructureCoordinates& coords,
                                                        const TrainLayout& layout,
                                                        std::vector<VehicleOperator> vehicles,
                                                        const StepSolverOptions& options) {
-  return std::make_unique<CondensedStepSolver>(std::move(op), layout, std::move(vehicles), options);
+  return std::make_unique<CondensedStepSolver>(std::move(op), coords, layout, std::move(vehicles), options);
 }
 
 }  // namespace railvsi

@@ -17,7 +17,7 @@ class ReferenceStepSolver final : public StepSolver {
   ReferenceStepSolver(const StructureModel& structure, const EffectiveMatrixFactors& f,
                       const TrainLayout& layout, const HhtCoefficients& h,
                       const StepSolverOptions& options)
-      : layout_(layout), options_(options), ns_(structure.num_dofs()),
+      : coords_(structure), layout_(layout), options_(options), ns_(structure.num_dofs()),
         nv_(layout.num_vehicle_dofs), nc_(static_cast<int>(layout.contacts.size())) {
     const SparseMatrix Ks = effective_matrix(structure, f);
     for (int k = 0; k < Ks.outerSize(); ++k)
@@ -47,7 +47,7 @@ class ReferenceStepSolver final : public StepSolver {
 
  private:
   double penetration(const StepProblem& p, int c) const {
-    return rail_top(p.rows[c], z_) + p.r[c] - z_[ns_ + layout_.contacts[c].global_dof];
+    return rail_top(p.rows[c], z_, coords_) + p.r[c] - z_[ns_ + layout_.contacts[c].global_dof];
   }
 
   void residual(const StepProblem& p, Vector& R) const {
@@ -59,7 +59,7 @@ class ReferenceStepSolver final : public StepSolver {
     R.segment(ns_, nv_) -= p.rhs_v;
     Vector fs = Vector::Zero(ns_);
     const Vector P = z_.tail(nc_);
-    add_rail_loads(p.rows, P, -one_alpha, fs);  // + (1+alpha) N^T P
+    add_rail_loads(p.rows, P, -one_alpha, fs, coords_);  // + (1+alpha) N^T P
     R.head(ns_) += fs;
     if (p.rigid) {
       // The wheel follows the rail: its kinematic acceleration and velocity
@@ -68,7 +68,7 @@ class ReferenceStepSolver final : public StepSolver {
       for (int c = 0; c < nc_; ++c) {
         const ContactSpec& cs = layout_.contacts[c];
         const auto t = static_cast<std::size_t>(c);
-        const WheelDefect d = wheel_defect((*p.rigid)[t], p.rows[t], u_s, z_[ns_ + cs.global_dof]);
+        const WheelDefect d = wheel_defect((*p.rigid)[t], p.rows[t], u_s, z_[ns_ + cs.global_dof], coords_);
         const VehicleInstance& v = layout_.vehicles[cs.vehicle];
         R.segment(ns_ + v.first_dof, v.model->num_dofs()) +=
             d.a * v.model->M().col(cs.local_dof) + (one_alpha * d.v) * v.model->C().col(cs.local_dof);
@@ -161,6 +161,7 @@ class ReferenceStepSolver final : public StepSolver {
     }
   }
 
+  StructureCoordinates coords_;  // the model's DOFs: the bordered system is assembled on them
   const TrainLayout& layout_;
   StepSolverOptions options_;
   int ns_, nv_, nc_;

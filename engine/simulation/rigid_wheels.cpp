@@ -23,20 +23,11 @@ NewmarkHistory newmark_history(const HhtCoefficients& h, double u, double v, dou
 
 }  // namespace
 
-double row_value(const std::optional<RailContactRow>& row, std::array<double, 4> RailContactRow::*w,
-                 const Vector& u) {
-  if (!row) return 0.0;
-  double z = 0.0;
-  for (int k = 0; k < 4; ++k)
-    if (row->dof[k] >= 0) z += ((*row).*w)[k] * u[row->dof[k]];
-  return z;
-}
-
 WheelDefect wheel_defect(const WheelFollowsRail& t, const std::optional<RailContactRow>& row,
-                         const Vector& u_s, double u_w) {
-  const double rel = row_value(row, &RailContactRow::weight, u_s) - u_w;
-  const double slope = row_value(row, &RailContactRow::slope, u_s);
-  const double curv = row_value(row, &RailContactRow::curvature, u_s);
+                         const Vector& u_s, double u_w, const StructureCoordinates& coords) {
+  const double rel = row_value(row, &RailContactRow::weight, u_s, coords) - u_w;
+  const double slope = row_value(row, &RailContactRow::slope, u_s, coords);
+  const double curv = row_value(row, &RailContactRow::curvature, u_s, coords);
   return {t.c_a_u * rel + t.c_a_slope * slope + t.c_a_curv * curv + t.a_known,
           t.c_v_u * rel + t.c_v_slope * slope + t.v_known};
 }
@@ -57,7 +48,8 @@ void check_rigid_contact_alpha(const TrainLayout& layout, double alpha) {
   }
 }
 
-RigidWheels::RigidWheels(const Scene& scene, const TrainLayout& layout) : scene_(scene), layout_(layout) {
+RigidWheels::RigidWheels(const Scene& scene, const TrainLayout& layout, const StructureCoordinates& coords)
+    : scene_(scene), layout_(layout), coords_(coords) {
   enabled_ = !layout.contacts.empty() && layout.contacts.front().law->is_constraint();
   if (!enabled_) return;
   terms_.resize(layout.contacts.size());
@@ -106,7 +98,7 @@ void RigidWheels::prepare(const HhtCoefficients& h, double front_x_m, const Kine
       for (int k = 0; k < 4; ++k) {
         const int d = row->dof[k];
         if (d < 0) continue;
-        const NewmarkHistory hs = newmark_history(h, s.u[d], s.v[d], s.a[d]);
+        const NewmarkHistory hs = newmark_history(h, coords_.at(d, s.u), coords_.at(d, s.v), coords_.at(d, s.a));
         Nha += row->weight[k] * hs.ha;
         Nhv += row->weight[k] * hs.hv;
         N1hv += row->slope[k] * hs.hv;
@@ -128,9 +120,8 @@ void RigidWheels::prepare(const HhtCoefficients& h, double front_x_m, const Kine
 namespace {
 
 // Slope at the start (end = false) or end of a located element.
-double element_end_slope(const RailContactRow& row, bool end, const Vector& u) {
-  const int d = row.dof[end ? 3 : 1];
-  return d >= 0 ? u[d] : 0.0;
+double element_end_slope(const RailContactRow& row, bool end, const Vector& u, const StructureCoordinates& coords) {
+  return coords.at(row.dof[end ? 3 : 1], u);
 }
 
 }  // namespace
@@ -145,12 +136,12 @@ void RigidWheels::follow_rail(double front_x_m, const KinematicState& s,
     const ProfilePoint p = profile(front_x_m, cs);
     const auto& row = rows[c];
     KinematicState& w = vehicles[static_cast<std::size_t>(cs.vehicle)];
-    const double slope_u = row_value(row, &RailContactRow::slope, s.u);
-    w.u[cs.local_dof] = row_value(row, &RailContactRow::weight, s.u) + p.r_m;
-    w.v[cs.local_dof] = row_value(row, &RailContactRow::weight, s.v) + V * (slope_u + p.slope);
-    w.a[cs.local_dof] = row_value(row, &RailContactRow::weight, s.a) +
-                        2.0 * V * row_value(row, &RailContactRow::slope, s.v) +
-                        V * V * (row_value(row, &RailContactRow::curvature, s.u) + p.curvature_per_m);
+    const double slope_u = row_value(row, &RailContactRow::slope, s.u, coords_);
+    w.u[cs.local_dof] = row_value(row, &RailContactRow::weight, s.u, coords_) + p.r_m;
+    w.v[cs.local_dof] = row_value(row, &RailContactRow::weight, s.v, coords_) + V * (slope_u + p.slope);
+    w.a[cs.local_dof] = row_value(row, &RailContactRow::weight, s.a, coords_) +
+                        2.0 * V * row_value(row, &RailContactRow::slope, s.v, coords_) +
+                        V * V * (row_value(row, &RailContactRow::curvature, s.u, coords_) + p.curvature_per_m);
   }
   if (!after_step) {
     rows_prev_ = rows;
@@ -165,8 +156,8 @@ void RigidWheels::follow_rail(double front_x_m, const KinematicState& s,
     if (same || x < window_start_m_ || x > window_end_m_) continue;
     // Slope left of the crossing (end of the old element, or the flat rigid
     // path) against slope right of it, both at the new state.
-    const double left = before ? element_end_slope(*before, true, s.u) : 0.0;
-    const double right = now ? element_end_slope(*now, false, s.u) : 0.0;
+    const double left = before ? element_end_slope(*before, true, s.u, coords_) : 0.0;
+    const double right = now ? element_end_slope(*now, false, s.u, coords_) : 0.0;
     const bool joined = before && now && before->dof[3] == now->dof[1] && before->dof[2] == now->dof[0];
     if (joined) continue;  // C1 across the node
     const double dv = scene_.speed_mps * (right - left);

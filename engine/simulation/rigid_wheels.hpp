@@ -39,6 +39,7 @@
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/train_layout.hpp"
+#include "solver/structure_coordinates.hpp"
 
 namespace railvsi {
 
@@ -47,16 +48,12 @@ struct WheelFollowsRail {
   double c_v_u = 0.0, c_v_slope = 0.0, v_known = 0.0;
 };
 
-// sum_k w[k] u[dof[k]] over the row's DOFs (0 on the rigid path).
-double row_value(const std::optional<RailContactRow>& row, std::array<double, 4> RailContactRow::*w,
-                 const Vector& u);
-
 // d_a and d_v of one wheel for given structure and wheel displacements.
 struct WheelDefect {
   double a = 0.0, v = 0.0;
 };
 WheelDefect wheel_defect(const WheelFollowsRail& t, const std::optional<RailContactRow>& row,
-                         const Vector& u_s, double u_w);
+                         const Vector& u_s, double u_w, const StructureCoordinates& coords);
 
 // Rigid contact needs HHT's numerical damping where wheels have mass: at
 // alpha = 0 a wheel mass moving over the rail's beam elements excites the
@@ -71,7 +68,8 @@ constexpr double kRigidMaxAlpha = -0.02;
 
 class RigidWheels {
  public:
-  RigidWheels(const Scene& scene, const TrainLayout& layout);
+  // Structure states in the coordinates `coords` (referenced).
+  RigidWheels(const Scene& scene, const TrainLayout& layout, const StructureCoordinates& coords);
   // True when the scene's contacts are rigid (then every term below applies).
   bool enabled() const { return enabled_; }
 
@@ -104,6 +102,7 @@ class RigidWheels {
 
   const Scene& scene_;
   const TrainLayout& layout_;
+  const StructureCoordinates& coords_;
   bool enabled_ = false;
   std::vector<WheelFollowsRail> terms_;
   struct Kink {

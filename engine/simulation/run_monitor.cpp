@@ -7,14 +7,14 @@
 
 namespace railvsi {
 
-RunMonitor::RunMonitor(const Scene& scene, const TrainLayout& layout, double start_x_m, const KinematicState& s0,
-                       const std::vector<KinematicState>& vehicles0, const Vector& f_s0, const Vector& P0,
-                       MonitorLimits limits)
-    : scene_(scene), layout_(layout), limits_(limits) {
+RunMonitor::RunMonitor(const Scene& scene, const TrainLayout& layout, const StructureCoordinates& coords,
+                       double start_x_m, const KinematicState& s0, const std::vector<KinematicState>& vehicles0,
+                       const Vector& f_s0, const Vector& P0, MonitorLimits limits)
+    : scene_(scene), layout_(layout), coords_(coords), limits_(limits) {
   const StructureModel& st = *scene.structure;
   const auto [b0, b1] = bridge_extent_m(st);
   u_limit_m_ = std::max(limits_.min_implausible_m, (b1 - b0) / limits_.span_ratio);
-  structure_energy_ = EnergyAccount<SparseMatrix>(st.M(), st.C(), st.K(), s0, f_s0);
+  structure_energy_ = EnergyAccount<SparseMatrix>(coords.M(), coords.C(), coords.K(), s0, f_s0);
   for (std::size_t v = 0; v < layout.vehicles.size(); ++v) {
     const VehicleModel& m = *layout.vehicles[v].model;
     u_v0_.push_back(vehicles0[v].u);
@@ -103,13 +103,12 @@ Status RunMonitor::after_step(const HhtCoefficients& h, double t_new, const Kine
   }
 
   // Displacements.
-  Eigen::Index i_max = 0;
-  const double u_max = s.u.size() ? s.u.cwiseAbs().maxCoeff(&i_max) : 0.0;
+  const double u_max = coords_.max_abs_displacement(s.u);
   if (u_max > u_limit_m_)
     return {StatusCode::kUnstable,
-            fmt::format("structure displacement {:.3g} m at DOF {} exceeds {:.3g} m (max(0.1 m, span/100)), "
+            fmt::format("structure displacement {:.3g} m exceeds {:.3g} m (max(0.1 m, span/100)), "
                         "implausible for this structure",
-                        u_max, i_max, u_limit_m_)};
+                        u_max, u_limit_m_)};
   for (std::size_t v = 0; v < vehicles.size(); ++v) {
     const double dv = (vehicles[v].u - u_v0_[v]).cwiseAbs().maxCoeff();
     if (dv > limits_.vehicle_limit)

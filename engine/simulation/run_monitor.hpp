@@ -15,6 +15,7 @@
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/train_layout.hpp"
+#include "solver/structure_coordinates.hpp"
 
 namespace railvsi {
 
@@ -36,7 +37,9 @@ struct MonitorLimits {
 
 class RunMonitor {
  public:
-  RunMonitor(const Scene& scene, const TrainLayout& layout, double start_x_m, const KinematicState& s0,
+  // Structure states and loads in the coordinates `coords` (referenced).
+  RunMonitor(const Scene& scene, const TrainLayout& layout, const StructureCoordinates& coords, double start_x_m,
+             const KinematicState& s0,
              const std::vector<KinematicState>& vehicles0, const Vector& f_s0, const Vector& P0,
              MonitorLimits limits = {});
 
@@ -59,6 +62,7 @@ class RunMonitor {
 
   const Scene& scene_;
   const TrainLayout& layout_;
+  const StructureCoordinates& coords_;
   MonitorLimits limits_;
   double u_limit_m_ = 0.0;
   std::vector<Vector> u_v0_;

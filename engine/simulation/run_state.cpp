@@ -7,10 +7,10 @@
 namespace railvsi {
 
 RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics,
-                   double start_x_m)
-    : scene_(scene), layout_(layout), start_x_m_(start_x_m),
-      history_(scene.structure->M(), scene.structure->C(), scene.structure->K()), rigid_(scene, layout) {
-  const int ns = scene.structure->num_dofs();
+                   double start_x_m, const StructureCoordinates& coords)
+    : scene_(scene), layout_(layout), coords_(coords), start_x_m_(start_x_m),
+      history_(coords.M(), coords.C(), coords.K()), rigid_(scene, layout, coords) {
+  const int ns = coords.size();
   s_.resize(ns);
   s_.u = statics.u_s;
   for (const VehicleInstance& vi : layout.vehicles) {
@@ -25,9 +25,9 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
   P_ = nc > 0 ? statics.P : Vector();
   Q0_ = P_;
   f_s_ = Vector::Zero(ns);
-  add_moving_force_loads(scene, start_x_m, f_s_);
+  add_moving_force_loads(scene, start_x_m, f_s_, coords);
   rows_ = locate_contacts(*scene.structure, layout, start_x_m);
-  add_rail_loads(rows_, P_, 1.0, f_s_);
+  add_rail_loads(rows_, P_, 1.0, f_s_, coords);
   rigid_.follow_rail(start_x_m, s_, rows_, vehicles_);
   r_ = Vector::Zero(nc);
   const std::size_t np = scene.structure->outputs().size();
@@ -38,7 +38,7 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
   const auto [b0, b1] = bridge_extent_m(*scene.structure);
   window_start_m_ = b0 - scene.analysis.evaluation_margin_m;
   window_end_m_ = b1 + scene.analysis.evaluation_margin_m;
-  monitor_.emplace(scene, layout, start_x_m, s_, vehicles_, f_s_, P_);
+  monitor_.emplace(scene, layout, coords, start_x_m, s_, vehicles_, f_s_, P_);
 }
 
 bool RunState::in_window(double front_x_m, const ContactSpec& c) const {
@@ -50,7 +50,7 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   const double x = front_x(t_new);
   // Loads known at t_{n+1}: moving forces and the irregularity under each wheel.
   f_new_.setZero(s_.u.size());
-  add_moving_force_loads(scene_, x, f_new_);
+  add_moving_force_loads(scene_, x, f_new_, coords_);
   rows_ = locate_contacts(*scene_.structure, layout_, x);
   for (Eigen::Index c = 0; c < r_.size(); ++c)
     r_[c] = scene_.irregularity ? scene_.irregularity->at(TrainLayout::position_m(x, layout_.contacts[c].offset_m)) : 0.0;
@@ -92,7 +92,7 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   rigid_.follow_rail(x, s_, rows_, vehicles_, /*after_step=*/true, t_new);
   P_ = solution_.P;
   f_s_ = f_new_;
-  add_rail_loads(rows_, P_, 1.0, f_s_);
+  add_rail_loads(rows_, P_, 1.0, f_s_, coords_);
   return monitor_->after_step(h, t_new, s_old_, s_, vehicles_old_, vehicles_, f_s_old_, f_s_, P_old_, P_, iterations);
 }
 
@@ -100,8 +100,8 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
   const auto& outputs = scene_.structure->outputs();
   const double dt = scene_.analysis.dt_s;
   for (std::size_t p = 0; p < outputs.size(); ++p) {
-    max_abs_u_[p] = std::max(max_abs_u_[p], std::abs(s_.u[outputs[p].dof]));
-    max_abs_a_[p] = std::max(max_abs_a_[p], std::abs(s_.a[outputs[p].dof]));
+    max_abs_u_[p] = std::max(max_abs_u_[p], std::abs(coords_.at(outputs[p].dof, s_.u)));
+    max_abs_a_[p] = std::max(max_abs_a_[p], std::abs(coords_.at(outputs[p].dof, s_.a)));
   }
   const double x = front_x(t_s);
   std::vector<bool>& vehicle_in = vehicle_in_window_;
@@ -136,8 +136,8 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
   }
   hist.t_s.push_back(t_s);
   for (std::size_t p = 0; p < outputs.size(); ++p) {
-    hist.deck_displacement_m[p].push_back(s_.u[outputs[p].dof]);
-    hist.deck_acceleration_mps2[p].push_back(s_.a[outputs[p].dof]);
+    hist.deck_displacement_m[p].push_back(coords_.at(outputs[p].dof, s_.u));
+    hist.deck_acceleration_mps2[p].push_back(coords_.at(outputs[p].dof, s_.a));
   }
   for (Eigen::Index c = 0; c < P_.size(); ++c) hist.contact_force_N[c].push_back(P_[c]);
   std::size_t b = 0;

@@ -17,7 +17,10 @@ namespace railvsi {
 
 class RunState {
  public:
-  RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics, double start_x_m);
+  // `coords`: the structure coordinates of the step solver (and of
+  // statics.u_s); referenced, not copied.
+  RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics, double start_x_m,
+           const StructureCoordinates& coords);
 
   // Advance from t_n to t_new = t_n + dt.
   Status step(const HhtCoefficients& h, double t_new, StepSolver& solver, int& iterations);
@@ -33,6 +36,7 @@ class RunState {
 
   const Scene& scene_;
   const TrainLayout& layout_;
+  const StructureCoordinates& coords_;
   double start_x_m_;
   SparseHistoryOperator history_;  // the structure's M, C, K fused for the HHT history terms
   KinematicState s_;

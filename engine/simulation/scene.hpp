@@ -10,6 +10,7 @@
 #include "model/irregularity.hpp"
 #include "model/structure_model.hpp"
 #include "model/train.hpp"
+#include "solver/structure_backend.hpp"
 
 namespace railvsi {
 
@@ -19,6 +20,11 @@ struct AnalysisOptions {
   double dt_s = 2.5e-4;
   HhtParameters hht = HhtParameters::from_alpha(-0.05);
   SolverPath solver = SolverPath::kCondensed;
+  // The structure: finite elements, or its modes (modal_modes of them when
+  // > 0, else all up to modal_cutoff_hz; structure_backend.hpp).
+  StructureBackend structure_backend = StructureBackend::kFiniteElements;
+  int modal_modes = 0;
+  double modal_cutoff_hz = 0.0;
   ContactOptions contact;
   int max_newton_iterations = 50;
   // Newton stops when |residual| / |static wheel loads| <= tol (eq. 25).

@@ -8,7 +8,6 @@
 #include "simulation/run_state.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "simulation/step_solver.hpp"
-#include "solver/cholmod_operator.hpp"
 
 namespace railvsi {
 namespace {
@@ -37,8 +36,8 @@ namespace {
 // its tables or silently integrate another scheme.
 void check_operator(const StructureOperator& op, const Scene& scene, const HhtCoefficients& h) {
   const StructureModel& s = *scene.structure;
-  if (op.num_dofs() != s.num_dofs())
-    throw InputError("/structure", fmt::format("the structure operator has {} DOFs, the structure {}", op.num_dofs(),
+  if (op.model_dofs() != s.num_dofs())
+    throw InputError("/structure", fmt::format("the structure operator has {} DOFs, the structure {}", op.model_dofs(),
                                                s.num_dofs()));
   const EffectiveMatrixFactors want = structure_factors(h);
   const EffectiveMatrixFactors& got = op.factors();
@@ -86,11 +85,18 @@ long planned_steps(const Scene& scene) {
   return step_count(duration_s, scene.analysis.dt_s);
 }
 
+StructureOperatorOptions structure_operator_options(const Scene& scene) {
+  StructureOperatorOptions options;
+  options.structure_backend = scene.analysis.structure_backend;
+  options.modal_modes = scene.analysis.modal_modes;
+  options.modal_cutoff_hz = scene.analysis.modal_cutoff_hz;
+  options.rail_flexibility = !scene.train.is_moving_forces();
+  return options;
+}
+
 std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& scene) {
   const HhtCoefficients h(scene.analysis.hht, scene.analysis.dt_s);
-  CholmodOperatorOptions options;
-  options.rail_flexibility = !scene.train.is_moving_forces();
-  return std::make_shared<const CholmodOperator>(*scene.structure, structure_factors(h), options);
+  return make_structure_operator(scene.structure, structure_factors(h), structure_operator_options(scene));
 }
 
 RunEstimate estimate_run(const Scene& scene, double duration_s) {
@@ -156,13 +162,22 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
   auto setup = std::make_unique<SimulationSetup>(
       SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, {}, 0.0});
   check_rigid_contact_alpha(setup->layout, an.hht.alpha);
+  if (an.solver == SolverPath::kReference && an.structure_backend != StructureBackend::kFiniteElements)
+    throw InputError("/analysis/solver", "the reference path assembles the finite-element structure: use "
+                                         "\"structure\": \"fe\" with \"solver\": \"reference\"");
+  if (!op_ && an.solver == SolverPath::kCondensed) op_ = make_structure_operator(scene_);
+  if (op_ && an.solver == SolverPath::kCondensed) check_operator(*op_, scene_, setup->h);
   setup->vehicle_ops = make_vehicle_operators(setup->layout, setup->h);
-  setup->statics = static_equilibrium(scene_, setup->layout, x0);
+  // The static state of the backend the run integrates (the same modes).
+  StructureOperatorOptions fe_statics;
+  fe_statics.rail_flexibility = false;
+  const auto statics_op = op_ && an.solver == SolverPath::kCondensed
+                              ? op_->static_operator(*scene_.structure)
+                              : make_structure_operator(scene_.structure, {0.0, 0.0, 1.0}, fe_statics);
+  setup->statics = static_equilibrium(scene_, setup->layout, x0, *statics_op);
   for (std::size_t c = 0; c < setup->layout.contacts.size(); ++c)
     setup->layout.contacts[c].law =
         setup->layout.contacts[c].law->at_static_load(setup->statics.P[static_cast<Eigen::Index>(c)]);
-  if (!op_ && an.solver == SolverPath::kCondensed) op_ = make_structure_operator(scene_);
-  if (op_ && an.solver == SolverPath::kCondensed) check_operator(*op_, scene_, setup->h);
   setup->setup_s = std::chrono::duration<double>(Clock::now() - t_start).count();
   setup_ = std::move(setup);
 }
@@ -187,11 +202,12 @@ Result Simulation::run() const {
   so.tolerance = an.newton_tolerance;
   so.force_scale_N = std::max(1.0, statics.P.norm());
   std::unique_ptr<StepSolver> solver;
+  const StructureCoordinates coords = op_ ? op_->coordinates(*sc.structure) : StructureCoordinates(*sc.structure);
   if (an.solver == SolverPath::kReference) {
     solver = make_reference_step_solver(*sc.structure, structure_factors(h), layout, h, so);
     sum.fidelity.structure_backend = "umfpack-bordered";
   } else {
-    solver = make_condensed_step_solver(op_, layout, setup.vehicle_ops, so);
+    solver = make_condensed_step_solver(op_, coords, layout, setup.vehicle_ops, so);
     sum.fidelity.structure_backend = op_->backend_name();
   }
 
@@ -210,7 +226,7 @@ Result Simulation::run() const {
   sum.dt_s = an.dt_s;
   sum.static_wheel_load_N.assign(statics.P.data(), statics.P.data() + statics.P.size());
 
-  RunState state(sc, layout, statics, x0);
+  RunState state(sc, layout, statics, x0, coords);
   sum.setup_s = setup.setup_s + std::chrono::duration<double>(Clock::now() - t_start).count();
   const long steps = step_count(setup.duration_s, an.dt_s);
   state.record(0, 0.0, result.histories, /*store=*/true);

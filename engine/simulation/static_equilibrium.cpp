@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
-#include "solver/cholmod_operator.hpp"
 
 namespace railvsi {
 
@@ -18,23 +17,6 @@ std::vector<std::optional<RailContactRow>> locate_contacts(const StructureModel&
     rows.push_back(s.rails()[static_cast<std::size_t>(c.rail_line)].locate(x));
   }
   return rows;
-}
-
-void add_rail_loads(const std::vector<std::optional<RailContactRow>>& rows, const Vector& P,
-                    double scale, Vector& f) {
-  for (std::size_t c = 0; c < rows.size(); ++c) {
-    if (!rows[c]) continue;
-    for (int k = 0; k < 4; ++k)
-      if (rows[c]->dof[k] >= 0) f[rows[c]->dof[k]] -= scale * rows[c]->weight[k] * P[static_cast<Eigen::Index>(c)];
-  }
-}
-
-double rail_top(const std::optional<RailContactRow>& row, const Vector& u) {
-  if (!row) return 0.0;
-  double z = 0.0;
-  for (int k = 0; k < 4; ++k)
-    if (row->dof[k] >= 0) z += row->weight[k] * u[row->dof[k]];
-  return z;
 }
 
 Vector static_wheel_loads_on_rigid_track(const VehicleModel& vehicle) {
@@ -56,7 +38,7 @@ Vector static_wheel_loads_on_rigid_track(const VehicleModel& vehicle) {
   return lu.solve(rhs).tail(nw);
 }
 
-void add_moving_force_loads(const Scene& scene, double front_x_m, Vector& f) {
+void add_moving_force_loads(const Scene& scene, double front_x_m, Vector& f, const StructureCoordinates& coords) {
   const auto& rails = scene.analysis.contact.rail_lines;
   const double share = 1.0 / static_cast<double>(rails.size());
   for (const MovingForce& m : scene.train.moving_forces)
@@ -65,7 +47,7 @@ void add_moving_force_loads(const Scene& scene, double front_x_m, Vector& f) {
           TrainLayout::position_m(front_x_m, m.offset_m));
       if (!row) continue;
       for (int k = 0; k < 4; ++k)
-        if (row->dof[k] >= 0) f[row->dof[k]] -= share * row->weight[k] * m.load_N;
+        coords.add(row->dof[k], -share * row->weight[k] * m.load_N, f);
     }
 }
 
@@ -76,7 +58,7 @@ constexpr int kStaticNewtonIterations = 60;
 
 // The static state is set up before the run: a failed solve is a scene that
 // cannot be run.
-void solve_static(const CholmodOperator& op, const Vector& f, Vector& u, SolveWorkspace& ws) {
+void solve_static(const StructureOperator& op, const Vector& f, Vector& u, SolveWorkspace& ws) {
   if (f.squaredNorm() == 0.0) return;
   const Status st = op.solve(f, u, ws);
   if (!st.ok()) throw InputError("/structure", "static deflection under the train: " + st.message());
@@ -84,24 +66,22 @@ void solve_static(const CholmodOperator& op, const Vector& f, Vector& u, SolveWo
 }
 
 // Moving forces: the loads at t = 0, structure only.
-StaticState moving_force_statics(const Scene& scene, const CholmodOperator& op, double front_x_m) {
-  const StructureModel& s = *scene.structure;
+StaticState moving_force_statics(const Scene& scene, const StructureOperator& op, double front_x_m) {
+  const StructureCoordinates coords = op.coordinates(*scene.structure);
   StaticState st;
-  Vector f = Vector::Zero(s.num_dofs());
-  add_moving_force_loads(scene, front_x_m, f);
+  Vector f = Vector::Zero(coords.size());
+  add_moving_force_loads(scene, front_x_m, f, coords);
   auto ws = op.make_workspace();
-  st.u_s = Vector::Zero(s.num_dofs());
+  st.u_s = Vector::Zero(coords.size());
   solve_static(op, f, st.u_s, *ws);
   return st;
 }
 
 }  // namespace
 
-StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m) {
+StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m,
+                               const StructureOperator& op) {
   const StructureModel& s = *scene.structure;
-  CholmodOperatorOptions opts;
-  opts.rail_flexibility = false;
-  const CholmodOperator op(s, EffectiveMatrixFactors{0.0, 0.0, 1.0}, opts);
   if (scene.train.is_moving_forces()) return moving_force_statics(scene, op, front_x_m);
 
   const auto rows = locate_contacts(s, layout, front_x_m);
@@ -211,9 +191,10 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
   StaticState st;
   st.u_v = z.head(nv);
   st.P = z.tail(nc);
-  Vector f = Vector::Zero(s.num_dofs());
-  add_rail_loads(rows, st.P, 1.0, f);
-  st.u_s = Vector::Zero(s.num_dofs());
+  const StructureCoordinates coords = op.coordinates(s);
+  Vector f = Vector::Zero(coords.size());
+  add_rail_loads(rows, st.P, 1.0, f, coords);
+  st.u_s = Vector::Zero(coords.size());
   solve_static(op, f, st.u_s, *ws);
   return st;
 }

@@ -9,11 +9,12 @@
 #include "model/rail_line.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/train_layout.hpp"
+#include "solver/structure_operator.hpp"
 
 namespace railvsi {
 
 struct StaticState {
-  Vector u_s;  // structure
+  Vector u_s;  // structure, in the coordinates of the operator it was solved with
   Vector u_v;  // stacked vehicles
   Vector P;    // contact forces (= static wheel loads)
 };
@@ -24,9 +25,11 @@ std::vector<std::optional<RailContactRow>> locate_contacts(const StructureModel&
                                                            const TrainLayout& layout,
                                                            double front_x_m);
 
-// Throws InputError if the structure is a mechanism or a vehicle is not
-// carried by its wheels.
-StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m);
+// `statics` is the static stiffness operator of the backend the run
+// integrates (StructureOperator::static_operator). Throws InputError if the
+// structure is a mechanism or a vehicle is not carried by its wheels.
+StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m,
+                               const StructureOperator& statics);
 
 // Wheel loads of one vehicle standing on a rigid, level track: what the
 // vehicle becomes when a scene asks for it as moving forces. Throws
@@ -34,13 +37,8 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
 Vector static_wheel_loads_on_rigid_track(const VehicleModel& vehicle);
 
 // Adds the downward moving-force loads of the scene's train with its first
-// axle at front_x_m, split over ContactOptions::rail_lines.
-void add_moving_force_loads(const Scene& scene, double front_x_m, Vector& f);
-
-// Adds -scale * N_k^T P_k to f for every on-track load.
-void add_rail_loads(const std::vector<std::optional<RailContactRow>>& rows, const Vector& P,
-                    double scale, Vector& f);
-// N_c u for a located contact (0 on the rigid path).
-double rail_top(const std::optional<RailContactRow>& row, const Vector& u);
+// axle at front_x_m, split over ContactOptions::rail_lines, to f (in the
+// structure coordinates `coords`).
+void add_moving_force_loads(const Scene& scene, double front_x_m, Vector& f, const StructureCoordinates& coords);
 
 }  // namespace railvsi

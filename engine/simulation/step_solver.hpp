@@ -49,8 +49,10 @@ struct StepSolverOptions {
   double force_scale_N = 1.0;
 };
 
+// Structure vectors in `coords` (op->coordinates(model); referenced, must
+// outlive the solver).
 std::unique_ptr<StepSolver> make_condensed_step_solver(
-    std::shared_ptr<const StructureOperator> op, const TrainLayout& layout,
+    std::shared_ptr<const StructureOperator> op, const StructureCoordinates& coords, const TrainLayout& layout,
     std::vector<VehicleOperator> vehicles, const StepSolverOptions& options);
 
 std::unique_ptr<StepSolver> make_reference_step_solver(const StructureModel& structure,

@@ -47,6 +47,7 @@ CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMat
     : n_(model.num_dofs()), block_columns_(std::max(1, options.flexibility_block_columns)),
       common_(std::make_unique<CholmodCommon>()) {
   factors_ = factors;
+  model_dofs_ = n_;
   const auto start = std::chrono::steady_clock::now();
   const SparseMatrix A = effective_matrix(model, factors);
   cholmod_sparse view = cholmod_view_symmetric(A);
@@ -104,6 +105,16 @@ DenseMatrix CholmodOperator::flexibility_block(const std::vector<int>& dofs, Sol
       for (Eigen::Index i = 0; i < m; ++i) F(i, j0 + j) = X(dofs[i], j);
   }
   return F;
+}
+
+std::shared_ptr<const StructureOperator> CholmodOperator::static_operator(const StructureModel& model) const {
+  return std::make_shared<const CholmodOperator>(model, EffectiveMatrixFactors{0.0, 0.0, 1.0},
+                                                 CholmodOperatorOptions{false, block_columns_});
+}
+
+std::size_t CholmodOperator::memory_bytes() const {
+  return static_cast<std::size_t>(factor_nonzeros()) * (sizeof(double) + sizeof(int)) +
+         static_cast<std::size_t>(rail_flexibility_.size()) * sizeof(double);
 }
 
 double CholmodOperator::factor_nonzeros() const {

@@ -26,6 +26,11 @@ class CholmodOperator final : public StructureOperator {
   Status solve(const Vector& b, Vector& x, SolveWorkspace& ws) const override;
   DenseMatrix flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const override;
   std::string backend_name() const override { return "cholmod"; }
+  StructureCoordinates coordinates(const StructureModel& model) const override {
+    return StructureCoordinates(model);
+  }
+  std::shared_ptr<const StructureOperator> static_operator(const StructureModel& model) const override;
+  std::size_t memory_bytes() const override;
   // Nonzeros of the factor, for benchmarks.
   double factor_nonzeros() const;
 

@@ -2,8 +2,6 @@
 
 #include <chrono>
 
-#include "core/input_error.hpp"
-
 namespace railvsi {
 
 SparseMatrix effective_matrix(const StructureModel& model, const EffectiveMatrixFactors& f) {
@@ -12,20 +10,6 @@ SparseMatrix effective_matrix(const StructureModel& model, const EffectiveMatrix
   if (f.damping != 0.0) A += f.damping * model.C();
   A.makeCompressed();
   return A;
-}
-
-DenseMatrix StructureOperator::flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const {
-  const auto m = static_cast<Eigen::Index>(dofs.size());
-  DenseMatrix F(m, m);
-  Vector e = Vector::Zero(num_dofs()), x(num_dofs());
-  for (Eigen::Index j = 0; j < m; ++j) {
-    e[dofs[j]] = 1.0;
-    const Status st = solve(e, x, ws);
-    if (!st.ok()) throw InputError("/structure", "rail flexibility: " + st.message());
-    e[dofs[j]] = 0.0;
-    for (Eigen::Index i = 0; i < m; ++i) F(i, j) = x[dofs[i]];
-  }
-  return F;
 }
 
 void StructureOperator::compute_rail_flexibility(const StructureModel& model) {

@@ -9,6 +9,7 @@
 #include "core/status.hpp"
 #include "core/types.hpp"
 #include "model/structure_model.hpp"
+#include "solver/structure_coordinates.hpp"
 
 namespace railvsi {
 
@@ -27,12 +28,28 @@ class SolveWorkspace {
 class StructureOperator {
  public:
   virtual ~StructureOperator() = default;
+  // Length of the vectors solve() takes: the structure's state in the
+  // backend's coordinates (DOFs, or modes).
   virtual int num_dofs() const = 0;
+  // DOFs of the structure model the operator was built for.
+  int model_dofs() const { return model_dofs_; }
+  // The coordinates of solve()'s vectors for `model` (the model this
+  // operator was built for, or one with the same matrices: cached operators
+  // outlive the model instance they were built from, so nothing of it is
+  // kept).
+  virtual StructureCoordinates coordinates(const StructureModel& model) const = 0;
+  // The static stiffness operator (factors 0, 0, 1, no rail flexibility) of
+  // the same backend and structure: a new factorization of K (FE), the same
+  // modes (modal). Throws InputError as the constructors do.
+  virtual std::shared_ptr<const StructureOperator> static_operator(const StructureModel& model) const = 0;
+  // Memory held (factor or modes, and the rail flexibility), for caches.
+  virtual std::size_t memory_bytes() const = 0;
   virtual std::unique_ptr<SolveWorkspace> make_workspace() const = 0;
   // x = K_bar^-1 b. x may not alias b.
   virtual Status solve(const Vector& b, Vector& x, SolveWorkspace& ws) const = 0;
-  // Columns of K_bar^-1 for the given DOFs, restricted to the same DOFs.
-  virtual DenseMatrix flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const;
+  // Columns of K_bar^-1 for the given model DOFs, restricted to the same
+  // DOFs (physical, whatever the coordinates).
+  virtual DenseMatrix flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const = 0;
 
   // Rail flexibility (K_bar^-1 at the rail DOFs of the model), computed once
   // when the operator is built with rail flexibility requested.
@@ -50,6 +67,7 @@ class StructureOperator {
   EffectiveMatrixFactors factors_;
   DenseMatrix rail_flexibility_;
   std::vector<int> rail_index_;
+  int model_dofs_ = 0;
   double factorization_s_ = 0.0;
   double flexibility_s_ = 0.0;
 };

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "analysis/frequency_units_check.hpp"
-#include "analysis/modal_analysis.hpp"
+#include "solver/modal_analysis.hpp"
 #include "analysis/mode_classification.hpp"
 #include "simulation/static_equilibrium.hpp"
 

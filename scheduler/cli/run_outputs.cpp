@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "cli/histories_csv.hpp"
-#include "cli/summary_json.hpp"
+#include "summary/summary_json.hpp"
 #include "envelopes/code_filter.hpp"
 #include "simulation/simulation.hpp"
 #include "study/deck_frequencies.hpp"

@@ -1,7 +1,7 @@
 #include <iostream>
 
 #include "analysis/frequency_units_check.hpp"
-#include "analysis/modal_analysis.hpp"
+#include "solver/modal_analysis.hpp"
 #include "cli/commands.hpp"
 #include "core/terminal_text.hpp"
 #include "io/document_kind.hpp"

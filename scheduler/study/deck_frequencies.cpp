@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "analysis/modal_analysis.hpp"
+#include "solver/modal_analysis.hpp"
 #include "analysis/mode_classification.hpp"
 
 namespace railvsi::scheduler {

@@ -36,9 +36,15 @@ std::string structure_model_hash(const StructureModel& structure) {
 
 std::string operator_key(const std::string& structure_hash, const AnalysisOptions& analysis, bool rail_flexibility) {
   // Hex floats: exact, so equal doubles and only equal doubles share a key.
-  return sha256_hex(fmt::format("railvsi operator v1|{}|dt={:a}|alpha={:a}|beta={:a}|gamma={:a}|flex={}", structure_hash,
-                                analysis.dt_s, analysis.hht.alpha, analysis.hht.beta, analysis.hht.gamma,
-                                rail_flexibility ? 1 : 0));
+  // A modal operator is another operator: its backend and modes are part of
+  // the key (FE keys are unchanged).
+  const std::string modal = analysis.structure_backend == StructureBackend::kModal
+                                ? fmt::format("|modal|modes={}|cutoff={:a}", analysis.modal_modes,
+                                              analysis.modal_cutoff_hz)
+                                : std::string();
+  return sha256_hex(fmt::format("railvsi operator v1|{}|dt={:a}|alpha={:a}|beta={:a}|gamma={:a}|flex={}{}",
+                                structure_hash, analysis.dt_s, analysis.hht.alpha, analysis.hht.beta,
+                                analysis.hht.gamma, rail_flexibility ? 1 : 0, modal));
 }
 
 }  // namespace railvsi::scheduler

@@ -2,20 +2,12 @@
 
 #include <chrono>
 
-#include "solver/cholmod_operator.hpp"
 
 namespace railvsi::scheduler {
 
 FactorizationCache::FactorizationCache(std::size_t budget_bytes) : budget_bytes_(budget_bytes) {}
 
-std::size_t FactorizationCache::estimated_bytes(const StructureOperator& op) {
-  std::size_t bytes = static_cast<std::size_t>(op.rail_flexibility().size()) * sizeof(double);
-  if (const auto* cholmod = dynamic_cast<const CholmodOperator*>(&op))
-    bytes += static_cast<std::size_t>(cholmod->factor_nonzeros()) * (sizeof(double) + sizeof(int));
-  else
-    bytes += static_cast<std::size_t>(op.num_dofs()) * sizeof(double);
-  return bytes;
-}
+std::size_t FactorizationCache::estimated_bytes(const StructureOperator& op) { return op.memory_bytes(); }
 
 int FactorizationCache::evict_to_fit(std::size_t incoming_bytes) {
   int evicted = 0;

@@ -43,8 +43,8 @@ class FactorizationCache {
   CacheLookup get(const std::string& key, const std::function<std::shared_ptr<const StructureOperator>()>& build);
   CacheStats stats() const;
 
-  // Estimated memory of an operator: the CHOLMOD factor and the rail
-  // flexibility block.
+  // Estimated memory of an operator (StructureOperator::memory_bytes: the
+  // CHOLMOD factor or the modes, and the rail flexibility block).
   static std::size_t estimated_bytes(const StructureOperator& op);
 
  private:

@@ -6,10 +6,10 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "simulation/simulation.hpp"
-#include "cli/summary_json.hpp"
 #include "envelopes/envelope_rows.hpp"
 #include "envelopes/job_envelopes.hpp"
 #include "planning/time_step_warnings.hpp"
+#include "summary/summary_json.hpp"
 
 namespace railvsi::scheduler {
 
@@ -27,9 +27,9 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache) {
     const Simulation simulation(scene, lookup.op);
     Result result = simulation.run();
     for (RunWarning& w : time_step_warnings(scene, job.cutoff_hz)) result.summary.warnings.push_back(std::move(w));
-    out.warnings = cli::warnings_json(result.summary.warnings).dump();
+    out.warnings = warnings_json(result.summary.warnings).dump();
     const RunSummary& s = result.summary;
-    out.fidelity = cli::fidelity_json(s.fidelity).dump();
+    out.fidelity = fidelity_json(s.fidelity).dump();
     out.steps = s.steps;
     out.setup_s = s.setup_s + lookup.factorization_s;
     out.loop_s = s.wall_s - s.setup_s;

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "analysis/modal_analysis.hpp"
+#include "solver/modal_analysis.hpp"
 #include "analysis/mode_classification.hpp"
 #include "generators/bridge_2d.hpp"
 

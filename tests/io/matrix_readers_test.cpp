@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "analysis/modal_analysis.hpp"
+#include "solver/modal_analysis.hpp"
 #include "beam_files.hpp"
 #include "io/matrix_reader.hpp"
 #include "io/structure_import.hpp"

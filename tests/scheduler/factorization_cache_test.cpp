@@ -22,6 +22,14 @@ class FakeOperator final : public StructureOperator {
     return Status::Ok();
   }
   std::string backend_name() const override { return "fake"; }
+  DenseMatrix flexibility_block(const std::vector<int>&, SolveWorkspace&) const override { return {}; }
+  StructureCoordinates coordinates(const StructureModel& model) const override {
+    return StructureCoordinates(model);
+  }
+  std::shared_ptr<const StructureOperator> static_operator(const StructureModel&) const override {
+    return std::make_shared<const FakeOperator>(n_);
+  }
+  std::size_t memory_bytes() const override { return static_cast<std::size_t>(n_) * sizeof(double); }
 
  private:
   int n_;

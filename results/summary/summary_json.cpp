@@ -1,8 +1,8 @@
-#include "cli/summary_json.hpp"
+#include "summary/summary_json.hpp"
 
 #include <cmath>
 
-namespace railvsi::cli {
+namespace railvsi {
 namespace {
 
 using nlohmann::ordered_json;
@@ -76,4 +76,4 @@ ordered_json summary_json(const Result& result, bool moving_forces) {
   return out;
 }
 
-}  // namespace railvsi::cli
+}  // namespace railvsi

@@ -31,8 +31,12 @@ class ModalBasis {
   // phi_k^T C phi_k / (2 omega_k): exact for Rayleigh damping; for another
   // C the coupling terms between modes are left out.
   const std::vector<double>& zeta() const { return zeta_; }
-  // Mass-normalised shapes at one DOF (a row of Phi); zero for a fixed DOF (-1).
+  // Mass-normalised shapes at one DOF (a row of Phi), kept for the rail and
+  // output DOFs; zero for a fixed DOF (-1) and any other DOF.
   const double* row(int dof) const;
+  // The kept rows (rail DOFs first, then output DOFs not on a rail), one
+  // column per DOF.
+  const DenseMatrix& kept_rows() const { return rail_shapes_; }
   // Shapes at the output points, one row per point.
   const DenseMatrix& at_outputs() const { return at_outputs_; }
 
@@ -40,9 +44,9 @@ class ModalBasis {
   std::shared_ptr<const StructureModel> structure_;
   double max_frequency_hz_ = 0.0;
   std::vector<double> omega_, zeta_;
-  // Rows of Phi kept for the rail DOFs only, by structure DOF.
+  // Rows of Phi kept for the rail and output DOFs, by structure DOF.
   std::vector<int> rail_row_;  // DOF -> row in rail_shapes_, -1 otherwise
-  DenseMatrix rail_shapes_;    // row-major in effect: one row per rail DOF (stored transposed)
+  DenseMatrix rail_shapes_;    // row-major in effect: one row per kept DOF (stored transposed)
   std::vector<double> zero_row_;
   DenseMatrix at_outputs_;
 };

@@ -1,4 +1,4 @@
-#include "analysis/modal_analysis.hpp"
+#include "solver/modal_analysis.hpp"
 
 #include <algorithm>
 #include <cmath>

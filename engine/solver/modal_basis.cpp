@@ -1,9 +1,10 @@
-#include "analysis/modal_basis.hpp"
+#include "solver/modal_basis.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "analysis/modal_analysis.hpp"
+#include "solver/modal_analysis.hpp"
 #include "core/input_error.hpp"
 
 namespace railvsi {
@@ -49,11 +50,13 @@ ModalBasis::ModalBasis(std::shared_ptr<const StructureModel> structure, const Mo
     zeta_.push_back(phi.dot(s.C() * phi) / (2.0 * w));
   }
   rail_row_.assign(static_cast<std::size_t>(s.num_dofs()), -1);
-  const auto& rail = s.rail_dofs();
-  rail_shapes_.resize(n, static_cast<Eigen::Index>(rail.size()));
-  for (std::size_t i = 0; i < rail.size(); ++i) {
-    rail_row_[static_cast<std::size_t>(rail[i])] = static_cast<int>(i);
-    rail_shapes_.col(static_cast<Eigen::Index>(i)) = Phi.row(rail[i]).transpose();
+  std::vector<int> kept = s.rail_dofs();
+  for (const OutputPoint& o : s.outputs())
+    if (o.dof >= 0 && std::find(kept.begin(), kept.end(), o.dof) == kept.end()) kept.push_back(o.dof);
+  rail_shapes_.resize(n, static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    rail_row_[static_cast<std::size_t>(kept[i])] = static_cast<int>(i);
+    rail_shapes_.col(static_cast<Eigen::Index>(i)) = Phi.row(kept[i]).transpose();
   }
   zero_row_.assign(static_cast<std::size_t>(n), 0.0);
   at_outputs_.resize(static_cast<Eigen::Index>(s.outputs().size()), n);

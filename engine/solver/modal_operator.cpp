@@ -1,0 +1,71 @@
+#include "solver/modal_operator.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "core/input_error.hpp"
+
+namespace railvsi {
+
+ModalOperator::ModalOperator(std::shared_ptr<const ModalBasis> basis, const EffectiveMatrixFactors& factors,
+                             const ModalOperatorOptions& options)
+    : basis_(std::move(basis)) {
+  factors_ = factors;
+  const StructureModel& model = basis_->structure();
+  model_dofs_ = model.num_dofs();
+  const auto start = std::chrono::steady_clock::now();
+  const int n = basis_->num_modes();
+  d_.resize(n);
+  for (int k = 0; k < n; ++k) {
+    const double w = basis_->omega_rad_s()[static_cast<std::size_t>(k)];
+    const double kbar = factors.mass + factors.damping * 2.0 * basis_->zeta()[static_cast<std::size_t>(k)] * w +
+                        factors.stiffness * w * w;
+    if (!(kbar > 0.0) || !std::isfinite(kbar))
+      throw InputError("/structure", fmt::format("mode {} ({:.4g} Hz) has no positive effective stiffness: the "
+                                                 "structure is a mechanism",
+                                                 k + 1, w / (2.0 * std::numbers::pi)));
+    d_[k] = 1.0 / kbar;
+  }
+  factorization_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.rail_flexibility) compute_rail_flexibility(model);
+}
+
+Status ModalOperator::solve(const Vector& b, Vector& x, SolveWorkspace&) const {
+  x = d_.cwiseProduct(b);
+  return Status::Ok();
+}
+
+DenseMatrix ModalOperator::flexibility_block(const std::vector<int>& dofs, SolveWorkspace&) const {
+  // Phi_d D Phi_d^T, Phi_d the rows of the modes at the DOFs.
+  DenseMatrix R(basis_->num_modes(), static_cast<Eigen::Index>(dofs.size()));
+  for (std::size_t j = 0; j < dofs.size(); ++j)
+    R.col(static_cast<Eigen::Index>(j)) = Eigen::Map<const Vector>(basis_->row(dofs[j]), basis_->num_modes());
+  return R.transpose() * d_.asDiagonal() * R;
+}
+
+std::string ModalOperator::backend_name() const {
+  const auto& w = basis_->omega_rad_s();
+  return fmt::format("modal ({} modes up to {:.4g} Hz, HHT)", basis_->num_modes(),
+                     w.empty() ? 0.0 : w.back() / (2.0 * std::numbers::pi));
+}
+
+StructureCoordinates ModalOperator::coordinates(const StructureModel& model) const {
+  if (model.num_dofs() != model_dofs_)
+    throw InputError("/structure", fmt::format("the modes are of a structure with {} DOFs, this one has {}",
+                                               model_dofs_, model.num_dofs()));
+  return StructureCoordinates(basis_);
+}
+
+std::shared_ptr<const StructureOperator> ModalOperator::static_operator(const StructureModel&) const {
+  return std::make_shared<const ModalOperator>(basis_, EffectiveMatrixFactors{0.0, 0.0, 1.0},
+                                               ModalOperatorOptions{false});
+}
+
+std::size_t ModalOperator::memory_bytes() const {
+  return static_cast<std::size_t>(basis_->kept_rows().size() + rail_flexibility_.size() + d_.size()) *
+         sizeof(double);
+}
+
+}  // namespace railvsi

@@ -1,0 +1,46 @@
+#include "solver/structure_backend.hpp"
+
+#include <limits>
+
+#include "core/input_error.hpp"
+#include "solver/cholmod_operator.hpp"
+#include "solver/modal_operator.hpp"
+
+namespace railvsi {
+
+std::shared_ptr<const ModalBasis> make_modal_basis(std::shared_ptr<const StructureModel> model,
+                                                   const StructureOperatorOptions& options) {
+  ModalBasisOptions mo;
+  if (options.modal_modes > 0) {
+    // Exactly the lowest modal_modes: none is kept for its frequency.
+    mo.min_modes = options.modal_modes;
+    mo.max_frequency_hz = std::numeric_limits<double>::min();
+  } else {
+    mo.max_frequency_hz = options.modal_cutoff_hz > 0.0 ? options.modal_cutoff_hz : kDefaultModalCutoffHz;
+  }
+  return std::make_shared<const ModalBasis>(std::move(model), mo);
+}
+
+std::shared_ptr<const StructureOperator> make_structure_operator(std::shared_ptr<const StructureModel> model,
+                                                                 const EffectiveMatrixFactors& factors,
+                                                                 const StructureOperatorOptions& options) {
+  switch (options.structure_backend) {
+    case StructureBackend::kFiniteElements:
+      return std::make_shared<const CholmodOperator>(
+          *model, factors, CholmodOperatorOptions{options.rail_flexibility, options.flexibility_block_columns});
+    case StructureBackend::kModal: {
+      auto basis = options.modal_basis ? options.modal_basis : make_modal_basis(model, options);
+      if (basis->structure().num_dofs() != model->num_dofs())
+        throw InputError("/structure", "the modal basis was computed for another structure");
+      return std::make_shared<const ModalOperator>(std::move(basis), factors,
+                                                   ModalOperatorOptions{options.rail_flexibility});
+    }
+  }
+  throw InputError("/analysis/structure", "unknown structure backend");
+}
+
+const char* structure_backend_name(StructureBackend backend) {
+  return backend == StructureBackend::kModal ? "modal" : "fe";
+}
+
+}  // namespace railvsi

@@ -1,0 +1,45 @@
+#pragma once
+// The one place a structure backend is chosen: a StructureOperator created
+// from options (as Ceres' SparseCholesky::Create does for its sparse
+// solvers). Backends: finite elements (a CHOLMOD factor of K_bar) and modal
+// (the modes up to a cut-off, diagonal K_bar).
+#include <memory>
+
+#include "solver/modal_basis.hpp"
+#include "solver/structure_operator.hpp"
+
+namespace railvsi {
+
+enum class StructureBackend { kFiniteElements, kModal };
+
+// The modal cut-off when a scene names neither modes nor a cut-off.
+inline constexpr double kDefaultModalCutoffHz = 100.0;
+
+struct StructureOperatorOptions {
+  StructureBackend structure_backend = StructureBackend::kFiniteElements;
+  // Modal: this many modes (the lowest) when > 0; else every mode up to
+  // modal_cutoff_hz, or up to kDefaultModalCutoffHz when that is 0 too.
+  int modal_modes = 0;
+  double modal_cutoff_hz = 0.0;
+  bool rail_flexibility = true;
+  int flexibility_block_columns = 64;  // FE: right-hand sides per blocked solve
+  // Modal: modes computed before (of the same structure, for the same
+  // options), shared between operators for several dt; computed when null.
+  std::shared_ptr<const ModalBasis> modal_basis = nullptr;
+};
+
+// The modes the options ask for (modal_modes, modal_cutoff_hz). Throws
+// InputError when they cannot be computed.
+std::shared_ptr<const ModalBasis> make_modal_basis(std::shared_ptr<const StructureModel> model,
+                                                   const StructureOperatorOptions& options);
+
+// Throws InputError when the structure cannot be factorized (a mechanism)
+// or its modes cannot be computed.
+std::shared_ptr<const StructureOperator> make_structure_operator(std::shared_ptr<const StructureModel> model,
+                                                                 const EffectiveMatrixFactors& factors,
+                                                                 const StructureOperatorOptions& options);
+
+// "fe" or "modal", as scenes name them.
+const char* structure_backend_name(StructureBackend backend);
+
+}  // namespace railvsi
