@@ -12,6 +12,7 @@
 
 #include "envelopes/job_envelopes.hpp"
 #include "generators/deck_3d.hpp"
+#include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
 #include "simulation/simulation.hpp"
@@ -55,6 +56,8 @@ Errors compare(const JobEnvelopes& m, const JobEnvelopes& fe) {
 std::vector<Errors> ladder(Scene scene, double filter_hz, const std::vector<double>& cutoffs_hz, double* fe_wall_s) {
   scene.analysis.structure_backend = StructureBackend::kFiniteElements;
   const JobEnvelopes fe = envelopes_of(scene, filter_hz, nullptr, fe_wall_s);
+  fmt::print("FE: {} DOFs, wall {:.2f} s\n", scene.structure->num_dofs(), *fe_wall_s);
+  std::fflush(stdout);
   std::vector<Errors> out;
   for (double c : cutoffs_hz) {
     Scene s = scene;
@@ -65,10 +68,12 @@ std::vector<Errors> ladder(Scene scene, double filter_hz, const std::vector<doub
     Errors e = compare(envelopes_of(s, filter_hz, &modes, &wall), fe);
     e.modes = modes;
     e.wall_s = wall;
+    std::fflush(stdout);
     fmt::print("cutoff {:6.0f} Hz {:4d} modes: displacement {:.3e} acceleration {:.3e} min force {:.3e} dQ/Q {:.3e} "
                "wall {:.2f} s\n",
                c, e.modes, e.displacement, e.acceleration, e.min_force, e.unloading, e.wall_s);
     out.push_back(e);
+    std::fflush(stdout);
   }
   fmt::print("FE wall {:.2f} s\n", *fe_wall_s);
   return out;
@@ -77,15 +82,68 @@ std::vector<Errors> ladder(Scene scene, double filter_hz, const std::vector<doub
 // jobs/examples/viaduct-ice3.json: ICE3 at 300 km/h over three simply
 // supported 25 m spans (f0 = 5 Hz) on ballasted track, unilateral Hertz,
 // the example's irregularity profile.
-Scene viaduct() { return load_scene(RAILVSI_SOURCE_DIR "/jobs/examples/viaduct-ice3.json"); }
-
-TEST(ModalStructure, ViaductWithTrackConvergesToTheFiniteElementRung) {
-  const double filter_hz = 45.0;  // max(30 Hz, 1.5 f0, f3 = 9 f0) for 25 m spans at f0 = 5 Hz
-  double fe_wall = 0.0;
-  const auto e = ladder(viaduct(), filter_hz, {30, 60, 100, 200, 400, 800}, &fe_wall);
-  ASSERT_FALSE(e.empty());
+// The first two cars of the train and a 60 m approach embankment (it holds
+// both cars at t = 0) keep the test short: the embankment's track adds a
+// cluster of sleeper-on-ballast modes per metre that the Lanczos iteration
+// must resolve. Every wheel crosses the three spans and the profile.
+Scene viaduct(bool track = true) {
+  const std::string path = RAILVSI_SOURCE_DIR "/jobs/examples/viaduct-ice3.json";
+  nlohmann::json doc = read_json_file(path);
+  if (track)
+    doc["structure"]["track"]["approach_m"] = 60.0;
+  else
+    doc["structure"]["track"] = nullptr;
+  Scene s = parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs/examples", path);
+  s.train.vehicles.resize(2);
+  return s;
 }
 
+// The track's pads and ballast carry discrete dampers: the damping is not
+// proportional, and the modal backend keeps only phi^T C phi / (2 omega) of
+// each mode. That coupling, not the truncation, dominates here: the errors
+// do not fall steadily with the mode count (README "The modal structure").
+// The bounds are the measured errors with a margin; they guard the rung
+// from getting worse, they do not claim convergence.
+TEST(ModalStructure, ViaductWithTrackStaysWithinTheMeasuredErrors) {
+  const double filter_hz = 45.0;  // max(30 Hz, 1.5 f0, f3 = 9 f0) for 25 m spans at f0 = 5 Hz
+  double fe_wall = 0.0;
+  const auto e = ladder(viaduct(), filter_hz, {30, 60, 100, 200}, &fe_wall);
+  ASSERT_EQ(e.size(), 4u);
+  // 60 Hz, 66 modes: measured 4.4e-3, 0.23, 0.040, 0.022.
+  EXPECT_LE(e[1].displacement, 6e-3);
+  EXPECT_LE(e[1].acceleration, 0.3);
+  EXPECT_LE(e[1].min_force, 0.06);
+  EXPECT_LE(e[1].unloading, 0.03);
+  // 200 Hz, 548 modes: measured 8.9e-4, 0.095, 0.098, 0.054.
+  EXPECT_LE(e[3].displacement, 1.5e-3);
+  EXPECT_LE(e[3].acceleration, 0.13);
+  EXPECT_LE(e[3].min_force, 0.13);
+  EXPECT_LE(e[3].unloading, 0.07);
+}
+
+// Without the track the structure's damping is Rayleigh (proportional):
+// the modal model differs from the FE one by the truncation only.
+TEST(ModalStructure, ViaductWithoutTrackConvergesToTheFiniteElementRung) {
+  const double filter_hz = 45.0;
+  double fe_wall = 0.0;
+  const auto e = ladder(viaduct(false), filter_hz, {30, 60, 100, 200}, &fe_wall);
+  ASSERT_EQ(e.size(), 4u);
+  // Deck values converge: filtered acceleration measured 0.18, 1.0e-2,
+  // 8.3e-3, 1.6e-3 (6, 9, 12, 18 modes); displacement 1.0e-3 ... 1.9e-4.
+  for (std::size_t i = 1; i < e.size(); ++i) EXPECT_LT(e[i].acceleration, e[i - 1].acceleration) << i;
+  EXPECT_LE(e[3].displacement, 4e-4);
+  EXPECT_LE(e[3].acceleration, 3e-3);
+  // The wheels bear on the deck beam directly: the contact force sees the
+  // local flexibility under the wheel, which the kept modes underestimate
+  // (no static correction of the dropped modes). Measured at 18 modes:
+  // min force 5.2e-2, dQ/Q 2.4e-2.
+  EXPECT_LE(e[3].min_force, 0.08);
+  EXPECT_LE(e[3].unloading, 0.035);
+}
+
+// One 25 m span of the deck-3d generator (hexahedra, two rails on pads;
+// Rayleigh deck damping, discrete pad dampers), two ICE3 cars at 300 km/h,
+// each wheelset on both rails, Hertz contact, no irregularity.
 TEST(ModalStructure, ThreeDimensionalDeckConvergesToTheFiniteElementRung) {
   Deck3dOptions o;
   o.spans_m = {25.0};
@@ -101,8 +159,17 @@ TEST(ModalStructure, ThreeDimensionalDeckConvergesToTheFiniteElementRung) {
   scene.analysis.contact.law = "hertz";
   scene.analysis.contact.rail_lines = {0, 1};
   double fe_wall = 0.0;
-  const auto e = ladder(scene, 30.0, {30, 60, 100, 200, 400, 800}, &fe_wall);
-  ASSERT_FALSE(e.empty());
+  const auto e = ladder(scene, 30.0, {30, 60, 100}, &fe_wall);
+  ASSERT_EQ(e.size(), 3u);
+  // Measured: filtered acceleration 1.8e-2, 2.9e-3, 7.4e-4 (5, 9, 15
+  // modes); displacement 9.3e-4, 2.9e-4, 2.7e-4; min contact force 7.0e-3,
+  // 7.1e-3, 7.2e-3 and dQ/Q 6.8e-3 ... 7.0e-3: the rail-on-pad modes
+  // (about 150 Hz) are above these cut-offs.
+  for (std::size_t i = 1; i < e.size(); ++i) EXPECT_LT(e[i].acceleration, e[i - 1].acceleration) << i;
+  EXPECT_LE(e[2].displacement, 5e-4);
+  EXPECT_LE(e[2].acceleration, 1.5e-3);
+  EXPECT_LE(e[2].min_force, 1e-2);
+  EXPECT_LE(e[2].unloading, 1e-2);
 }
 
 }  // namespace
