@@ -5,6 +5,7 @@
 
 #include "core/input_error.hpp"
 #include "solver/cholmod_operator.hpp"
+#include "solver/substructured_flexibility.hpp"
 
 namespace railvsi {
 
@@ -115,7 +116,7 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
       for (int d : row->dof)
         if (d >= 0 && std::find(dofs.begin(), dofs.end(), d) == dofs.end()) dofs.push_back(d);
   auto ws = op.make_workspace();
-  const DenseMatrix F = dofs.empty() ? DenseMatrix() : op.flexibility_block(dofs, *ws);
+  const DenseMatrix F = dofs.empty() ? DenseMatrix() : substructured_flexibility(op, s.K(), s, dofs, *ws);
   const auto local = [&](int d) { return std::find(dofs.begin(), dofs.end(), d) - dofs.begin(); };
   DenseMatrix As = DenseMatrix::Zero(nc, nc);
   for (Eigen::Index c = 0; c < nc; ++c)

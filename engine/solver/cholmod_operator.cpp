@@ -72,7 +72,7 @@ CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMat
                                  factor_->n, dof));
   }
   factorization_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (options.rail_flexibility) compute_rail_flexibility(model);
+  if (options.rail_flexibility) compute_rail_flexibility(model, A);
 }
 
 std::unique_ptr<SolveWorkspace> CholmodOperator::make_workspace() const {
@@ -88,20 +88,21 @@ Status CholmodOperator::solve(const Vector& b, Vector& x, SolveWorkspace& ws_bas
   return Status::Ok();
 }
 
-DenseMatrix CholmodOperator::flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws_base) const {
+DenseMatrix CholmodOperator::inverse_block(const std::vector<int>& rows, const std::vector<int>& cols,
+                                           SolveWorkspace& ws_base) const {
   auto& ws = static_cast<CholmodWorkspace&>(ws_base);
-  const auto m = static_cast<Eigen::Index>(dofs.size());
-  DenseMatrix F(m, m);
-  for (Eigen::Index j0 = 0; j0 < m; j0 += block_columns_) {
-    const Eigen::Index nb = std::min<Eigen::Index>(block_columns_, m - j0);
+  const auto m = static_cast<Eigen::Index>(rows.size()), nc = static_cast<Eigen::Index>(cols.size());
+  DenseMatrix F(m, nc);
+  for (Eigen::Index j0 = 0; j0 < nc; j0 += block_columns_) {
+    const Eigen::Index nb = std::min<Eigen::Index>(block_columns_, nc - j0);
     DenseMatrix B = DenseMatrix::Zero(n_, nb);
-    for (Eigen::Index j = 0; j < nb; ++j) B(dofs[j0 + j], j) = 1.0;
+    for (Eigen::Index j = 0; j < nb; ++j) B(cols[j0 + j], j) = 1.0;
     if (!ws.solve(factor_.get(), B) || !ws.X)
       throw InputError("/structure", fmt::format("rail flexibility: CHOLMOD solve failed (status {})",
                                                  ws.common.get()->status));
     const Eigen::Map<const DenseMatrix> X(static_cast<const double*>(ws.X->x), n_, nb);
     for (Eigen::Index j = 0; j < nb; ++j)
-      for (Eigen::Index i = 0; i < m; ++i) F(i, j0 + j) = X(dofs[i], j);
+      for (Eigen::Index i = 0; i < m; ++i) F(i, j0 + j) = X(rows[i], j);
   }
   return F;
 }

@@ -24,7 +24,8 @@ class CholmodOperator final : public StructureOperator {
   int num_dofs() const override { return n_; }
   std::unique_ptr<SolveWorkspace> make_workspace() const override;
   Status solve(const Vector& b, Vector& x, SolveWorkspace& ws) const override;
-  DenseMatrix flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const override;
+  DenseMatrix inverse_block(const std::vector<int>& rows, const std::vector<int>& cols,
+                            SolveWorkspace& ws) const override;
   std::string backend_name() const override { return "cholmod"; }
   // Nonzeros of the factor, for benchmarks.
   double factor_nonzeros() const;

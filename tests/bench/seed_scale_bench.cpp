@@ -4,6 +4,8 @@
 // steps, HHT alpha = -0.05, nonlinear Hertz, each wheelset on both rails.
 // It takes tens of minutes and a few GB: run by hand, never in CI:
 //   OPENBLAS_NUM_THREADS=1 build/tests/bench/seed_scale_bench
+// (RAILVSI_SEED_DOFS=50000 builds a smaller deck of the same kind, to try
+// changes; the numbers in the README are at the full size.)
 // Times are also given as a ratio to a floor measured in the same process,
 // one structure solve with the cached factor:
 //   overhead = (wall - setup) / (steps x t_solve)   (2.0 is the floor)
@@ -11,6 +13,9 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <string>
 
 #include "generators/deck_3d.hpp"
 #include "io/train_loader.hpp"
@@ -31,18 +36,35 @@ double peak_rss_mb() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
+// Peak resident memory since the last reset (VmHWM of /proc/self/status;
+// writing 5 to /proc/self/clear_refs resets it to the current RSS, Linux
+// proc(5)), so each component reports its own peak.
+double component_peak_mb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
+  return 0.0;
+}
+void reset_peak() { std::ofstream("/proc/self/clear_refs") << "5"; }
+
 
 void BM_SeedScaleKhst(benchmark::State& state) {
   Result r;
-  double generate_s = 0.0, operator_s = 0.0, t_solve = 0.0;
+  double generate_s = 0.0, operator_s = 0.0, statics_s = 0.0, t_solve = 0.0;
+  double generate_mb = 0.0, operator_mb = 0.0, statics_mb = 0.0, loop_mb = 0.0;
   std::shared_ptr<const CholmodOperator> op;
   for (auto _ : state) {
+    reset_peak();
     auto t0 = Clock::now();
     Deck3dOptions o;
     o.target_dofs = 233292;
+    // A smaller model of the same kind for trying changes (not the benchmark).
+    if (const char* dofs = std::getenv("RAILVSI_SEED_DOFS")) o.target_dofs = std::atoi(dofs);
     Scene scene;
     scene.structure = make_deck_3d(o).model;
     generate_s = seconds_since(t0);
+    generate_mb = component_peak_mb();
     scene.train = load_library_train("KHST");
     scene.speed_mps = 120.0;
     scene.analysis.dt_s = 2.5e-4;
@@ -50,10 +72,19 @@ void BM_SeedScaleKhst(benchmark::State& state) {
     scene.analysis.contact.law = "hertz";
     scene.analysis.contact.rail_lines = {0, 1};
     scene.analysis.duration_s = 2000 * 2.5e-4;
+    reset_peak();
     t0 = Clock::now();
     op = std::dynamic_pointer_cast<const CholmodOperator>(make_structure_operator(scene));
     operator_s = seconds_since(t0);
-    r = Simulation(scene, op).run();
+    operator_mb = component_peak_mb();
+    reset_peak();
+    t0 = Clock::now();
+    const Simulation sim(scene, op);
+    statics_s = seconds_since(t0);
+    statics_mb = component_peak_mb();
+    reset_peak();
+    r = sim.run();
+    loop_mb = component_peak_mb();
     state.PauseTiming();
     t_solve = bench::seconds_per_solve(*op, 20);
     state.ResumeTiming();
@@ -68,7 +99,12 @@ void BM_SeedScaleKhst(benchmark::State& state) {
   state.counters["factorization_s"] = op ? op->factorization_s() : 0.0;
   state.counters["flexibility_s"] = op ? op->flexibility_s() : 0.0;
   state.counters["operator_s"] = operator_s;
-  state.counters["statics_s"] = s.setup_s;  // static equilibrium, with its own factor of K
+  state.counters["statics_s"] = statics_s;  // static equilibrium, with its own factor of K
+  state.counters["flexibility_solves"] = op ? op->flexibility_solves() : 0.0;
+  state.counters["generate_MB"] = generate_mb;  // peak resident memory during each component
+  state.counters["operator_MB"] = operator_mb;
+  state.counters["statics_MB"] = statics_mb;
+  state.counters["loop_MB"] = loop_mb;
   state.counters["factor_nnz"] = op ? op->factor_nonzeros() : 0.0;
   state.counters["factor_MB"] = op ? 8.0 * op->factor_nonzeros() / 1e6 : 0.0;  // values only
   state.counters["peak_rss_MB"] = peak_rss_mb();
