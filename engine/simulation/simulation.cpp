@@ -157,7 +157,7 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
       SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, {}, 0.0});
   check_rigid_contact_alpha(setup->layout, an.hht.alpha);
   setup->vehicle_ops = make_vehicle_operators(setup->layout, setup->h);
-  setup->statics = static_equilibrium(scene_, setup->layout, x0);
+  setup->statics = static_equilibrium(scene_, setup->layout, x0, op_.get());
   for (std::size_t c = 0; c < setup->layout.contacts.size(); ++c)
     setup->layout.contacts[c].law =
         setup->layout.contacts[c].law->at_static_load(setup->statics.P[static_cast<Eigen::Index>(c)]);

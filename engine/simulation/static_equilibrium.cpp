@@ -98,11 +98,13 @@ StaticState moving_force_statics(const Scene& scene, const CholmodOperator& op, 
 
 }  // namespace
 
-StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m) {
+StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m,
+                               const StructureOperator* dynamic) {
   const StructureModel& s = *scene.structure;
   CholmodOperatorOptions opts;
   opts.rail_flexibility = false;
-  const CholmodOperator op(s, EffectiveMatrixFactors{0.0, 0.0, 1.0}, opts);
+  const CholmodOperator op(s, EffectiveMatrixFactors{0.0, 0.0, 1.0}, opts,
+                           dynamic_cast<const CholmodOperator*>(dynamic));
   if (scene.train.is_moving_forces()) return moving_force_statics(scene, op, front_x_m);
 
   const auto rows = locate_contacts(s, layout, front_x_m);

@@ -9,6 +9,7 @@
 #include "model/rail_line.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/train_layout.hpp"
+#include "solver/structure_operator.hpp"
 
 namespace railvsi {
 
@@ -25,8 +26,10 @@ std::vector<std::optional<RailContactRow>> locate_contacts(const StructureModel&
                                                            double front_x_m);
 
 // Throws InputError if the structure is a mechanism or a vehicle is not
-// carried by its wheels.
-StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m);
+// carried by its wheels. `dynamic`: the run's structure operator when it is
+// already built; a CHOLMOD one lends its ordering to the factor of K.
+StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, double front_x_m,
+                               const StructureOperator* dynamic = nullptr);
 
 // Wheel loads of one vehicle standing on a rigid, level track: what the
 // vehicle becomes when a scene asks for it as moving forces. Throws

@@ -42,9 +42,21 @@ size_t first_nonpositive_pivot(const cholmod_factor& L) {
 
 }  // namespace
 
+namespace {
+
+// The pattern of f's effective matrix lies within the pattern of g's: every
+// matrix f uses is used by g (effective_matrix adds a term only when its
+// factor is not 0).
+bool pattern_within(const EffectiveMatrixFactors& f, const EffectiveMatrixFactors& g) {
+  return (f.mass == 0.0 || g.mass != 0.0) && (f.damping == 0.0 || g.damping != 0.0) &&
+         (f.stiffness == 0.0 || g.stiffness != 0.0);
+}
+
+}  // namespace
+
 CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMatrixFactors& factors,
-                                 const CholmodOperatorOptions& options)
-    : n_(model.num_dofs()), block_columns_(std::max(1, options.flexibility_block_columns)),
+                                 const CholmodOperatorOptions& options, const CholmodOperator* analysis_of)
+    : n_(model.num_dofs()), block_columns_(std::max(1, options.flexibility_block_columns)), model_(&model),
       common_(std::make_unique<CholmodCommon>()) {
   factors_ = factors;
   const auto start = std::chrono::steady_clock::now();
@@ -55,9 +67,17 @@ CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMat
   // own flop-count rule); simplicial solves are several times faster on
   // small banded models such as plane viaducts.
   c->supernodal = CHOLMOD_AUTO;
-  factor_ = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>(cholmod_analyze(&view, c),
-                                                                    CholmodFactorDeleter{c});
+  // Another operator of the same structure whose matrix pattern contains
+  // this one's (K within K_bar) lends its ordering and symbolic analysis: a
+  // copy of its factor is refactorized with this matrix.
+  // Only for the very model object it was built from: another model with
+  // the same size may have another pattern.
+  const bool reuse = analysis_of && analysis_of->model_ == &model && pattern_within(factors, analysis_of->factors_);
+  factor_ = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>(
+      reuse ? cholmod_copy_factor(analysis_of->factor_.get(), c) : cholmod_analyze(&view, c),
+      CholmodFactorDeleter{c});
   if (!factor_) throw InputError("/structure", "CHOLMOD could not analyse the structure matrix");
+  analysis_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int ok = cholmod_factorize(&view, factor_.get(), c);
   if (!ok || c->status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n ||
       first_nonpositive_pivot(*factor_) < factor_->n) {
