@@ -30,7 +30,7 @@ class CholmodOperator final : public StructureOperator {
                             SolveWorkspace& ws) const override;
   std::string backend_name() const override { return "cholmod"; }
   // Nonzeros of the factor, for benchmarks.
-  double factor_nonzeros() const;
+  double factor_nonzeros() const override;
   // Part of factorization_s() spent in the ordering and symbolic analysis
   // (or in copying the lent analysis).
   double analysis_s() const { return analysis_s_; }

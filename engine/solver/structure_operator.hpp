@@ -54,6 +54,8 @@ class StructureOperator {
   // rest come from the track substructure, substructured_flexibility.hpp).
   int flexibility_solves() const { return flexibility_solves_; }
   virtual std::string backend_name() const = 0;
+  // Nonzeros read by one solve pass (the factor's), a cost measure.
+  virtual double factor_nonzeros() const { return static_cast<double>(num_dofs()); }
 
  protected:
   // Kbar: the matrix the operator inverts (for the track substructure).

@@ -69,7 +69,7 @@ Partition partition_at(const SparseMatrix& K, const std::vector<int>& dist, cons
 
 DenseMatrix substructured_flexibility(const StructureOperator& op, const SparseMatrix& K,
                                       const StructureModel& model, const std::vector<int>& W,
-                                      SolveWorkspace& ws, SubstructureSummary* summary) {
+                                      SolveWorkspace& ws, SubstructureSummary* summary, bool by_cost) {
   const auto m = static_cast<Eigen::Index>(W.size());
   const auto direct_only = [&] {
     if (summary) *summary = {static_cast<int>(m), 0};
@@ -95,6 +95,16 @@ DenseMatrix substructured_flexibility(const StructureOperator& op, const SparseM
   if (!found || best.direct.size() >= W.size() ||
       static_cast<double>(best.T.size()) * std::max(wt_columns, 1.0) > 4.0 * static_cast<double>(m * m) + 1e6)
     return direct_only();
+  // Work in multiply-adds: a solve reads the factor twice; each column in T
+  // costs a solve with A (~ a few times its nonzeros) and the dense
+  // handling of its |T| rows.
+  if (by_cost) {
+    double a_nonzeros = 0.0;
+    for (const int t : best.T) a_nonzeros += static_cast<double>(K.col(t).nonZeros());
+    const double saved = (static_cast<double>(m) - static_cast<double>(best.direct.size())) * 2.0 * op.factor_nonzeros();
+    const double extra = wt_columns * (8.0 * a_nonzeros + 4.0 * static_cast<double>(best.T.size()));
+    if (!(saved > extra)) return direct_only();
+  }
 
   const auto nT = static_cast<Eigen::Index>(best.T.size());
   const auto nD = static_cast<Eigen::Index>(best.direct.size());

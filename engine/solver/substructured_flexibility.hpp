@@ -26,9 +26,12 @@ struct SubstructureSummary {
 
 // K^-1(W, W) for the matrix K that `op` inverts (K must be that matrix: the
 // effective matrix of the operator, or the static stiffness). Falls back to
-// op.flexibility_block when no track substructure saves solves.
+// op.flexibility_block when no track substructure saves solves, or (with
+// by_cost) when the solves it saves cost less than the work on the
+// substructure (small plane models, whose solves take microseconds).
 DenseMatrix substructured_flexibility(const StructureOperator& op, const SparseMatrix& K,
                                       const StructureModel& model, const std::vector<int>& dofs,
-                                      SolveWorkspace& ws, SubstructureSummary* summary = nullptr);
+                                      SolveWorkspace& ws, SubstructureSummary* summary = nullptr,
+                                      bool by_cost = true);
 
 }  // namespace railvsi

@@ -14,7 +14,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <memory>
 #include <cstdlib>
 #include <fstream>
@@ -52,13 +51,7 @@ double component_peak_mb() {
 void reset_peak() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
 
-// Process CPU time: on a machine shared with other work, the wall time
-// measures the load as much as the code; both are reported.
-double cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
+using bench::cpu_seconds;
 
 // Wall and CPU seconds and peak memory of one component; printed as soon as
 // it ends, so that a run stopped early still tells what it measured.
@@ -69,9 +62,9 @@ template <class F>
 Component measure(const char* name, F&& f) {
   reset_peak();
   const auto t0 = Clock::now();
-  const double c0 = cpu_s();
+  const double c0 = cpu_seconds();
   f();
-  Component c{seconds_since(t0), cpu_s() - c0, component_peak_mb()};
+  Component c{seconds_since(t0), cpu_seconds() - c0, component_peak_mb()};
   std::fprintf(stderr, "[seed] %-10s wall %8.2f s  cpu %8.2f s  peak %7.0f MB\n", name, c.wall_s, c.cpu_s,
                c.peak_mb);
   return c;
@@ -103,9 +96,9 @@ void BM_SeedScaleKhst(benchmark::State& state) {
     statics = measure("statics", [&] { sim = std::make_unique<Simulation>(scene, op); });
     loop = measure("time loop", [&] { r = sim->run(); });
     state.PauseTiming();
-    const double c0 = cpu_s();
+    const double c0 = cpu_seconds();
     t_solve = bench::seconds_per_solve(*op, 20);
-    t_solve_cpu = (cpu_s() - c0) / 20;
+    t_solve_cpu = (cpu_seconds() - c0) / 20;
     state.ResumeTiming();
   }
   if (!r.status.ok()) state.SkipWithError(r.status.message().c_str());

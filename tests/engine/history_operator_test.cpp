@@ -4,8 +4,8 @@
 // dashpots) and a random state.
 #include <gtest/gtest.h>
 
-#include "generators/bridge_2d.hpp"
 #include "integration/history_operator.hpp"
+#include "test_scenes.hpp"
 
 namespace railvsi {
 namespace {
@@ -13,13 +13,7 @@ namespace {
 double relative(const Vector& x, const Vector& ref) { return (x - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff(); }
 
 TEST(SparseHistoryOperator, EqualsTheThreeSparseProductsAndGivesTheEnergyProducts) {
-  Bridge2dOptions b;
-  b.spans_m = {15.0, 15.0};
-  b.deck_mass_kg_per_m = 18000.0;
-  b.deck_EI_Nm2 = 3.0e10;
-  b.damping_ratio = 0.02;
-  b.track = TrackOptions{};
-  const auto s = make_bridge_2d(b);
+  const auto s = testing::small_viaduct_with_dip(100.0, 0.01).structure;
   const HhtCoefficients h(HhtParameters::from_alpha(-0.1), 2.5e-4);
   KinematicState x;
   x.resize(s->num_dofs());
