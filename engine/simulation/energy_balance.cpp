@@ -23,20 +23,30 @@ EnergyAccount<Mat>::EnergyAccount(const Mat& M, const Mat& C, const Mat& K, cons
 template <class Mat>
 void EnergyAccount<Mat>::step(const HhtCoefficients& h, const KinematicState& old, const KinematicState& now,
                               const Vector& f_alpha) {
+  StateProducts p;
+  p.Ku = (*K_) * now.u;
+  p.Cv = (*C_) * now.v;
+  p.Mv = (*M_) * now.v;
+  p.Ma = (*M_) * now.a;
+  step(h, old, now, f_alpha, p);
+}
+
+template <class Mat>
+void EnergyAccount<Mat>::step(const HhtCoefficients& h, const KinematicState& old, const KinematicState& now,
+                              const Vector& f_alpha, const StateProducts& p) {
   const double a = h.alpha;
   const Vector du = now.u - old.u;
   // Loads: Du' <f^a>.
   const double w = 0.5 * du.dot(f_alpha + fa_);
   // Damping: Du' C <v^a>, v^a_{n+1} = (1+a) v_{n+1} - a v_n, v^a_n = (1+a) v_n - a v_{n-1}.
-  const Vector Cv_new = (*C_) * now.v;
+  const Vector& Cv_new = p.Cv;
   const double d = 0.5 * du.dot((1.0 + a) * Cv_new + Cv_ - a * Cv_prev_);
   // Kinetic and strain energy from the states.
-  const Vector Ku_new = (*K_) * now.u;
-  work_.noalias() = (*M_) * now.v;
-  const double T = 0.5 * now.v.dot(work_);
+  const Vector& Ku_new = p.Ku;
+  const double T = 0.5 * now.v.dot(p.Mv);
   const double U = 0.5 * now.u.dot(Ku_new);
   // HHT term.
-  const Vector Ma_new = (*M_) * now.a;
+  const Vector& Ma_new = p.Ma;
   const double e_hht = -h.dt * (h.gamma - 0.5) * 0.5 * (now.v + old.v).dot(Ma_new - Ma_) +
                        0.5 * h.dt * h.dt * (h.beta - 0.5 * h.gamma) * (now.a.dot(Ma_new) - old.a.dot(Ma_)) +
                        0.5 * a * du.dot(Ku_new - Ku_prev_);
@@ -48,10 +58,9 @@ void EnergyAccount<Mat>::step(const HhtCoefficients& h, const KinematicState& ol
   e_.abs_work_J += std::abs(w);
   e_.abs_damping_J += std::abs(d);
   e_.abs_hht_J += std::abs(e_hht);
-
-  Ku_prev_ = Ku_;
+  Ku_prev_.swap(Ku_);
   Ku_ = Ku_new;
-  Cv_prev_ = Cv_;
+  Cv_prev_.swap(Cv_);
   Cv_ = Cv_new;
   Ma_ = Ma_new;
   fa_ = f_alpha;

@@ -29,6 +29,7 @@
 //
 // The state before the first step is an equilibrium (static), whose
 // "previous step" is itself: u_{-1} = u_0, f^a_0 = f_0.
+#include "integration/history_operator.hpp"
 #include "integration/hht.hpp"
 
 namespace railvsi {
@@ -53,6 +54,10 @@ class EnergyAccount {
   // After a step from `old` (t_n) to `now` (t_{n+1}) with the shifted load
   // f^a_{n+1} = (1+alpha) f_{n+1} - alpha f_n.
   void step(const HhtCoefficients& h, const KinematicState& old, const KinematicState& now, const Vector& f_alpha);
+  // The same with the products K u, C v, M v, M a of `now` given (computed
+  // in the pass that forms the next step's history terms).
+  void step(const HhtCoefficients& h, const KinematicState& old, const KinematicState& now, const Vector& f_alpha,
+            const StateProducts& now_products);
 
   const EnergyTotals& totals() const { return e_; }
   double initial_mechanical_J() const { return e0_; }

@@ -78,11 +78,14 @@ void RunMonitor::warn_once(const std::string& code, std::string message, std::op
 Status RunMonitor::after_step(const HhtCoefficients& h, double t_new, const KinematicState& s_old,
                               const KinematicState& s, const std::vector<KinematicState>& vehicles_old,
                               const std::vector<KinematicState>& vehicles, const Vector& f_s_old,
-                              const Vector& f_s_new, const Vector& P_old, const Vector& P_new, int iterations) {
+                              const Vector& f_s_new, const Vector& P_old, const Vector& P_new, int iterations,
+                              const StateProducts* structure_products) {
   max_iterations_ = std::max(max_iterations_, iterations);
   // Energy.
   if (energy_checked_) {
-    structure_energy_.step(h, s_old, s, (1.0 + h.alpha) * f_s_new - h.alpha * f_s_old);
+    const Vector f_alpha = (1.0 + h.alpha) * f_s_new - h.alpha * f_s_old;
+    if (structure_products) structure_energy_.step(h, s_old, s, f_alpha, *structure_products);
+    else structure_energy_.step(h, s_old, s, f_alpha);
     for (std::size_t v = 0; v < vehicle_energy_.size(); ++v)
       vehicle_energy_[v].step(h, vehicles_old[v], vehicles[v], vehicle_load(v, P_old, P_new, h.alpha));
     double residual = 0.0, mechanical = 0.0;

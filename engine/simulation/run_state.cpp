@@ -58,7 +58,8 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
 
   // Right-hand sides of eq. (3) with the new contact forces left out:
   // (1+alpha) F_{n+1} - alpha F_n + history terms.
-  history_.apply(h, s_, rhs_s_);
+  if (!history_ready_) history_.apply(h, s_, rhs_s_);
+  history_ready_ = false;
   rhs_s_ += (1.0 + h.alpha) * f_new_ - h.alpha * f_s_;
   rhs_v_.resize(layout_.num_vehicle_dofs);
   for (std::size_t i = 0; i < layout_.vehicles.size(); ++i) {
@@ -86,6 +87,10 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   P_old_ = P_;
   f_s_old_ = f_s_;
   hht_update(h, solution_.u_s, s_);
+  // The next step's history terms now, in the pass that also gives the
+  // energy balance its products of the new state.
+  history_.apply(h, s_, rhs_s_, &products_);
+  history_ready_ = true;
   for (std::size_t i = 0; i < layout_.vehicles.size(); ++i)
     hht_update(h, solution_.u_v.segment(layout_.vehicles[i].first_dof, layout_.vehicles[i].model->num_dofs()),
                vehicles_[i]);
@@ -93,7 +98,8 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   P_ = solution_.P;
   f_s_ = f_new_;
   add_rail_loads(rows_, P_, 1.0, f_s_, coords_);
-  return monitor_->after_step(h, t_new, s_old_, s_, vehicles_old_, vehicles_, f_s_old_, f_s_, P_old_, P_, iterations);
+  return monitor_->after_step(h, t_new, s_old_, s_, vehicles_old_, vehicles_, f_s_old_, f_s_, P_old_, P_, iterations,
+                              &products_);
 }
 
 void RunState::record(long step_index, double t_s, Histories& hist, bool store) {

@@ -39,6 +39,10 @@ class RunState {
   const StructureCoordinates& coords_;
   double start_x_m_;
   SparseHistoryOperator history_;  // the structure's M, C, K fused for the HHT history terms
+  // The history terms of the current state s_ and its products (K u, C v,
+  // M v, M a) for the energy balance, from one pass after each step.
+  bool history_ready_ = false;
+  StateProducts products_;
   KinematicState s_;
   std::vector<KinematicState> vehicles_;  // one per vehicle instance
   std::vector<Vector> vehicle_rhs_, vehicle_work_;

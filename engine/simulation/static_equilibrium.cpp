@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "solver/substructured_flexibility.hpp"
 
 namespace railvsi {
 
@@ -95,7 +96,12 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
       for (int d : row->dof)
         if (d >= 0 && std::find(dofs.begin(), dofs.end(), d) == dofs.end()) dofs.push_back(d);
   auto ws = op.make_workspace();
-  const DenseMatrix F = dofs.empty() ? DenseMatrix() : op.flexibility_block(dofs, *ws);
+  // The track substructure is exact for the FE operator (it inverts K);
+  // the modal one's flexibility is that of its modes.
+  const bool fe = !op.coordinates(s).modal();
+  const DenseMatrix F = dofs.empty()   ? DenseMatrix()
+                        : fe ? substructured_flexibility(op, s.K(), s, dofs, *ws)
+                             : op.flexibility_block(dofs, *ws);
   const auto local = [&](int d) { return std::find(dofs.begin(), dofs.end(), d) - dofs.begin(); };
   DenseMatrix As = DenseMatrix::Zero(nc, nc);
   for (Eigen::Index c = 0; c < nc; ++c)

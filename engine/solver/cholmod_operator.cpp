@@ -42,9 +42,21 @@ size_t first_nonpositive_pivot(const cholmod_factor& L) {
 
 }  // namespace
 
+namespace {
+
+// The pattern of f's effective matrix lies within the pattern of g's: every
+// matrix f uses is used by g (effective_matrix adds a term only when its
+// factor is not 0).
+bool pattern_within(const EffectiveMatrixFactors& f, const EffectiveMatrixFactors& g) {
+  return (f.mass == 0.0 || g.mass != 0.0) && (f.damping == 0.0 || g.damping != 0.0) &&
+         (f.stiffness == 0.0 || g.stiffness != 0.0);
+}
+
+}  // namespace
+
 CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMatrixFactors& factors,
-                                 const CholmodOperatorOptions& options)
-    : n_(model.num_dofs()), block_columns_(std::max(1, options.flexibility_block_columns)),
+                                 const CholmodOperatorOptions& options, const CholmodOperator* analysis_of)
+    : n_(model.num_dofs()), block_columns_(std::max(1, options.flexibility_block_columns)), model_(&model),
       common_(std::make_unique<CholmodCommon>()) {
   factors_ = factors;
   model_dofs_ = n_;
@@ -56,9 +68,17 @@ CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMat
   // own flop-count rule); simplicial solves are several times faster on
   // small banded models such as plane viaducts.
   c->supernodal = CHOLMOD_AUTO;
-  factor_ = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>(cholmod_analyze(&view, c),
-                                                                    CholmodFactorDeleter{c});
+  // Another operator of the same structure whose matrix pattern contains
+  // this one's (K within K_bar) lends its ordering and symbolic analysis: a
+  // copy of its factor is refactorized with this matrix.
+  // Only for the very model object it was built from: another model with
+  // the same size may have another pattern.
+  const bool reuse = analysis_of && analysis_of->model_ == &model && pattern_within(factors, analysis_of->factors_);
+  factor_ = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>(
+      reuse ? cholmod_copy_factor(analysis_of->factor_.get(), c) : cholmod_analyze(&view, c),
+      CholmodFactorDeleter{c});
   if (!factor_) throw InputError("/structure", "CHOLMOD could not analyse the structure matrix");
+  analysis_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int ok = cholmod_factorize(&view, factor_.get(), c);
   if (!ok || c->status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n ||
       first_nonpositive_pivot(*factor_) < factor_->n) {
@@ -73,7 +93,7 @@ CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMat
                                  factor_->n, dof));
   }
   factorization_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (options.rail_flexibility) compute_rail_flexibility(model);
+  if (options.rail_flexibility) compute_rail_flexibility(model, &A);
 }
 
 std::unique_ptr<SolveWorkspace> CholmodOperator::make_workspace() const {
@@ -89,27 +109,30 @@ Status CholmodOperator::solve(const Vector& b, Vector& x, SolveWorkspace& ws_bas
   return Status::Ok();
 }
 
-DenseMatrix CholmodOperator::flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws_base) const {
+DenseMatrix CholmodOperator::inverse_block(const std::vector<int>& rows, const std::vector<int>& cols,
+                                           SolveWorkspace& ws_base) const {
   auto& ws = static_cast<CholmodWorkspace&>(ws_base);
-  const auto m = static_cast<Eigen::Index>(dofs.size());
-  DenseMatrix F(m, m);
-  for (Eigen::Index j0 = 0; j0 < m; j0 += block_columns_) {
-    const Eigen::Index nb = std::min<Eigen::Index>(block_columns_, m - j0);
+  const auto m = static_cast<Eigen::Index>(rows.size()), nc = static_cast<Eigen::Index>(cols.size());
+  DenseMatrix F(m, nc);
+  for (Eigen::Index j0 = 0; j0 < nc; j0 += block_columns_) {
+    const Eigen::Index nb = std::min<Eigen::Index>(block_columns_, nc - j0);
     DenseMatrix B = DenseMatrix::Zero(n_, nb);
-    for (Eigen::Index j = 0; j < nb; ++j) B(dofs[j0 + j], j) = 1.0;
+    for (Eigen::Index j = 0; j < nb; ++j) B(cols[j0 + j], j) = 1.0;
     if (!ws.solve(factor_.get(), B) || !ws.X)
       throw InputError("/structure", fmt::format("rail flexibility: CHOLMOD solve failed (status {})",
                                                  ws.common.get()->status));
     const Eigen::Map<const DenseMatrix> X(static_cast<const double*>(ws.X->x), n_, nb);
     for (Eigen::Index j = 0; j < nb; ++j)
-      for (Eigen::Index i = 0; i < m; ++i) F(i, j0 + j) = X(dofs[i], j);
+      for (Eigen::Index i = 0; i < m; ++i) F(i, j0 + j) = X(rows[i], j);
   }
   return F;
 }
 
 std::shared_ptr<const StructureOperator> CholmodOperator::static_operator(const StructureModel& model) const {
+  // K's pattern is within K_bar's: the factor of K reuses this one's ordering
+  // and symbolic analysis.
   return std::make_shared<const CholmodOperator>(model, EffectiveMatrixFactors{0.0, 0.0, 1.0},
-                                                 CholmodOperatorOptions{false, block_columns_});
+                                                 CholmodOperatorOptions{false, block_columns_}, this);
 }
 
 std::size_t CholmodOperator::memory_bytes() const {

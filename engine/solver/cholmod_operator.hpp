@@ -17,14 +17,17 @@ struct CholmodOperatorOptions {
 class CholmodOperator final : public StructureOperator {
  public:
   // Throws InputError naming the first DOF whose pivot is not positive
-  // (a mechanism, or an indefinite matrix).
+  // (a mechanism, or an indefinite matrix). With `analysis_of` (an operator
+  // of the same model whose matrix pattern contains this one's, e.g. K_bar
+  // for the static K), its ordering and symbolic analysis are reused.
   CholmodOperator(const StructureModel& model, const EffectiveMatrixFactors& factors,
-                  const CholmodOperatorOptions& options = {});
+                  const CholmodOperatorOptions& options = {}, const CholmodOperator* analysis_of = nullptr);
 
   int num_dofs() const override { return n_; }
   std::unique_ptr<SolveWorkspace> make_workspace() const override;
   Status solve(const Vector& b, Vector& x, SolveWorkspace& ws) const override;
-  DenseMatrix flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const override;
+  DenseMatrix inverse_block(const std::vector<int>& rows, const std::vector<int>& cols,
+                            SolveWorkspace& ws) const override;
   std::string backend_name() const override { return "cholmod"; }
   StructureCoordinates coordinates(const StructureModel& model) const override {
     return StructureCoordinates(model);
@@ -32,11 +35,16 @@ class CholmodOperator final : public StructureOperator {
   std::shared_ptr<const StructureOperator> static_operator(const StructureModel& model) const override;
   std::size_t memory_bytes() const override;
   // Nonzeros of the factor, for benchmarks.
-  double factor_nonzeros() const;
+  double factor_nonzeros() const override;
+  // Part of factorization_s() spent in the ordering and symbolic analysis
+  // (or in copying the lent analysis).
+  double analysis_s() const { return analysis_s_; }
 
  private:
   int n_ = 0;
   int block_columns_ = 64;
+  double analysis_s_ = 0.0;
+  const StructureModel* model_ = nullptr;  // identity only (never dereferenced)
   // The factor's own common is used for factorization and freeing only.
   std::unique_ptr<CholmodCommon> common_;
   std::unique_ptr<cholmod_factor, CholmodFactorDeleter> factor_;

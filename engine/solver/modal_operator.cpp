@@ -37,12 +37,18 @@ Status ModalOperator::solve(const Vector& b, Vector& x, SolveWorkspace&) const {
   return Status::Ok();
 }
 
-DenseMatrix ModalOperator::flexibility_block(const std::vector<int>& dofs, SolveWorkspace&) const {
-  // Phi_d D Phi_d^T, Phi_d the rows of the modes at the DOFs.
-  DenseMatrix R(basis_->num_modes(), static_cast<Eigen::Index>(dofs.size()));
-  for (std::size_t j = 0; j < dofs.size(); ++j)
-    R.col(static_cast<Eigen::Index>(j)) = Eigen::Map<const Vector>(basis_->row(dofs[j]), basis_->num_modes());
-  return R.transpose() * d_.asDiagonal() * R;
+DenseMatrix ModalOperator::inverse_block(const std::vector<int>& rows, const std::vector<int>& cols,
+                                         SolveWorkspace&) const {
+  // Phi_rows D Phi_cols^T, Phi_d the rows of the modes at the DOFs d.
+  const auto modes_at = [&](const std::vector<int>& dofs) {
+    DenseMatrix R(basis_->num_modes(), static_cast<Eigen::Index>(dofs.size()));
+    for (std::size_t j = 0; j < dofs.size(); ++j)
+      R.col(static_cast<Eigen::Index>(j)) = Eigen::Map<const Vector>(basis_->row(dofs[j]), basis_->num_modes());
+    return R;
+  };
+  const DenseMatrix R = modes_at(rows);
+  if (rows == cols) return R.transpose() * d_.asDiagonal() * R;
+  return R.transpose() * d_.asDiagonal() * modes_at(cols);
 }
 
 std::string ModalOperator::backend_name() const {

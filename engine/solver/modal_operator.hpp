@@ -30,7 +30,8 @@ class ModalOperator final : public StructureOperator {
   int num_dofs() const override { return basis_->num_modes(); }
   std::unique_ptr<SolveWorkspace> make_workspace() const override { return std::make_unique<SolveWorkspace>(); }
   Status solve(const Vector& b, Vector& x, SolveWorkspace& ws) const override;
-  DenseMatrix flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const override;
+  DenseMatrix inverse_block(const std::vector<int>& rows, const std::vector<int>& cols,
+                            SolveWorkspace& ws) const override;
   std::string backend_name() const override;
   StructureCoordinates coordinates(const StructureModel& model) const override;
   std::shared_ptr<const StructureOperator> static_operator(const StructureModel& model) const override;

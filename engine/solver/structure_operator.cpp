@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "solver/substructured_flexibility.hpp"
+
 namespace railvsi {
 
 SparseMatrix effective_matrix(const StructureModel& model, const EffectiveMatrixFactors& f) {
@@ -12,13 +14,20 @@ SparseMatrix effective_matrix(const StructureModel& model, const EffectiveMatrix
   return A;
 }
 
-void StructureOperator::compute_rail_flexibility(const StructureModel& model) {
+void StructureOperator::compute_rail_flexibility(const StructureModel& model, const SparseMatrix* Kbar) {
   const auto start = std::chrono::steady_clock::now();
   rail_index_.assign(static_cast<std::size_t>(model.num_dofs()), -1);
   const auto& dofs = model.rail_dofs();
   for (std::size_t i = 0; i < dofs.size(); ++i) rail_index_[dofs[i]] = static_cast<int>(i);
   auto ws = make_workspace();
-  rail_flexibility_ = flexibility_block(dofs, *ws);
+  if (Kbar) {
+    SubstructureSummary summary;
+    rail_flexibility_ = substructured_flexibility(*this, *Kbar, model, dofs, *ws, &summary);
+    flexibility_solves_ = summary.direct_columns;
+  } else {
+    rail_flexibility_ = flexibility_block(dofs, *ws);
+    flexibility_solves_ = 0;
+  }
   flexibility_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

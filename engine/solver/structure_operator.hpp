@@ -47,9 +47,15 @@ class StructureOperator {
   virtual std::unique_ptr<SolveWorkspace> make_workspace() const = 0;
   // x = K_bar^-1 b. x may not alias b.
   virtual Status solve(const Vector& b, Vector& x, SolveWorkspace& ws) const = 0;
-  // Columns of K_bar^-1 for the given model DOFs, restricted to the same
-  // DOFs (physical, whatever the coordinates).
-  virtual DenseMatrix flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const = 0;
+  // K_bar^-1(rows, cols) at model DOFs (physical, whatever the coordinates):
+  // the columns of K_bar^-1 for the DOFs `cols`, restricted to the DOFs
+  // `rows` (blocked solves on the FE backend, Phi D Phi^T on the modal one).
+  virtual DenseMatrix inverse_block(const std::vector<int>& rows, const std::vector<int>& cols,
+                                    SolveWorkspace& ws) const = 0;
+  // Columns of K_bar^-1 for the given model DOFs, restricted to the same DOFs.
+  DenseMatrix flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const {
+    return inverse_block(dofs, dofs, ws);
+  }
 
   // Rail flexibility (K_bar^-1 at the rail DOFs of the model), computed once
   // when the operator is built with rail flexibility requested.
@@ -60,16 +66,24 @@ class StructureOperator {
   // Statistics of the build, for benchmarks and the run summary.
   double factorization_s() const { return factorization_s_; }
   double flexibility_s() const { return flexibility_s_; }
+  // Columns of the rail flexibility solved with the whole structure (the
+  // rest come from the track substructure, substructured_flexibility.hpp).
+  int flexibility_solves() const { return flexibility_solves_; }
   virtual std::string backend_name() const = 0;
+  // Nonzeros read by one solve pass (the factor's), a cost measure.
+  virtual double factor_nonzeros() const { return static_cast<double>(num_dofs()); }
 
  protected:
-  void compute_rail_flexibility(const StructureModel& model);
+  // Kbar: the matrix the operator inverts, for the track substructure
+  // (substructured_flexibility.hpp); null: flexibility_block of all rail DOFs.
+  void compute_rail_flexibility(const StructureModel& model, const SparseMatrix* Kbar = nullptr);
   EffectiveMatrixFactors factors_;
   DenseMatrix rail_flexibility_;
   std::vector<int> rail_index_;
   int model_dofs_ = 0;
   double factorization_s_ = 0.0;
   double flexibility_s_ = 0.0;
+  int flexibility_solves_ = 0;
 };
 
 // K_bar = f.mass*M + f.damping*C + f.stiffness*K of the model.

@@ -4,6 +4,8 @@
 // steps, HHT alpha = -0.05, nonlinear Hertz, each wheelset on both rails.
 // It takes tens of minutes and a few GB: run by hand, never in CI:
 //   OPENBLAS_NUM_THREADS=1 build/tests/bench/seed_scale_bench
+// (RAILVSI_SEED_DOFS=50000 builds a smaller deck of the same kind, to try
+// changes; the numbers in the README are at the full size.)
 // Times are also given as a ratio to a floor measured in the same process,
 // one structure solve with the cached factor:
 //   overhead = (wall - setup) / (steps x t_solve)   (2.0 is the floor)
@@ -11,6 +13,11 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cstdio>
+#include <memory>
+#include <cstdlib>
+#include <fstream>
+#include <string>
 
 #include "generators/deck_3d.hpp"
 #include "io/train_loader.hpp"
@@ -31,18 +38,50 @@ double peak_rss_mb() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
+// Peak resident memory since the last reset (VmHWM of /proc/self/status;
+// writing 5 to /proc/self/clear_refs resets it to the current RSS, Linux
+// proc(5)), so each component reports its own peak.
+double component_peak_mb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
+  return 0.0;
+}
+void reset_peak() { std::ofstream("/proc/self/clear_refs") << "5"; }
+
+
+using bench::cpu_seconds;
+
+// Wall and CPU seconds and peak memory of one component; printed as soon as
+// it ends, so that a run stopped early still tells what it measured.
+struct Component {
+  double wall_s = 0.0, cpu_s = 0.0, peak_mb = 0.0;
+};
+template <class F>
+Component measure(const char* name, F&& f) {
+  reset_peak();
+  const auto t0 = Clock::now();
+  const double c0 = cpu_seconds();
+  f();
+  Component c{seconds_since(t0), cpu_seconds() - c0, component_peak_mb()};
+  std::fprintf(stderr, "[seed] %-10s wall %8.2f s  cpu %8.2f s  peak %7.0f MB\n", name, c.wall_s, c.cpu_s,
+               c.peak_mb);
+  return c;
+}
 
 void BM_SeedScaleKhst(benchmark::State& state) {
   Result r;
-  double generate_s = 0.0, operator_s = 0.0, t_solve = 0.0;
+  Component generate, oper, statics, loop;
+  double t_solve = 0.0, t_solve_cpu = 0.0;
   std::shared_ptr<const CholmodOperator> op;
   for (auto _ : state) {
-    auto t0 = Clock::now();
     Deck3dOptions o;
     o.target_dofs = 233292;
+    // A smaller model of the same kind for trying changes (not the benchmark).
+    if (const char* dofs = std::getenv("RAILVSI_SEED_DOFS")) o.target_dofs = std::atoi(dofs);
     Scene scene;
-    scene.structure = make_deck_3d(o).model;
-    generate_s = seconds_since(t0);
+    generate = measure("generate", [&] { scene.structure = make_deck_3d(o).model; });
     scene.train = load_library_train("KHST");
     scene.speed_mps = 120.0;
     scene.analysis.dt_s = 2.5e-4;
@@ -50,12 +89,16 @@ void BM_SeedScaleKhst(benchmark::State& state) {
     scene.analysis.contact.law = "hertz";
     scene.analysis.contact.rail_lines = {0, 1};
     scene.analysis.duration_s = 2000 * 2.5e-4;
-    t0 = Clock::now();
-    op = std::dynamic_pointer_cast<const CholmodOperator>(make_structure_operator(scene));
-    operator_s = seconds_since(t0);
-    r = Simulation(scene, op).run();
+    oper = measure("operator", [&] {
+      op = std::dynamic_pointer_cast<const CholmodOperator>(make_structure_operator(scene));
+    });
+    std::unique_ptr<Simulation> sim;
+    statics = measure("statics", [&] { sim = std::make_unique<Simulation>(scene, op); });
+    loop = measure("time loop", [&] { r = sim->run(); });
     state.PauseTiming();
+    const double c0 = cpu_seconds();
     t_solve = bench::seconds_per_solve(*op, 20);
+    t_solve_cpu = (cpu_seconds() - c0) / 20;
     state.ResumeTiming();
   }
   if (!r.status.ok()) state.SkipWithError(r.status.message().c_str());
@@ -64,20 +107,30 @@ void BM_SeedScaleKhst(benchmark::State& state) {
   state.counters["dofs"] = s.fidelity.structure_dofs;
   state.counters["vehicle_dofs"] = s.fidelity.vehicle_dofs;
   state.counters["contacts"] = s.fidelity.contacts;
-  state.counters["generate_s"] = generate_s;
+  state.counters["generate_s"] = generate.wall_s;
   state.counters["factorization_s"] = op ? op->factorization_s() : 0.0;
+  state.counters["analysis_s"] = op ? op->analysis_s() : 0.0;  // part of factorization_s
   state.counters["flexibility_s"] = op ? op->flexibility_s() : 0.0;
-  state.counters["operator_s"] = operator_s;
-  state.counters["statics_s"] = s.setup_s;  // static equilibrium, with its own factor of K
+  state.counters["flexibility_solves"] = op ? op->flexibility_solves() : 0.0;
+  state.counters["operator_s"] = oper.wall_s;
+  state.counters["statics_s"] = statics.wall_s;  // static equilibrium (factor of K with K_bar's ordering)
   state.counters["factor_nnz"] = op ? op->factor_nonzeros() : 0.0;
   state.counters["factor_MB"] = op ? 8.0 * op->factor_nonzeros() / 1e6 : 0.0;  // values only
   state.counters["peak_rss_MB"] = peak_rss_mb();
+  state.counters["generate_MB"] = generate.peak_mb;  // peak resident memory during each component
+  state.counters["operator_MB"] = oper.peak_mb;
+  state.counters["statics_MB"] = statics.peak_mb;
+  state.counters["loop_MB"] = loop.peak_mb;
   state.counters["steps"] = steps;
   state.counters["s_per_step"] = loop_s / steps;
   state.counters["newton_per_step"] = static_cast<double>(s.newton_iterations) / steps;
   state.counters["solve_s"] = t_solve;
   state.counters["overhead"] = loop_s / (steps * t_solve);
-  state.counters["total_s"] = generate_s + operator_s + s.wall_s;
+  // The same ratio in CPU time (the loop's CPU time over the solve's).
+  state.counters["solve_cpu_s"] = t_solve_cpu;
+  state.counters["overhead_cpu"] = loop.cpu_s / (steps * t_solve_cpu);
+  state.counters["cpu_total_s"] = generate.cpu_s + oper.cpu_s + statics.cpu_s + loop.cpu_s;
+  state.counters["total_s"] = generate.wall_s + oper.wall_s + statics.wall_s + loop.wall_s;
   state.counters["max_deck_acc"] = s.max_abs_acceleration_mps2;
   state.counters["max_unloading"] = s.max_unloading_ratio;
 }

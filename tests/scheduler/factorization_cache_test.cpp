@@ -22,7 +22,9 @@ class FakeOperator final : public StructureOperator {
     return Status::Ok();
   }
   std::string backend_name() const override { return "fake"; }
-  DenseMatrix flexibility_block(const std::vector<int>&, SolveWorkspace&) const override { return {}; }
+  DenseMatrix inverse_block(const std::vector<int>&, const std::vector<int>&, SolveWorkspace&) const override {
+    return {};
+  }
   StructureCoordinates coordinates(const StructureModel& model) const override {
     return StructureCoordinates(model);
   }
