@@ -37,7 +37,7 @@ std::size_t insert_study_jobs(Database& db, const std::string& study_id, const s
   std::size_t new_jobs = 0;
   Statement insert_job = db.prepare(
       "INSERT OR IGNORE INTO jobs (id, scene, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
-      "cutoff_hz, max_attempts, enqueued_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "cutoff_hz, max_attempts, enqueued_at, rung) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   Statement link = db.prepare("INSERT OR IGNORE INTO study_jobs (study_id, job_id, position) VALUES (?, ?, ?)");
   std::int64_t position = first_position;
   for (const JobSpec& j : jobs) {
@@ -52,6 +52,7 @@ std::size_t insert_study_jobs(Database& db, const std::string& study_id, const s
         .bind(9, j.cutoff_hz)
         .bind(10, max_attempts)
         .bind(11, now)
+        .bind(12, j.rung.empty() ? SqlValue(Null{}) : SqlValue(j.rung))
         .run();
     new_jobs += static_cast<std::size_t>(db.changes());
     link.bind(1, study_id).bind(2, j.id).bind(3, position++).run();
@@ -75,15 +76,47 @@ std::optional<ClaimedJob> JobQueue::claim_row(const std::string& id, double now_
       .bind(4, id)
       .run();
   Statement s = db_.prepare(
-      "SELECT id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts FROM jobs WHERE id = ?");
+      "SELECT id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts, coalesce(rung, '') "
+      "FROM jobs WHERE id = ?");
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
   return ClaimedJob{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5), s.real(6), s.real(7),
-                    static_cast<int>(s.int64(8))};
+                    static_cast<int>(s.int64(8)), s.text(9)};
+}
+
+std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, std::size_t max_jobs) {
+  std::vector<ClaimedJob> batch;
+  Transaction tx(db_);
+  std::optional<ClaimedJob> first = claim_in_transaction(preferred_key);
+  if (first) {
+    // Modal moving-force jobs of the same structure, dt and train run in
+    // one pass; every job of the batch is leased like a single claim.
+    if (first->rung == kBatchedRung && max_jobs > 1) {
+      Statement s = db_.prepare("SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? AND train = ? "
+                                "AND rung = ? LIMIT ?");
+      s.bind(1, first->operator_key).bind(2, first->train).bind(3, first->rung).bind(4, static_cast<std::int64_t>(max_jobs - 1));
+      std::vector<std::string> ids;
+      while (s.step()) ids.push_back(s.text(0));
+      const double now = unix_now_s();
+      batch.push_back(std::move(*first));
+      for (const std::string& id : ids)
+        if (auto job = claim_row(id, now)) batch.push_back(std::move(*job));
+    } else {
+      batch.push_back(std::move(*first));
+    }
+  }
+  tx.commit();
+  return batch;
 }
 
 std::optional<ClaimedJob> JobQueue::claim(const std::string& preferred_key) {
   Transaction tx(db_);
+  std::optional<ClaimedJob> job = claim_in_transaction(preferred_key);
+  tx.commit();
+  return job;
+}
+
+std::optional<ClaimedJob> JobQueue::claim_in_transaction(const std::string& preferred_key) {
   const double now = unix_now_s();
   std::string id;
   if (!preferred_key.empty()) {
@@ -113,19 +146,20 @@ std::optional<ClaimedJob> JobQueue::claim(const std::string& preferred_key) {
   }
   std::optional<ClaimedJob> job;
   if (!id.empty()) job = claim_row(id, now);
-  tx.commit();
   return job;
 }
 
-bool JobQueue::renew(const std::string& job_id) {
+bool JobQueue::renew(const std::string& job_id) { return renew(std::vector<std::string>{job_id}) == 1; }
+
+std::size_t JobQueue::renew(const std::vector<std::string>& job_ids) {
   const double now = unix_now_s();
   Transaction tx(db_);
-  db_.prepare("UPDATE jobs SET lease_expires = ? WHERE id = ? AND state = 'running' AND worker = ?")
-      .bind(1, now + lease_s_)
-      .bind(2, job_id)
-      .bind(3, worker_)
-      .run();
-  const bool held = db_.changes() > 0;
+  Statement update = db_.prepare("UPDATE jobs SET lease_expires = ? WHERE id = ? AND state = 'running' AND worker = ?");
+  std::size_t held = 0;
+  for (const std::string& id : job_ids) {
+    update.bind(1, now + lease_s_).bind(2, id).bind(3, worker_).run();
+    held += static_cast<std::size_t>(db_.changes());
+  }
   tx.commit();
   return held;
 }
@@ -142,6 +176,21 @@ bool still_ours(Database& db, const ClaimedJob& job, const std::string& worker) 
 
 bool JobQueue::complete(const ClaimedJob& job, const JobOutcome& outcome) {
   Transaction tx(db_);
+  const bool stored = complete_in_transaction(job, outcome);
+  tx.commit();
+  return stored;
+}
+
+std::vector<bool> JobQueue::complete_batch(const std::vector<ClaimedJob>& jobs, const std::vector<JobOutcome>& outcomes) {
+  if (jobs.size() != outcomes.size()) throw std::logic_error("complete_batch: one outcome per job");
+  Transaction tx(db_);
+  std::vector<bool> stored;
+  for (std::size_t i = 0; i < jobs.size(); ++i) stored.push_back(complete_in_transaction(jobs[i], outcomes[i]));
+  tx.commit();
+  return stored;
+}
+
+bool JobQueue::complete_in_transaction(const ClaimedJob& job, const JobOutcome& outcome) {
   if (!still_ours(db_, job, worker_)) return false;
   if (outcome.ok) {
     Statement insert = db_.prepare("INSERT INTO envelopes (job_id, quantity, location, value) VALUES (?, ?, ?, ?)");
@@ -179,7 +228,6 @@ bool JobQueue::complete(const ClaimedJob& job, const JobOutcome& outcome) {
       .bind(4, outcome.evictions)
       .bind(5, job.id)
       .run();
-  tx.commit();
   return true;
 }
 

@@ -14,11 +14,14 @@ namespace {
 using nlohmann::json;
 using scheduler::Database;
 
-// 2 trains x 21 speeds, a few thousand steps each.
+// 2 trains x 21 speeds, a few thousand steps each, one job per claim: the
+// FE rung pinned (the planner would batch them on the modal rung, whose
+// kill test is in modal_batch_test).
 json sweep_study() {
   json doc = tiny_study();
   doc["speeds_kmh"] = {{"from", 100}, {"to", 300}, {"step", 10}};
   doc["analysis"]["dt_s"] = 2.0e-4;
+  doc["fidelity"] = {{"model", "moving_forces"}, {"structure", "fe"}};
   return doc;
 }
 
