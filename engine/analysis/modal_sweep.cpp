@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
-#include "model/rail_line.hpp"
 
 namespace railvsi {
 
@@ -36,15 +34,26 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
     rail.x_m = line.x_m;
     rail.start_m = line.start_m();
     rail.end_m = line.end_m();
-    rail.shapes.assign(line.num_elements() * 4 * n, 0.0);
-    rail.fixed.assign(line.num_elements() * 4, true);
-    for (std::size_t e = 0; e < line.num_elements(); ++e)
-      for (std::size_t j = 0; j < 4; ++j) {
-        const int dof = line.element_dofs[e][j];
-        if (dof < 0) continue;
-        rail.fixed[4 * e + j] = false;
-        std::copy_n(basis.row(dof), n, rail.shapes.begin() + static_cast<std::ptrdiff_t>((4 * e + j) * n));
+    rail.cubic.assign(line.num_elements() * n * 4, 0.0);
+    for (std::size_t e = 0; e < line.num_elements(); ++e) {
+      const double h = line.x_m[e + 1] - line.x_m[e];
+      for (std::size_t k = 0; k < n; ++k) {
+        // End values (v_i, theta_i, v_j, theta_j) of mode k; a fixed DOF is 0.
+        double phi[4];
+        for (std::size_t j = 0; j < 4; ++j) {
+          const int dof = line.element_dofs[e][j];
+          phi[j] = dof < 0 ? 0.0 : basis.row(dof)[k];
+        }
+        // Hermite: N1 = 1 - 3xi^2 + 2xi^3, N2 = h(xi - 2xi^2 + xi^3),
+        // N3 = 3xi^2 - 2xi^3, N4 = h(xi^3 - xi^2), collected by powers of xi.
+        double* c = rail.cubic.data() + (e * n + k) * 4;
+        const double f = -share_;  // downward force, shared between the rails
+        c[0] = f * phi[0];
+        c[1] = f * h * phi[1];
+        c[2] = f * (-3.0 * phi[0] - 2.0 * h * phi[1] + 3.0 * phi[2] - h * phi[3]);
+        c[3] = f * (2.0 * phi[0] + h * phi[1] - 2.0 * phi[2] + h * phi[3]);
       }
+    }
     rails_.push_back(std::move(rail));
   }
 }
@@ -71,14 +80,10 @@ void ModalSweep::modal_load(double x, double* p, ModalSweepWorkspace& ws) const 
       // RailLine::locate finds it by bisection.
       std::size_t& i = ws.element[r * axles + a];
       while (i + 2 < nodes && xa >= rail.x_m[i + 1]) ++i;
-      const double h = rail.x_m[i + 1] - rail.x_m[i];
-      const auto w = hermite_weights((xa - rail.x_m[i]) / h, h);
-      for (std::size_t j = 0; j < 4; ++j) {
-        if (rail.fixed[4 * i + j]) continue;
-        const double f = -share_ * w[j] * loads_N_[a];
-        const double* phi = rail.shapes.data() + (4 * i + j) * n;
-        for (std::size_t k = 0; k < n; ++k) p[k] += f * phi[k];
-      }
+      const double xi = (xa - rail.x_m[i]) / (rail.x_m[i + 1] - rail.x_m[i]);
+      const double load = loads_N_[a];
+      const double* c = rail.cubic.data() + i * n * 4;
+      for (std::size_t k = 0; k < n; ++k, c += 4) p[k] += load * (((c[3] * xi + c[2]) * xi + c[1]) * xi + c[0]);
     }
   }
 }

@@ -5,10 +5,12 @@
 // of every rail element, contiguous) and what one speed needs (a workspace
 // the caller keeps between runs, so a sweep allocates nothing per step).
 // Axles are located incrementally: each moves forward along its rail, so
-// its element only ever advances. The set of axles on a rail at each step,
-// their elements and Hermite weights, and the order of the sums are those
-// of RailLine::locate and a bisection over the offsets: a run gives the
-// same bits whether it is the first of a sweep or alone.
+// its element only ever advances; the set of axles on a rail at each step
+// and their elements are those of a bisection over the offsets and
+// RailLine::locate. Within an element the modes under an axle are the
+// cubic Hermite interpolation of its end values (as RailLine's weights),
+// stored as the cubic's coefficients in xi and summed by Horner's rule. A
+// run gives the same bits whether it is the first of a sweep or alone.
 #include <vector>
 
 #include "analysis/modal_basis.hpp"
@@ -55,9 +57,11 @@ class ModalSweep {
   struct Rail {
     std::vector<double> x_m;
     double start_m = 0.0, end_m = 0.0;
-    // Per element: its four DOFs' mode shapes, 4 x n_modes (zero for a fixed DOF).
-    std::vector<double> shapes;
-    std::vector<bool> fixed;  // per element and DOF
+    // Per element and mode, the modal load of a unit downward axle force as
+    // a cubic in xi (the Hermite interpolation of the element's end
+    // displacements and rotations, with the share of this rail and the
+    // sign): c0 + c1 xi + c2 xi^2 + c3 xi^3, stored [element][mode][4].
+    std::vector<double> cubic;
   };
   // p = Phi^T f for the first axle at x; x never decreases between calls.
   void modal_load(double x, double* p, ModalSweepWorkspace& ws) const;

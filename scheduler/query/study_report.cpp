@@ -116,6 +116,36 @@ std::vector<SeededValue> seeded_values(const std::vector<JobResult>& jobs, const
   return rows;
 }
 
+// Which rungs ran, with their modes, dt and who chose them, and what each
+// ignores and why (once per rung): the fidelity records of the jobs.
+std::string fidelity_block(const std::vector<JobResult>& jobs) {
+  std::map<std::string, std::int64_t> rungs;
+  std::map<std::string, std::string> ignores;
+  for (const JobResult& j : jobs) {
+    if (j.fidelity.empty()) continue;
+    const nlohmann::json f = nlohmann::json::parse(j.fidelity);
+    const std::string rung = f.value("rung", std::string());
+    if (rung.empty()) continue;
+    const int modes = f.value("modes", 0);
+    std::string line = rung;
+    if (modes > 0) line += fmt::format(", {} modes to {:.1f} Hz", modes, f.value("modal_cutoff_hz", 0.0));
+    line += fmt::format(", dt {:.3g} s, chosen by {}", f.value("dt_s", 0.0), f.value("chosen_by", std::string()));
+    if (f.contains("escalation") && f.at("escalation").is_string()) line += ", escalated to unilateral Hertz";
+    ++rungs[line];
+    std::string& why = ignores[rung];
+    if (why.empty() && f.contains("ignores"))
+      for (const auto& i : f.at("ignores"))
+        why += fmt::format("    ignores {}: {}\n", terminal_safe(i.value("what", std::string())),
+                           terminal_safe(i.value("why", std::string())));
+  }
+  if (rungs.empty()) return "";
+  std::string out = "\nfidelity (rung, modes, dt, who chose it: jobs; vsi query --format json gives the reasons):\n";
+  for (const auto& [line, n] : rungs) out += table_line(fmt::format("{}: {} jobs", terminal_safe(line), n));
+  for (const auto& [rung, why] : ignores)
+    if (!why.empty()) out += fmt::format("  {}\n{}", terminal_safe(rung), why);
+  return out;
+}
+
 std::map<std::string, std::string> family_labels(const std::vector<JobResult>& jobs) {
   std::map<std::string, std::string> labels;
   for (const JobResult& j : jobs)
@@ -243,6 +273,7 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
                                   "qty", "profile", "n", "governs", "km/h", "mean", "std", "extreme"));
     out += block;
   }
+  out += fidelity_block(jobs);
   return out;
 }
 

@@ -50,7 +50,7 @@ Rung rung_of_analysis(const Scene& scene) {
   if (scene.train.is_moving_forces()) return r;
   r.model = "interaction";
   r.contact_law = scene.analysis.contact.law;
-  r.unilateral = scene.analysis.contact.unilateral;
+  r.unilateral = scene.analysis.contact.unilateral.value_or(scene.analysis.contact.law != "rigid");
   return r;
 }
 

@@ -24,14 +24,21 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
     record_rung(scene, plan, plan.rung, r.summary);
     return r;
   }
-  const std::shared_ptr<const StructureOperator> op = models.fe_operator(scene);
-  Result r = Simulation(scene, op).run();
-  record_rung(scene, plan, plan.rung, r.summary);
+  // The rung's contact law (the planner's for "auto"; a pinned one is
+  // already in the analysis options).
+  Scene on_rung = scene;
+  if (plan.rung.model == "interaction" && plan.chosen_by == "planner") {
+    on_rung.analysis.contact.law = plan.rung.contact_law;
+    on_rung.analysis.contact.unilateral = plan.rung.unilateral;
+  }
+  const std::shared_ptr<const StructureOperator> op = models.fe_operator(on_rung);
+  Result r = Simulation(on_rung, op).run();
+  record_rung(on_rung, plan, plan.rung, r.summary);
   if (!plan.escalate_below_fraction || !r.status.ok() || scene.train.is_moving_forces()) return r;
   const auto why = escalation_reason(r.summary, *plan.escalate_below_fraction);
   if (!why) return r;
   // The contact law changes neither K_bar nor the rail flexibility: same operator.
-  Scene full = scene;
+  Scene full = on_rung;
   full.analysis.contact.law = "hertz";
   full.analysis.contact.unilateral = true;
   Result again = Simulation(full, op).run();
