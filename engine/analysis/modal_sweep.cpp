@@ -147,15 +147,20 @@ ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, Modal
     ws.q[k] = ws.p[k] / (w * w);
   }
   record(0, 0.0, histories != nullptr);
+  double* q = ws.q.data();
+  double* qd = ws.qd.data();
+  double* qdd = ws.qdd.data();
+  double* p = ws.p.data();
+  double* p_next = ws.p_next.data();
   for (long step = 0; step < n_steps; ++step) {
     const double t_new = static_cast<double>(step + 1) * dt_s_;
-    modal_load(x0_m + speed_mps * t_new, ws.p_next.data(), ws);
+    modal_load(x0_m + speed_mps * t_new, p_next, ws);
     bool finite = true;
     for (std::size_t k = 0; k < n; ++k) {
-      ws.qdd[k] = steps_[k].advance(ws.q[k], ws.qd[k], ws.p[k], ws.p_next[k], dt_s_);
-      finite = finite && std::isfinite(ws.q[k]);
+      qdd[k] = steps_[k].advance(q[k], qd[k], p[k], p_next[k], dt_s_);
+      finite = finite && std::isfinite(q[k]);
     }
-    std::swap(ws.p, ws.p_next);
+    std::swap(p, p_next);
     if (!finite) {
       out.status = {StatusCode::kDiverged, fmt::format("step {}: non-finite modal coordinates", step + 1)};
       break;

@@ -92,15 +92,23 @@ std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, 
     // Modal moving-force jobs of the same structure, dt and train run in
     // one pass; every job of the batch is leased like a single claim.
     if (first->rung == kBatchedRung && max_jobs > 1) {
-      Statement s = db_.prepare("SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? AND train = ? "
-                                "AND rung = ? LIMIT ?");
-      s.bind(1, first->operator_key).bind(2, first->train).bind(3, first->rung).bind(4, static_cast<std::int64_t>(max_jobs - 1));
-      std::vector<std::string> ids;
-      while (s.step()) ids.push_back(s.text(0));
+      // One statement claims the rest, as claim_row each.
       const double now = unix_now_s();
+      Statement s = db_.prepare(
+          "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker = ?, lease_expires = ?, started_at = ? "
+          "WHERE id IN (SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? AND train = ? AND rung = ? "
+          "LIMIT ?) RETURNING id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts, rung");
+      s.bind(1, worker_)
+          .bind(2, now + lease_s_)
+          .bind(3, now)
+          .bind(4, first->operator_key)
+          .bind(5, first->train)
+          .bind(6, first->rung)
+          .bind(7, static_cast<std::int64_t>(max_jobs - 1));
       batch.push_back(std::move(*first));
-      for (const std::string& id : ids)
-        if (auto job = claim_row(id, now)) batch.push_back(std::move(*job));
+      while (s.step())
+        batch.push_back(ClaimedJob{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5), s.real(6),
+                                   s.real(7), static_cast<int>(s.int64(8)), s.text(9)});
     } else {
       batch.push_back(std::move(*first));
     }
@@ -166,12 +174,38 @@ std::size_t JobQueue::renew(const std::vector<std::string>& job_ids) {
 
 namespace {
 
-bool still_ours(Database& db, const ClaimedJob& job, const std::string& worker) {
-  Statement s = db.prepare("SELECT state, worker FROM jobs WHERE id = ?");
+bool still_ours(Statement& s, const ClaimedJob& job, const std::string& worker) {
+  s.reset();
   if (!s.bind(1, job.id).step()) return false;
   return s.text(0) == "running" && s.text(1) == worker;
 }
 
+bool still_ours(Database& db, const ClaimedJob& job, const std::string& worker) {
+  Statement s = db.prepare("SELECT state, worker FROM jobs WHERE id = ?");
+  return still_ours(s, job, worker);
+}
+
+// What completing a job runs, prepared once per transaction (a batch
+// completes many jobs in one).
+struct CompleteStatements {
+  explicit CompleteStatements(Database& db)
+      : owner(db.prepare("SELECT state, worker FROM jobs WHERE id = ?")),
+        insert(db.prepare("INSERT INTO envelopes (job_id, quantity, location, value) VALUES (?, ?, ?, ?)")),
+        update(db.prepare(
+            "UPDATE jobs SET state = ?, status = ?, error = ?, fidelity = ?, steps = ?, wall_s = ?, loop_s = ?, "
+            "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ?, warnings = ? WHERE id = ?")),
+        // WHERE true: SQLite's upsert after INSERT ... SELECT needs a WHERE clause.
+        stats(db.prepare(
+            "INSERT INTO cache_stats (study_id, jobs, factorizations, hits, factorization_s, evictions) "
+            "SELECT study_id, 1, ?, ?, ?, ? FROM study_jobs WHERE job_id = ? "
+            "ON CONFLICT (study_id) DO UPDATE SET jobs = jobs + 1, "
+            "factorizations = factorizations + excluded.factorizations, hits = hits + excluded.hits, "
+            "factorization_s = factorization_s + excluded.factorization_s, evictions = evictions + excluded.evictions")) {}
+  Statement owner, insert, update, stats;
+};
+
+// complete() of one job with prepared statements; false when the job is no longer `worker`'s.
+bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::string& worker, CompleteStatements& st);
 }  // namespace
 
 bool JobQueue::complete(const ClaimedJob& job, const JobOutcome& outcome) {
@@ -184,26 +218,31 @@ bool JobQueue::complete(const ClaimedJob& job, const JobOutcome& outcome) {
 std::vector<bool> JobQueue::complete_batch(const std::vector<ClaimedJob>& jobs, const std::vector<JobOutcome>& outcomes) {
   if (jobs.size() != outcomes.size()) throw std::logic_error("complete_batch: one outcome per job");
   Transaction tx(db_);
+  CompleteStatements statements(db_);
   std::vector<bool> stored;
-  for (std::size_t i = 0; i < jobs.size(); ++i) stored.push_back(complete_in_transaction(jobs[i], outcomes[i]));
+  for (std::size_t i = 0; i < jobs.size(); ++i) stored.push_back(complete_one(jobs[i], outcomes[i], worker_, statements));
   tx.commit();
   return stored;
 }
 
 bool JobQueue::complete_in_transaction(const ClaimedJob& job, const JobOutcome& outcome) {
-  if (!still_ours(db_, job, worker_)) return false;
+  CompleteStatements statements(db_);
+  return complete_one(job, outcome, worker_, statements);
+}
+
+namespace {
+
+bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::string& worker, CompleteStatements& st) {
+  if (!still_ours(st.owner, job, worker)) return false;
   if (outcome.ok) {
-    Statement insert = db_.prepare("INSERT INTO envelopes (job_id, quantity, location, value) VALUES (?, ?, ?, ?)");
     for (const EnvelopeRow& e : outcome.envelopes) {
-      insert.bind(1, job.id).bind(2, e.quantity).bind(3, e.location);
-      if (e.value) insert.bind(4, *e.value);
-      else insert.bind_null(4);
-      insert.run();
+      st.insert.bind(1, job.id).bind(2, e.quantity).bind(3, e.location);
+      if (e.value) st.insert.bind(4, *e.value);
+      else st.insert.bind_null(4);
+      st.insert.run();
     }
   }
-  db_.prepare("UPDATE jobs SET state = ?, status = ?, error = ?, fidelity = ?, steps = ?, wall_s = ?, loop_s = ?, "
-              "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ?, warnings = ? WHERE id = ?")
-      .bind(1, outcome.ok ? "done" : "failed")
+  st.update.bind(1, outcome.ok ? "done" : "failed")
       .bind(2, outcome.status)
       .bind(3, outcome.ok ? SqlValue(Null{}) : SqlValue(outcome.error))
       .bind(4, outcome.fidelity)
@@ -216,13 +255,7 @@ bool JobQueue::complete_in_transaction(const ClaimedJob& job, const JobOutcome& 
       .bind(11, outcome.warnings)
       .bind(12, job.id)
       .run();
-  // WHERE true: SQLite's upsert after INSERT ... SELECT needs a WHERE clause.
-  db_.prepare("INSERT INTO cache_stats (study_id, jobs, factorizations, hits, factorization_s, evictions) "
-              "SELECT study_id, 1, ?, ?, ?, ? FROM study_jobs WHERE job_id = ? "
-              "ON CONFLICT (study_id) DO UPDATE SET jobs = jobs + 1, "
-              "factorizations = factorizations + excluded.factorizations, hits = hits + excluded.hits, "
-              "factorization_s = factorization_s + excluded.factorization_s, evictions = evictions + excluded.evictions")
-      .bind(1, outcome.factorized ? 1 : 0)
+  st.stats.bind(1, outcome.factorized ? 1 : 0)
       .bind(2, outcome.factorized ? 0 : 1)
       .bind(3, outcome.factorization_s)
       .bind(4, outcome.evictions)
@@ -230,6 +263,8 @@ bool JobQueue::complete_in_transaction(const ClaimedJob& job, const JobOutcome& 
       .run();
   return true;
 }
+
+}  // namespace
 
 bool JobQueue::release_after_error(const ClaimedJob& job, const std::string& error) {
   Transaction tx(db_);

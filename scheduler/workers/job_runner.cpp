@@ -35,10 +35,12 @@ Scene parse_job_scene(const ClaimedJob& job) {
   return parse_scene(parse_json_text(job.scene, name), "/", name);
 }
 
-// The outcome's record of a run and its envelopes.
-void store_run(const RunSummary& s, const JobEnvelopes& envelopes, const std::string& run_message, JobOutcome& out) {
+// The outcome's record of a run and its envelopes; fidelity_text: the
+// fidelity record's JSON when the caller has it already.
+void store_run(const RunSummary& s, const JobEnvelopes& envelopes, const std::string& run_message, JobOutcome& out,
+               const std::string* fidelity_text = nullptr) {
   out.warnings = cli::warnings_json(s.warnings).dump();
-  out.fidelity = cli::fidelity_json(s.fidelity).dump();
+  out.fidelity = fidelity_text ? *fidelity_text : cli::fidelity_json(s.fidelity).dump();
   out.steps = s.steps;
   // The envelopes may find what the run did not report (a non-finite value).
   out.status = envelopes.status;
@@ -85,6 +87,9 @@ struct ModalPass {
   std::unique_ptr<ModalSweep> sweep;
   std::unique_ptr<CodeFilter> filter;
   std::string obstacle;  // why no filtered acceleration, "" when there is one
+  // The fidelity record's JSON: the same for every job of the pass (rung,
+  // plan, modes, dt, what it ignores), written once.
+  std::string fidelity_text;
 };
 
 // The scene of `job` on `pass` (same text but the speed), else nullopt.
@@ -133,14 +138,17 @@ std::unique_ptr<ModalPass> make_modal_pass(const ClaimedJob& job, Scene scene, S
 
 // One modal job on its pass: the run, its maxima and filtered acceleration
 // from the workspace, the envelopes.
-void run_on_pass(const ModalPass& pass, const Scene& scene, const ClaimedJob& job, ModalSweepWorkspace& ws,
+void run_on_pass(ModalPass& pass, const Scene& scene, const ClaimedJob& job, ModalSweepWorkspace& ws,
                  std::vector<double>& filter_ws, JobOutcome& out) {
   const auto start = Clock::now();
   const long n_steps = modal_run_steps(scene);
   const ModalSweepRun run = pass.sweep->run(modal_run_start_x_m(scene), scene.speed_mps, n_steps, ws, true);
   RunSummary summary;
   fill_modal_summary(*pass.sweep, run, summary);
-  record_rung(scene, pass.plan, pass.plan.rung, summary);
+  if (pass.fidelity_text.empty()) {
+    record_rung(scene, pass.plan, pass.plan.rung, summary);
+    pass.fidelity_text = cli::fidelity_json(summary.fidelity).dump();
+  }
   out.loop_s = seconds_since(start);
   std::vector<double> filtered;
   if (pass.filter) {
@@ -153,7 +161,7 @@ void run_on_pass(const ModalPass& pass, const Scene& scene, const ClaimedJob& jo
   summary.wall_s = seconds_since(start);
   const JobEnvelopes envelopes = compute_envelopes(run.status, summary, scene.analysis.dt_s, job.cutoff_hz,
                                                    pass.filter ? &filtered : nullptr, pass.obstacle);
-  store_run(summary, envelopes, run.status.message(), out);
+  store_run(summary, envelopes, run.status.message(), out, &pass.fidelity_text);
 }
 
 std::vector<JobOutcome> run_modal_jobs(const std::vector<ClaimedJob>& jobs, FactorizationCache& cache,
