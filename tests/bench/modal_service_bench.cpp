@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/modal_moving_forces.hpp"
+#include "cpu_time.hpp"
 #include "envelopes/code_filter.hpp"
 #include "integration/modal_recurrence.hpp"
 #include "io/scene_loader.hpp"
@@ -40,13 +41,8 @@ using namespace railvsi::scheduler;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-double cpu_s(clockid_t clock) {
-  timespec ts{};
-  clock_gettime(clock, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-double thread_cpu_s() { return cpu_s(CLOCK_THREAD_CPUTIME_ID); }
-double process_cpu_s() { return cpu_s(CLOCK_PROCESS_CPUTIME_ID); }
+using bench::process_cpu_s;
+using bench::thread_cpu_s;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 json hslm_study() {

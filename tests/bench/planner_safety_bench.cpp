@@ -13,6 +13,7 @@
 #include <string>
 
 #include "analysis/modal_moving_forces.hpp"
+#include "cpu_time.hpp"
 #include "envelopes/code_filter.hpp"
 #include "envelopes/job_envelopes.hpp"
 #include "generators/bridge_2d.hpp"
@@ -27,11 +28,7 @@ namespace {
 
 using namespace railvsi;
 
-double cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+double cpu_s() { return bench::thread_cpu_s(); }
 
 struct Span {
   const char* name;
