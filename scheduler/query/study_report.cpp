@@ -116,6 +116,25 @@ std::vector<SeededValue> seeded_values(const std::vector<JobResult>& jobs, const
   return rows;
 }
 
+// Text (already terminal-safe) in lines of at most kTableWidth, each
+// starting with indent.
+std::string wrapped(const std::string& text, const std::string& indent) {
+  std::string out, line = indent;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    if (line.size() > indent.size() && line.size() + 1 + word.size() > kTableWidth) {
+      out += table_line(line);
+      line = indent;
+    }
+    line += (line.size() > indent.size() ? " " : "") + word;
+    start = end + 1;
+  }
+  return out + table_line(line);
+}
+
 // Which rungs ran, with their modes, dt and who chose them, and what each
 // ignores and why (once per rung): the fidelity records of the jobs.
 std::string fidelity_block(const std::vector<JobResult>& jobs) {
@@ -135,14 +154,15 @@ std::string fidelity_block(const std::vector<JobResult>& jobs) {
     std::string& why = ignores[rung];
     if (why.empty() && f.contains("ignores"))
       for (const auto& i : f.at("ignores"))
-        why += fmt::format("    ignores {}: {}\n", terminal_safe(i.value("what", std::string())),
-                           terminal_safe(i.value("why", std::string())));
+        why += wrapped(fmt::format("ignores {}: {}", terminal_safe(i.value("what", std::string())),
+                                   terminal_safe(i.value("why", std::string()))),
+                       "    ");
   }
   if (rungs.empty()) return "";
-  std::string out = "\nfidelity (rung, modes, dt, who chose it: jobs; vsi query --format json gives the reasons):\n";
+  std::string out = "\nfidelity (rung, modes, dt, chosen by: jobs; the reasons: --format json):\n";
   for (const auto& [line, n] : rungs) out += table_line(fmt::format("{}: {} jobs", terminal_safe(line), n));
   for (const auto& [rung, why] : ignores)
-    if (!why.empty()) out += fmt::format("  {}\n{}", terminal_safe(rung), why);
+    if (!why.empty()) out += table_line("  " + terminal_safe(rung)) + why;
   return out;
 }
 
