@@ -152,6 +152,8 @@ TEST_F(WorkerProcesses, RunExitsWithThreeWhenJobsFailAndShowsWhy) {
   doc["speeds_kmh"] = json::array({200});
   doc["analysis"]["max_newton_iterations"] = 1;  // the Hertz contact needs more: no_convergence
   doc["analysis"]["dt_s"] = 5.0e-4;
+  // Nonlinear Hertz pinned: the planner would start with linear Hertz, which converges in one iteration.
+  doc["fidelity"] = {{"model", "interaction"}, {"structure", "fe"}, {"contact_law", "hertz"}};
   const auto study = write_json("failing.json", doc);
   const std::string db_file = (dir_ / "f.sqlite").string();
   const VsiResult run = vsi({"run", study.string(), "--db", db_file});
