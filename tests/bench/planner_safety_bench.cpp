@@ -6,8 +6,10 @@
 // / 4): every governing envelope value (per train, the largest over the
 // speeds of the filtered deck acceleration and the deck displacement at
 // midspan), relative difference and the CPU time of both.
-// Run by hand: OPENBLAS_NUM_THREADS=1 build/tests/bench/planner_safety_bench
+// Run by hand: OPENBLAS_NUM_THREADS=1 build/tests/bench/planner_safety_bench [speed step km/h, default 3]
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <ctime>
 #include <string>
@@ -35,7 +37,7 @@ struct Span {
   double length_m, f0_hz;
 };
 
-void compare(const Span& span) {
+void compare(const Span& span, int step_kmh) {
   Bridge2dOptions b;
   b.spans_m = {span.length_m};
   b.deck_first_frequency_hz = span.f0_hz;
@@ -72,7 +74,7 @@ void compare(const Span& span) {
     const ModalSweep sweep(basis, s.train, s.analysis.contact.rail_lines, dt_modal);
     ModalSweepWorkspace ws;
     std::vector<double> fws;
-    for (int v = 100; v <= 400; v += 3) {
+    for (int v = 100; v <= 400; v += step_kmh) {
       s.speed_mps = v / 3.6;
       const ModalSweepRun run = sweep.run(modal_run_start_x_m(s), s.speed_mps, modal_run_steps(s), ws, true);
       acc_p = std::max(acc_p, filter.max_abs_filtered(ws.acceleration[0], fws));
@@ -80,7 +82,7 @@ void compare(const Span& span) {
     }
     planner_s += cpu_s() - t0;
     const double t1 = cpu_s();
-    for (int v = 100; v <= 400; v += 3) {
+    for (int v = 100; v <= 400; v += step_kmh) {
       s.speed_mps = v / 3.6;
       TimeStepPolicy policy;
       const TimeStepChoice c =
@@ -112,8 +114,9 @@ void compare(const Span& span) {
 
 }  // namespace
 
-int main() {
-  compare({"15 m span", 15.0, 5.0});
-  compare({"25 m span", 25.0, 5.69});  // the hslm-sweep example's deck
+int main(int argc, char** argv) {
+  const int step_kmh = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
+  compare({"15 m span", 15.0, 5.0}, step_kmh);
+  compare({"25 m span", 25.0, 5.69}, step_kmh);  // the hslm-sweep example's deck
   return 0;
 }
