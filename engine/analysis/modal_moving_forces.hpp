@@ -7,6 +7,7 @@
 // What it gives up against the FE rung: the modes above the cut-off, and
 // the coupling terms of a non-proportional damping matrix (each mode keeps
 // phi^T C phi / (2 omega), recorded in the fidelity).
+#include "analysis/modal_sweep.hpp"
 #include "solver/modal_basis.hpp"
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
@@ -24,5 +25,12 @@ using ModalMovingForceOptions = ModalBasisOptions;
 Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis);
 // Convenience: computes the basis for this run alone.
 Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions& options = {});
+
+// The pieces a sweep uses to run many speeds on one ModalSweep with the
+// same bits as run_modal_moving_forces: where the first axle starts, how
+// many steps, and the summary of a run (maxima, sizes, fidelity).
+double modal_run_start_x_m(const Scene& scene);
+long modal_run_steps(const Scene& scene);
+void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSummary& summary);
 
 }  // namespace railvsi

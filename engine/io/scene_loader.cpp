@@ -75,6 +75,40 @@ std::shared_ptr<const Irregularity> scene_irregularity(const json& doc, const st
   return with_path_prefix("/irregularity", [&] { return parse_irregularity(*it, base_dir, wheel_range(scene)); });
 }
 
+// "fidelity", "accuracy" and "asks" of a scene or study; a pinned contact
+// law overrides the analysis's (checked again by the law itself).
+FidelityRequest fidelity_request(const json& doc, const Train& train, ContactOptions& contact) {
+  FidelityRequest f;
+  if (doc.contains("accuracy")) f.tolerance = doc.at("accuracy").value("tolerance", f.tolerance);
+  if (doc.contains("asks")) f.asks = doc.at("asks").get<std::vector<std::string>>();
+  const auto it = doc.find("fidelity");
+  if (it == doc.end()) return f;
+  if (it->is_string()) {
+    f.mode = FidelityRequest::Mode::kAuto;
+    return f;
+  }
+  f.mode = FidelityRequest::Mode::kPinned;
+  const json& r = *it;
+  f.model = r.at("model").get<std::string>();
+  f.structure = r.at("structure").get<std::string>();
+  if (f.model == "moving_forces" && !train.is_moving_forces())
+    throw InputError("/fidelity/model", "moving_forces needs a train of axle loads; this train has vehicles (give "
+                                        "{\"library\": name, \"as\": \"moving_forces\"} for its static axle loads)");
+  if (f.model == "interaction" && train.is_moving_forces())
+    throw InputError("/fidelity/model", "interaction needs multibody vehicles; this train is axle loads");
+  if (f.model == "interaction" && f.structure == "modal")
+    throw InputError("/fidelity/structure", "the modal interaction rung is not available in this build: give "
+                                            "\"fe\" (or fidelity \"auto\")");
+  if (r.contains("contact_law")) contact.law = r.at("contact_law").get<std::string>();
+  if (r.contains("unilateral")) contact.unilateral = r.at("unilateral").get<bool>();
+  if (r.contains("contact_law") || r.contains("unilateral"))
+    with_path_prefix("/fidelity", [&] { return make_contact_law(contact); });
+  if (r.contains("modal_cutoff_hz")) f.modal_cutoff_hz = r.at("modal_cutoff_hz").get<double>();
+  if (r.contains("escalate_below_fraction")) f.escalate_below_fraction = r.at("escalate_below_fraction").get<double>();
+  if (r.contains("reasons")) f.reasons = r.at("reasons").get<std::vector<std::string>>();
+  return f;
+}
+
 }  // namespace
 
 AnalysisOptions parse_analysis(const json& a) {
@@ -113,6 +147,7 @@ Scene parse_scene(const json& doc, const std::filesystem::path& base_dir, const 
     if (doc.at("analysis").contains("start_x_m")) scene.start_x_m = doc.at("analysis").at("start_x_m").get<double>();
     scene.speed_mps = speed_mps(doc, scene.analysis);
     scene.train = scene_train(doc.at("train"));
+    scene.fidelity = fidelity_request(doc, scene.train, scene.analysis.contact);
     scene.structure = parse_structure(doc.at("structure"), doc.value("outputs", json::object()), base_dir, scene.train);
     scene.irregularity = scene_irregularity(doc, base_dir, scene);
     return scene;

@@ -50,6 +50,20 @@ struct FidelityRecord {
   int vehicle_dofs = 0;
   int contacts = 0;
   double hht_alpha = 0.0, hht_beta = 0.0, hht_gamma = 0.0;
+  // The rung of the fidelity ladder ("moving_forces/modal", "interaction/fe",
+  // ...), who chose it ("planner", "pinned"; empty: the scene's analysis as
+  // given), and why: what the rung leaves out and why that is safe here.
+  std::string rung;
+  std::string chosen_by;
+  double dt_s = 0.0;
+  int modes = 0;                 // modal rungs: modes kept, all up to modal_cutoff_hz
+  double modal_cutoff_hz = 0.0;
+  std::vector<std::string> reasons;
+  struct Ignored {
+    std::string what, why;
+  };
+  std::vector<Ignored> ignores;
+  std::string escalation;  // why the run was repeated on a fuller rung; empty when it was not
 };
 
 // Something a user must know about a run that still has a result (status ok)

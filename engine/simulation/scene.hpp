@@ -3,6 +3,7 @@
 // options. Built by io/scene_loader from a JSON document or directly in code.
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "contact/contact_law.hpp"
@@ -44,6 +45,23 @@ struct AnalysisOptions {
   bool allow_large_run = false;
 };
 
+// Which rung of the fidelity ladder runs a scene (schemas: "fidelity",
+// "accuracy", "asks"). The rung itself is planned above the engine
+// (results/planning/effects_planner); the engine runs what it is given.
+struct FidelityRequest {
+  enum class Mode { kAsGiven, kAuto, kPinned };
+  Mode mode = Mode::kAsGiven;  // kAsGiven: FE with the analysis options (no "fidelity" key)
+  // kPinned: "moving_forces" | "interaction", "modal" | "fe"; the contact
+  // law and unilaterality are applied to AnalysisOptions::contact.
+  std::string model, structure;
+  std::optional<double> modal_cutoff_hz;
+  std::optional<double> escalate_below_fraction;
+  std::vector<std::string> reasons;
+  double tolerance = 0.01;
+  // kAuto: what the run must answer; absent: what the train can give.
+  std::optional<std::vector<std::string>> asks;
+};
+
 struct Scene {
   std::shared_ptr<const StructureModel> structure;
   Train train;
@@ -52,6 +70,7 @@ struct Scene {
   AnalysisOptions analysis;
   // x of the train's first axle at t = 0; default_start_x_m() when absent.
   std::optional<double> start_x_m;
+  FidelityRequest fidelity;
 };
 
 // The whole train on the modelled track when the approach is long enough

@@ -70,4 +70,10 @@ const double* ModalBasis::row(int dof) const {
   return r < 0 ? zero_row_.data() : rail_shapes_.col(r).data();
 }
 
+std::size_t ModalBasis::memory_bytes() const {
+  const auto doubles = omega_.size() + zeta_.size() + zero_row_.size() +
+                       static_cast<std::size_t>(rail_shapes_.size() + at_outputs_.size());
+  return sizeof(*this) + doubles * sizeof(double) + rail_row_.size() * sizeof(int);
+}
+
 }  // namespace railvsi

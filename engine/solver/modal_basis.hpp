@@ -39,6 +39,8 @@ class ModalBasis {
   const DenseMatrix& kept_rows() const { return rail_shapes_; }
   // Shapes at the output points, one row per point.
   const DenseMatrix& at_outputs() const { return at_outputs_; }
+  // What the basis holds in memory (the structure it shares excepted).
+  std::size_t memory_bytes() const;
 
  private:
   std::shared_ptr<const StructureModel> structure_;

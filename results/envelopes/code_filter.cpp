@@ -36,26 +36,6 @@ Sections design(double dt_s, double half_gain_hz) {
   return s;
 }
 
-// One causal pass, in place, starting from the steady state of a constant
-// input equal to x[0] (each section has unit DC gain, so every section sees
-// x[0] at steady state): y = x0 needs z2 = (b2 - a2) x0 and
-// z1 = (b1 + b2 - a1 - a2) x0.
-void causal_pass(const Sections& sections, std::vector<double>& x) {
-  if (x.empty()) return;
-  const double x0 = x.front();
-  for (const Section& s : sections) {
-    double z1 = (s.b1 + s.b2 - s.a1 - s.a2) * x0;
-    double z2 = (s.b2 - s.a2) * x0;
-    for (double& v : x) {
-      const double in = v;
-      const double out = s.b0 * in + z1;
-      z1 = s.b1 * in - s.a1 * out + z2;
-      z2 = s.b2 * in - s.a2 * out;
-      v = out;
-    }
-  }
-}
-
 void check_arguments(double dt_s, double cutoff_hz) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) throw std::invalid_argument("code filter: dt_s must be > 0");
   if (!(cutoff_hz > 0.0) || !std::isfinite(cutoff_hz))
@@ -75,29 +55,100 @@ double code_filter_half_gain_hz(double dt_s, double cutoff_hz) {
   return std::atan(std::tan(kPi * cutoff_hz * dt_s) / r) / (kPi * dt_s);
 }
 
-std::vector<double> code_low_pass(const std::vector<double>& signal, double dt_s, double cutoff_hz) {
+namespace {
+
+// One causal pass (direct form II transposed, a0 = 1) through the four
+// sections, forward (step +1) or backward (-1) over x, in place. Each
+// section starts from the steady state of a constant input equal to the
+// pass's first sample (each has unit DC gain, so every section sees x0 at
+// steady state): y = x0 needs z2 = (b2 - a2) x0 and z1 = (b1 + b2 - a1 - a2) x0.
+// The sections run interleaved sample by sample: each sees the same inputs
+// in the same order as when they run one after the other, but the four
+// recursions overlap in the processor instead of waiting for each other.
+template <int kStep>
+void fused_pass(const double (&b)[4][3], const double (&a)[4][2], std::vector<double>& x) {
+  if (x.empty()) return;
+  const std::size_t n = x.size();
+  double* v = kStep > 0 ? x.data() : x.data() + n - 1;
+  const double x0 = *v;
+  double z1[4], z2[4];
+  for (int k = 0; k < 4; ++k) {
+    z1[k] = (b[k][1] + b[k][2] - a[k][0] - a[k][1]) * x0;
+    z2[k] = (b[k][2] - a[k][1]) * x0;
+  }
+  for (std::size_t i = 0; i < n; ++i, v += kStep) {
+    double in = *v;
+    for (int k = 0; k < 4; ++k) {
+      const double out = b[k][0] * in + z1[k];
+      z1[k] = b[k][1] * in - a[k][0] * out + z2[k];
+      z2[k] = b[k][2] * in - a[k][1] * out;
+      in = out;
+    }
+    *v = in;
+  }
+}
+
+}  // namespace
+
+CodeFilter::CodeFilter(double dt_s, double cutoff_hz) {
   check_arguments(dt_s, cutoff_hz);
-  const std::size_t n = signal.size();
-  if (n < 2 || cutoff_hz * dt_s >= 0.5) return signal;
+  static_assert(kCodeFilterPoles == 8, "the fused pass has four sections");
+  if (cutoff_hz * dt_s >= 0.5) {
+    pass_through_ = true;
+    return;
+  }
   const double fc = code_filter_half_gain_hz(dt_s, cutoff_hz);
   const Sections sections = design(dt_s, fc);
-
+  for (std::size_t k = 0; k < sections.size(); ++k) {
+    b_[k][0] = sections[k].b0;
+    b_[k][1] = sections[k].b1;
+    b_[k][2] = sections[k].b2;
+    a_[k][0] = sections[k].a1;
+    a_[k][1] = sections[k].a2;
+  }
   // The slowest pole (damping sin(pi/2n)) decays to 1e-8 in ln(1e8) / (zeta
   // 2 pi f_c): pad that long, or as long as the signal allows.
   const double zeta_min = std::sin(kPi / (2.0 * kCodeFilterPoles));
   const double pad_s = std::log(1e8) / (zeta_min * 2.0 * kPi * fc);
-  const std::size_t pad = std::min(n - 1, static_cast<std::size_t>(std::ceil(pad_s / dt_s)));
+  pad_ = static_cast<std::size_t>(std::ceil(pad_s / dt_s));
+}
 
+std::size_t CodeFilter::filter_into(const std::vector<double>& signal, std::vector<double>& x) const {
+  const std::size_t n = signal.size();
+  const std::size_t pad = std::min(n - 1, pad_);
   // Odd reflection about each end: x(-k) = 2 x(0) - x(k).
-  std::vector<double> x(n + 2 * pad);
+  x.resize(n + 2 * pad);
   for (std::size_t k = 0; k < pad; ++k) x[k] = 2.0 * signal.front() - signal[pad - k];
   std::copy(signal.begin(), signal.end(), x.begin() + static_cast<std::ptrdiff_t>(pad));
   for (std::size_t k = 1; k <= pad; ++k) x[pad + n - 1 + k] = 2.0 * signal.back() - signal[n - 1 - k];
+  fused_pass<1>(b_, a_, x);
+  fused_pass<-1>(b_, a_, x);  // backward: zero phase
+  return pad;
+}
 
-  causal_pass(sections, x);
-  std::reverse(x.begin(), x.end());
-  causal_pass(sections, x);
-  std::reverse(x.begin(), x.end());
+double CodeFilter::max_abs_filtered(const std::vector<double>& signal, std::vector<double>& workspace) const {
+  const std::size_t n = signal.size();
+  std::size_t first = 0;
+  const std::vector<double>* y = &signal;
+  if (n >= 2 && !pass_through_) {
+    first = filter_into(signal, workspace);
+    y = &workspace;
+  }
+  // NaN propagates: a non-finite input is never hidden by the maximum.
+  double m = 0.0;
+  for (std::size_t i = first; i < first + n; ++i) {
+    const double v = (*y)[i];
+    m = std::isnan(v) || std::isnan(m) ? std::nan("") : std::max(m, std::abs(v));
+  }
+  return m;
+}
+
+std::vector<double> code_low_pass(const std::vector<double>& signal, double dt_s, double cutoff_hz) {
+  const CodeFilter filter(dt_s, cutoff_hz);
+  const std::size_t n = signal.size();
+  if (n < 2 || filter.pass_through_) return signal;
+  std::vector<double> x;
+  const std::size_t pad = filter.filter_into(signal, x);
   return {x.begin() + static_cast<std::ptrdiff_t>(pad), x.begin() + static_cast<std::ptrdiff_t>(pad + n)};
 }
 

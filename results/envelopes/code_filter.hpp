@@ -27,6 +27,7 @@
 // code frequency) would halve a mode at f3 when f3 sets f_cut. An FFT brick
 // wall truncates exactly at f_cut but rings (Gibbs) across the whole record;
 // this filter's impulse response decays exponentially.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,23 @@ double code_filter_half_gain_hz(double dt_s, double cutoff_hz);
 // frequency 0.5/dt_s nothing sampled lies above it: the signal comes back
 // unchanged. Deterministic: the same input gives the same bits.
 std::vector<double> code_low_pass(const std::vector<double>& signal, double dt_s, double cutoff_hz);
+
+// The filter of one (dt, cut-off), designed once and applied to many
+// signals without allocating (the workspace grows to the longest signal):
+// max_abs_filtered(x) == max |code_low_pass(x)| bit for bit.
+class CodeFilter {
+ public:
+  CodeFilter(double dt_s, double cutoff_hz);
+  double max_abs_filtered(const std::vector<double>& signal, std::vector<double>& workspace) const;
+
+ private:
+  friend std::vector<double> code_low_pass(const std::vector<double>&, double, double);
+  // The padded, filtered signal in workspace; returns the padding.
+  std::size_t filter_into(const std::vector<double>& signal, std::vector<double>& x) const;
+  bool pass_through_ = false;  // cut-off at or above Nyquist
+  double b_[4][3] = {}, a_[4][2] = {};
+  std::size_t pad_ = 0;        // before clamping to the signal length
+};
 
 // "Butterworth 8 poles forward-backward, gain 0.99 at 30.0 Hz, 0.5 at 40.0 Hz"
 std::string code_filter_description(double dt_s, double cutoff_hz);

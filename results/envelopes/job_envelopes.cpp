@@ -68,19 +68,13 @@ std::string filter_obstacle(const Result& r, double dt_s, int history_stride, do
   return "";
 }
 
-double max_abs(const std::vector<double>& v) {
-  double m = 0.0;
-  for (double x : v) m = std::isnan(x) || std::isnan(m) ? std::nan("") : std::max(m, std::abs(x));
-  return m;
-}
-
-}  // namespace
-
-JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_stride, double cutoff_hz) {
-  const RunSummary& s = result.summary;
+// filtered: the filtered maximum per output point, or null with the reason
+// in obstacle.
+JobEnvelopes envelopes_of(const Status& status, const RunSummary& s, double dt_s, double cutoff_hz,
+                          const std::vector<double>* filtered, const std::string& obstacle) {
   JobEnvelopes e;
-  e.status = std::string(result.status.name());
-  e.message = result.status.message();
+  e.status = std::string(status.name());
+  e.message = status.message();
   FiniteOnly finite(e);
   const auto greater = [](double a, double b) { return a > b; };
   const auto less = [](double a, double b) { return a < b; };
@@ -89,8 +83,7 @@ JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_st
   // Deck.
   e.cutoff_hz = cutoff_hz;
   e.filter = code_filter_description(dt_s, cutoff_hz);
-  const std::string obstacle = filter_obstacle(result, dt_s, history_stride, cutoff_hz);
-  if (!obstacle.empty()) e.notes.push_back("filtered deck acceleration left out: " + obstacle);
+  if (!filtered) e.notes.push_back("filtered deck acceleration left out: " + obstacle);
   for (std::size_t p = 0; p < s.points.size(); ++p) {
     const PointSummary& ps = s.points[p];
     PointEnvelope pe;
@@ -98,10 +91,7 @@ JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_st
     pe.x_m = ps.x_m;
     pe.max_abs_displacement_m = finite(ps.max_abs_displacement_m, "deck displacement at " + ps.name);
     pe.max_abs_acceleration_unfiltered_mps2 = finite(ps.max_abs_acceleration_mps2, "deck acceleration at " + ps.name);
-    if (obstacle.empty())
-      pe.max_abs_acceleration_mps2 =
-          finite(max_abs(code_low_pass(result.histories.deck_acceleration_mps2[p], dt_s, cutoff_hz)),
-                 "filtered deck acceleration at " + ps.name);
+    if (filtered) pe.max_abs_acceleration_mps2 = finite((*filtered)[p], "filtered deck acceleration at " + ps.name);
     e.points.push_back(std::move(pe));
   }
   e.max_abs_displacement_m = extreme(e.points, &PointEnvelope::max_abs_displacement_m, greater, every);
@@ -140,6 +130,24 @@ JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_st
   e.warnings = s.warnings;
   e.energy_residual = s.energy_residual;
   return e;
+}
+
+}  // namespace
+
+JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_stride, double cutoff_hz) {
+  const std::string obstacle = filter_obstacle(result, dt_s, history_stride, cutoff_hz);
+  std::vector<double> filtered;
+  if (obstacle.empty()) {
+    const CodeFilter filter(dt_s, cutoff_hz);
+    std::vector<double> workspace;
+    for (const auto& a : result.histories.deck_acceleration_mps2) filtered.push_back(filter.max_abs_filtered(a, workspace));
+  }
+  return envelopes_of(result.status, result.summary, dt_s, cutoff_hz, obstacle.empty() ? &filtered : nullptr, obstacle);
+}
+
+JobEnvelopes compute_envelopes(const Status& status, const RunSummary& summary, double dt_s, double cutoff_hz,
+                               const std::vector<double>* filtered_max, const std::string& obstacle) {
+  return envelopes_of(status, summary, dt_s, cutoff_hz, filtered_max, obstacle);
 }
 
 }  // namespace railvsi

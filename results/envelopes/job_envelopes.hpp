@@ -87,4 +87,11 @@ struct JobEnvelopes {
 // cutoff_hz: code_cutoff_hz(f0, f3) of the structure.
 JobEnvelopes compute_envelopes(const Result& result, double dt_s, int history_stride, double cutoff_hz);
 
+// For a run that filters its own deck acceleration (the modal sweep keeps
+// every step in a workspace, not in histories): (*filtered_max)[p] is
+// CodeFilter::max_abs_filtered of output point p's acceleration; null when
+// it could not be computed, named in the notes with `obstacle`.
+JobEnvelopes compute_envelopes(const Status& status, const RunSummary& summary, double dt_s, double cutoff_hz,
+                               const std::vector<double>* filtered_max, const std::string& obstacle = "");
+
 }  // namespace railvsi

@@ -43,6 +43,16 @@ ordered_json warnings_json(const std::vector<RunWarning>& warnings) {
   return out;
 }
 
+namespace {
+
+ordered_json ignores_json(const std::vector<FidelityRecord::Ignored>& ignores) {
+  ordered_json out = ordered_json::array();
+  for (const auto& i : ignores) out.push_back({{"what", i.what}, {"why", i.why}});
+  return out;
+}
+
+}  // namespace
+
 ordered_json fidelity_json(const FidelityRecord& s) {
   return {{"model", s.model},
           {"contact_law", s.contact_law},
@@ -54,7 +64,15 @@ ordered_json fidelity_json(const FidelityRecord& s) {
           {"contacts", s.contacts},
           {"hht_alpha", number(s.hht_alpha)},
           {"hht_beta", number(s.hht_beta)},
-          {"hht_gamma", number(s.hht_gamma)}};
+          {"hht_gamma", number(s.hht_gamma)},
+          {"rung", s.rung},
+          {"chosen_by", s.chosen_by},
+          {"dt_s", number(s.dt_s)},
+          {"modes", s.modes},
+          {"modal_cutoff_hz", s.modes > 0 ? number(s.modal_cutoff_hz) : ordered_json(nullptr)},
+          {"reasons", s.reasons},
+          {"ignores", ignores_json(s.ignores)},
+          {"escalation", s.escalation.empty() ? ordered_json(nullptr) : ordered_json(s.escalation)}};
 }
 
 ordered_json summary_json(const Result& result, bool moving_forces) {

@@ -49,6 +49,11 @@ void add_work_options(CLI::App* command, ServiceArgs& a) {
                       "How long to retry a database that refuses claims (disk full, locked) before exiting 1")
       ->capture_default_str()
       ->check(finite_in(1.0, 86400.0));
+  command->add_option("--batch", a.batch,
+                      "Modal moving-force jobs of one structure and train claimed, run and stored together "
+                      "(1: one by one; the results are the same bits)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
 }
 
 void add_submit_options(CLI::App* command, ServiceArgs& a) {

@@ -19,6 +19,7 @@ struct ServiceArgs {
   int max_attempts = 3;
   double cache_mb = 2048.0;
   double db_retry_s = 300.0;
+  int batch = 256;  // modal jobs claimed, run and stored together
   bool allow_large = false;
   std::string format = "table";
   std::optional<std::string> train, irregularity;

@@ -11,6 +11,8 @@
 #include "planning/time_step_warnings.hpp"
 #include "simulation/simulation.hpp"
 #include "study/deck_frequencies.hpp"
+#include "study/scene_plan.hpp"
+#include "workers/rung_runner.hpp"
 
 namespace railvsi::cli {
 namespace {
@@ -20,17 +22,16 @@ namespace {
 // floor of 30 Hz, which can only make the dt check more lenient.
 constexpr int kMaxDofsForModes = 20000;
 
-double code_cutoff_of(const Scene& scene, std::vector<RunWarning>& warnings) {
-  if (scene.structure->num_dofs() <= kMaxDofsForModes) {
-    const scheduler::DeckFrequencies f = scheduler::deck_frequencies(*scene.structure);
-    return code_cutoff_hz(f.f0_hz, f.f3_hz);
-  }
+// The deck frequencies, for the code frequency and the planner; zero (not
+// known) for a structure too large for a quick modal analysis.
+scheduler::DeckFrequencies frequencies_of(const Scene& scene, std::vector<RunWarning>& warnings) {
+  if (scene.structure->num_dofs() <= kMaxDofsForModes) return scheduler::deck_frequencies(*scene.structure);
   warnings.push_back({"cutoff_not_computed",
                       fmt::format("the structure has {} DOFs: its deck frequencies were not computed, the time-step "
                                   "checks use the code frequency's floor of 30 Hz",
                                   scene.structure->num_dofs()),
                       std::nullopt, std::nullopt, std::nullopt});
-  return code_cutoff_hz(0.0, 0.0);
+  return {};
 }
 
 }  // namespace
@@ -38,19 +39,30 @@ double code_cutoff_of(const Scene& scene, std::vector<RunWarning>& warnings) {
 int run_scene(Scene scene, const std::string& file_for_errors, std::optional<double> cutoff_hz,
               const std::optional<std::string>& histories_dir, bool allow_large) {
   scene.analysis.allow_large_run = allow_large;
+  std::vector<RunWarning> extra;
+  const bool need_frequencies = !cutoff_hz || scene.fidelity.mode != FidelityRequest::Mode::kAsGiven;
+  const scheduler::DeckFrequencies f = need_frequencies ? frequencies_of(scene, extra) : scheduler::DeckFrequencies{};
+  const double cutoff = cutoff_hz ? *cutoff_hz : code_cutoff_hz(f.f0_hz, f.f3_hz);
   // Setup problems the engine finds (a mechanism, a train its wheels cannot
   // carry, a run too large) are input errors of this scene.
-  const Simulation simulation = [&] {
+  Result result = [&] {
     try {
-      return Simulation(scene);
+      const scheduler::ScenePlan plan = scheduler::plan_scene(scene, f);
+      scheduler::RungModels models;
+      models.fe_operator = [](const Scene& s) { return make_structure_operator(s); };
+      models.modal_basis = [&](double modal_cutoff_hz) {
+        ModalBasisOptions o;
+        o.max_frequency_hz = modal_cutoff_hz;
+        return std::make_shared<const ModalBasis>(scene.structure, o);
+      };
+      return scheduler::run_at_rung(scene, plan, models);
     } catch (const InputError& e) {
       throw e.with_file(file_for_errors);
     }
   }();
-  Result result = simulation.run();
-  std::vector<RunWarning> extra;
-  const double cutoff = cutoff_hz ? *cutoff_hz : code_cutoff_of(scene, extra);
-  for (RunWarning& w : time_step_warnings(scene, cutoff)) extra.push_back(std::move(w));
+  // The time-step policy is the FE rung's (HHT period error): the modal rung's dt only samples.
+  if (result.summary.fidelity.modes == 0)
+    for (RunWarning& w : time_step_warnings(scene, cutoff)) extra.push_back(std::move(w));
   for (RunWarning& w : extra) result.summary.warnings.push_back(std::move(w));
   const RunFrame frame = run_frame(scene, cutoff);
   if (histories_dir) write_run_histories(result.histories, frame, *histories_dir);

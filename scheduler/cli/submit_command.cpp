@@ -42,6 +42,7 @@ scheduler::WorkSummary work(const ServiceArgs& args) {
   options.lease_s = args.lease_s;
   options.cache_budget_bytes = static_cast<std::size_t>(args.cache_mb * 1024.0 * 1024.0);
   options.db_retry_s = args.db_retry_s;
+  options.max_batch_jobs = static_cast<std::size_t>(args.batch);
   ProgressDisplay display(::isatty(STDERR_FILENO) == 1);
   const scheduler::WorkSummary s = scheduler::run_workers(
       options, [&](const scheduler::StateCounts& c, double elapsed_s, bool final) { display.update(c, elapsed_s, final); });

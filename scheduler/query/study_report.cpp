@@ -116,6 +116,56 @@ std::vector<SeededValue> seeded_values(const std::vector<JobResult>& jobs, const
   return rows;
 }
 
+// Text (already terminal-safe) in lines of at most kTableWidth, each
+// starting with indent.
+std::string wrapped(const std::string& text, const std::string& indent) {
+  std::string out, line = indent;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    if (line.size() > indent.size() && line.size() + 1 + word.size() > kTableWidth) {
+      out += table_line(line);
+      line = indent;
+    }
+    line += (line.size() > indent.size() ? " " : "") + word;
+    start = end + 1;
+  }
+  return out + table_line(line);
+}
+
+// Which rungs ran, with their modes, dt and who chose them, and what each
+// ignores and why (once per rung): the fidelity records of the jobs.
+std::string fidelity_block(const std::vector<JobResult>& jobs) {
+  std::map<std::string, std::int64_t> rungs;
+  std::map<std::string, std::string> ignores;
+  for (const JobResult& j : jobs) {
+    if (j.fidelity.empty()) continue;
+    const nlohmann::json f = nlohmann::json::parse(j.fidelity);
+    const std::string rung = f.value("rung", std::string());
+    if (rung.empty()) continue;
+    const int modes = f.value("modes", 0);
+    std::string line = rung;
+    if (modes > 0) line += fmt::format(", {} modes to {:.1f} Hz", modes, f.value("modal_cutoff_hz", 0.0));
+    line += fmt::format(", dt {:.3g} s, chosen by {}", f.value("dt_s", 0.0), f.value("chosen_by", std::string()));
+    if (f.contains("escalation") && f.at("escalation").is_string()) line += ", escalated to unilateral Hertz";
+    ++rungs[line];
+    std::string& why = ignores[rung];
+    if (why.empty() && f.contains("ignores"))
+      for (const auto& i : f.at("ignores"))
+        why += wrapped(fmt::format("ignores {}: {}", terminal_safe(i.value("what", std::string())),
+                                   terminal_safe(i.value("why", std::string()))),
+                       "    ");
+  }
+  if (rungs.empty()) return "";
+  std::string out = "\nfidelity (rung, modes, dt, chosen by: jobs; the reasons: --format json):\n";
+  for (const auto& [line, n] : rungs) out += table_line(fmt::format("{}: {} jobs", terminal_safe(line), n));
+  for (const auto& [rung, why] : ignores)
+    if (!why.empty()) out += table_line("  " + terminal_safe(rung)) + why;
+  return out;
+}
+
 std::map<std::string, std::string> family_labels(const std::vector<JobResult>& jobs) {
   std::map<std::string, std::string> labels;
   for (const JobResult& j : jobs)
@@ -243,6 +293,7 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
                                   "qty", "profile", "n", "governs", "km/h", "mean", "std", "extreme"));
     out += block;
   }
+  out += fidelity_block(jobs);
   return out;
 }
 

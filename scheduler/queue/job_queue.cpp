@@ -37,7 +37,7 @@ std::size_t insert_study_jobs(Database& db, const std::string& study_id, const s
   std::size_t new_jobs = 0;
   Statement insert_job = db.prepare(
       "INSERT OR IGNORE INTO jobs (id, scene, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
-      "cutoff_hz, max_attempts, enqueued_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "cutoff_hz, max_attempts, enqueued_at, rung) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   Statement link = db.prepare("INSERT OR IGNORE INTO study_jobs (study_id, job_id, position) VALUES (?, ?, ?)");
   std::int64_t position = first_position;
   for (const JobSpec& j : jobs) {
@@ -52,6 +52,7 @@ std::size_t insert_study_jobs(Database& db, const std::string& study_id, const s
         .bind(9, j.cutoff_hz)
         .bind(10, max_attempts)
         .bind(11, now)
+        .bind(12, j.rung.empty() ? SqlValue(Null{}) : SqlValue(j.rung))
         .run();
     new_jobs += static_cast<std::size_t>(db.changes());
     link.bind(1, study_id).bind(2, j.id).bind(3, position++).run();
@@ -75,15 +76,55 @@ std::optional<ClaimedJob> JobQueue::claim_row(const std::string& id, double now_
       .bind(4, id)
       .run();
   Statement s = db_.prepare(
-      "SELECT id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts FROM jobs WHERE id = ?");
+      "SELECT id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts, coalesce(rung, '') "
+      "FROM jobs WHERE id = ?");
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
   return ClaimedJob{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5), s.real(6), s.real(7),
-                    static_cast<int>(s.int64(8))};
+                    static_cast<int>(s.int64(8)), s.text(9)};
+}
+
+std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, std::size_t max_jobs) {
+  std::vector<ClaimedJob> batch;
+  Transaction tx(db_);
+  std::optional<ClaimedJob> first = claim_in_transaction(preferred_key);
+  if (first) {
+    // Modal moving-force jobs of the same structure, dt and train run in
+    // one pass; every job of the batch is leased like a single claim.
+    if (first->rung == kBatchedRung && max_jobs > 1) {
+      // One statement claims the rest, as claim_row each.
+      const double now = unix_now_s();
+      Statement s = db_.prepare(
+          "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker = ?, lease_expires = ?, started_at = ? "
+          "WHERE id IN (SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? AND train = ? AND rung = ? "
+          "LIMIT ?) RETURNING id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts, rung");
+      s.bind(1, worker_)
+          .bind(2, now + lease_s_)
+          .bind(3, now)
+          .bind(4, first->operator_key)
+          .bind(5, first->train)
+          .bind(6, first->rung)
+          .bind(7, static_cast<std::int64_t>(max_jobs - 1));
+      batch.push_back(std::move(*first));
+      while (s.step())
+        batch.push_back(ClaimedJob{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5), s.real(6),
+                                   s.real(7), static_cast<int>(s.int64(8)), s.text(9)});
+    } else {
+      batch.push_back(std::move(*first));
+    }
+  }
+  tx.commit();
+  return batch;
 }
 
 std::optional<ClaimedJob> JobQueue::claim(const std::string& preferred_key) {
   Transaction tx(db_);
+  std::optional<ClaimedJob> job = claim_in_transaction(preferred_key);
+  tx.commit();
+  return job;
+}
+
+std::optional<ClaimedJob> JobQueue::claim_in_transaction(const std::string& preferred_key) {
   const double now = unix_now_s();
   std::string id;
   if (!preferred_key.empty()) {
@@ -113,48 +154,95 @@ std::optional<ClaimedJob> JobQueue::claim(const std::string& preferred_key) {
   }
   std::optional<ClaimedJob> job;
   if (!id.empty()) job = claim_row(id, now);
-  tx.commit();
   return job;
 }
 
-bool JobQueue::renew(const std::string& job_id) {
+bool JobQueue::renew(const std::string& job_id) { return renew(std::vector<std::string>{job_id}) == 1; }
+
+std::size_t JobQueue::renew(const std::vector<std::string>& job_ids) {
   const double now = unix_now_s();
   Transaction tx(db_);
-  db_.prepare("UPDATE jobs SET lease_expires = ? WHERE id = ? AND state = 'running' AND worker = ?")
-      .bind(1, now + lease_s_)
-      .bind(2, job_id)
-      .bind(3, worker_)
-      .run();
-  const bool held = db_.changes() > 0;
+  Statement update = db_.prepare("UPDATE jobs SET lease_expires = ? WHERE id = ? AND state = 'running' AND worker = ?");
+  std::size_t held = 0;
+  for (const std::string& id : job_ids) {
+    update.bind(1, now + lease_s_).bind(2, id).bind(3, worker_).run();
+    held += static_cast<std::size_t>(db_.changes());
+  }
   tx.commit();
   return held;
 }
 
 namespace {
 
-bool still_ours(Database& db, const ClaimedJob& job, const std::string& worker) {
-  Statement s = db.prepare("SELECT state, worker FROM jobs WHERE id = ?");
+bool still_ours(Statement& s, const ClaimedJob& job, const std::string& worker) {
+  s.reset();
   if (!s.bind(1, job.id).step()) return false;
   return s.text(0) == "running" && s.text(1) == worker;
 }
 
+bool still_ours(Database& db, const ClaimedJob& job, const std::string& worker) {
+  Statement s = db.prepare("SELECT state, worker FROM jobs WHERE id = ?");
+  return still_ours(s, job, worker);
+}
+
+// What completing a job runs, prepared once per transaction (a batch
+// completes many jobs in one).
+struct CompleteStatements {
+  explicit CompleteStatements(Database& db)
+      : owner(db.prepare("SELECT state, worker FROM jobs WHERE id = ?")),
+        insert(db.prepare("INSERT INTO envelopes (job_id, quantity, location, value) VALUES (?, ?, ?, ?)")),
+        update(db.prepare(
+            "UPDATE jobs SET state = ?, status = ?, error = ?, fidelity = ?, steps = ?, wall_s = ?, loop_s = ?, "
+            "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ?, warnings = ? WHERE id = ?")),
+        // WHERE true: SQLite's upsert after INSERT ... SELECT needs a WHERE clause.
+        stats(db.prepare(
+            "INSERT INTO cache_stats (study_id, jobs, factorizations, hits, factorization_s, evictions) "
+            "SELECT study_id, 1, ?, ?, ?, ? FROM study_jobs WHERE job_id = ? "
+            "ON CONFLICT (study_id) DO UPDATE SET jobs = jobs + 1, "
+            "factorizations = factorizations + excluded.factorizations, hits = hits + excluded.hits, "
+            "factorization_s = factorization_s + excluded.factorization_s, evictions = evictions + excluded.evictions")) {}
+  Statement owner, insert, update, stats;
+};
+
+// complete() of one job with prepared statements; false when the job is no longer `worker`'s.
+bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::string& worker, CompleteStatements& st);
 }  // namespace
 
 bool JobQueue::complete(const ClaimedJob& job, const JobOutcome& outcome) {
   Transaction tx(db_);
-  if (!still_ours(db_, job, worker_)) return false;
+  const bool stored = complete_in_transaction(job, outcome);
+  tx.commit();
+  return stored;
+}
+
+std::vector<bool> JobQueue::complete_batch(const std::vector<ClaimedJob>& jobs, const std::vector<JobOutcome>& outcomes) {
+  if (jobs.size() != outcomes.size()) throw std::logic_error("complete_batch: one outcome per job");
+  Transaction tx(db_);
+  CompleteStatements statements(db_);
+  std::vector<bool> stored;
+  for (std::size_t i = 0; i < jobs.size(); ++i) stored.push_back(complete_one(jobs[i], outcomes[i], worker_, statements));
+  tx.commit();
+  return stored;
+}
+
+bool JobQueue::complete_in_transaction(const ClaimedJob& job, const JobOutcome& outcome) {
+  CompleteStatements statements(db_);
+  return complete_one(job, outcome, worker_, statements);
+}
+
+namespace {
+
+bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::string& worker, CompleteStatements& st) {
+  if (!still_ours(st.owner, job, worker)) return false;
   if (outcome.ok) {
-    Statement insert = db_.prepare("INSERT INTO envelopes (job_id, quantity, location, value) VALUES (?, ?, ?, ?)");
     for (const EnvelopeRow& e : outcome.envelopes) {
-      insert.bind(1, job.id).bind(2, e.quantity).bind(3, e.location);
-      if (e.value) insert.bind(4, *e.value);
-      else insert.bind_null(4);
-      insert.run();
+      st.insert.bind(1, job.id).bind(2, e.quantity).bind(3, e.location);
+      if (e.value) st.insert.bind(4, *e.value);
+      else st.insert.bind_null(4);
+      st.insert.run();
     }
   }
-  db_.prepare("UPDATE jobs SET state = ?, status = ?, error = ?, fidelity = ?, steps = ?, wall_s = ?, loop_s = ?, "
-              "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ?, warnings = ? WHERE id = ?")
-      .bind(1, outcome.ok ? "done" : "failed")
+  st.update.bind(1, outcome.ok ? "done" : "failed")
       .bind(2, outcome.status)
       .bind(3, outcome.ok ? SqlValue(Null{}) : SqlValue(outcome.error))
       .bind(4, outcome.fidelity)
@@ -167,21 +255,16 @@ bool JobQueue::complete(const ClaimedJob& job, const JobOutcome& outcome) {
       .bind(11, outcome.warnings)
       .bind(12, job.id)
       .run();
-  // WHERE true: SQLite's upsert after INSERT ... SELECT needs a WHERE clause.
-  db_.prepare("INSERT INTO cache_stats (study_id, jobs, factorizations, hits, factorization_s, evictions) "
-              "SELECT study_id, 1, ?, ?, ?, ? FROM study_jobs WHERE job_id = ? "
-              "ON CONFLICT (study_id) DO UPDATE SET jobs = jobs + 1, "
-              "factorizations = factorizations + excluded.factorizations, hits = hits + excluded.hits, "
-              "factorization_s = factorization_s + excluded.factorization_s, evictions = evictions + excluded.evictions")
-      .bind(1, outcome.factorized ? 1 : 0)
+  st.stats.bind(1, outcome.factorized ? 1 : 0)
       .bind(2, outcome.factorized ? 0 : 1)
       .bind(3, outcome.factorization_s)
       .bind(4, outcome.evictions)
       .bind(5, job.id)
       .run();
-  tx.commit();
   return true;
 }
+
+}  // namespace
 
 bool JobQueue::release_after_error(const ClaimedJob& job, const std::string& error) {
   Transaction tx(db_);

@@ -47,7 +47,11 @@ struct ClaimedJob {
   double dt_s = 0.0;
   double cutoff_hz = 0.0;
   int attempt = 0;  // 1 for the first claim
+  std::string rung;  // planned at submission; empty for older jobs
 };
+
+// Jobs on this rung are claimed and run in batches (claim_batch).
+inline constexpr const char* kBatchedRung = "moving_forces/modal";
 
 // What a finished run leaves in the database.
 struct JobOutcome {
@@ -78,12 +82,23 @@ class JobQueue {
   // A job whose lease has expired more than max_attempts times ends
   // 'failed'. Prefers jobs with preferred_key (their factor is cached).
   std::optional<ClaimedJob> claim(const std::string& preferred_key = {});
+  // One claim as above and, when that job is on kBatchedRung, up to
+  // max_jobs - 1 more queued jobs of the same operator key (structure, dt)
+  // and train, all in one transaction, each leased as a single claim:
+  // complete_batch stores them in one transaction; a worker that dies
+  // leaves them all to expire and return.
+  std::vector<ClaimedJob> claim_batch(const std::string& preferred_key, std::size_t max_jobs);
   // Renews the lease of the job if this worker still holds it; false when
   // it does not (taken over after an expired lease, or cancelled).
   bool renew(const std::string& job_id);
+  // The same for several jobs in one transaction; returns how many are still held.
+  std::size_t renew(const std::vector<std::string>& job_ids);
   // false (and nothing stored) when the job is no longer this worker's:
   // its lease expired and another worker took it, or it was cancelled.
   bool complete(const ClaimedJob& job, const JobOutcome& outcome);
+  // complete() of each job (outcomes[i] for jobs[i]) in one transaction;
+  // per job, whether it was stored.
+  std::vector<bool> complete_batch(const std::vector<ClaimedJob>& jobs, const std::vector<JobOutcome>& outcomes);
   // A transient failure (an exception that is not the scene's fault): the
   // job returns to the queue while it has attempts left, else ends 'failed'.
   bool release_after_error(const ClaimedJob& job, const std::string& error);
@@ -92,6 +107,8 @@ class JobQueue {
 
  private:
   std::optional<ClaimedJob> claim_row(const std::string& id, double now_s);
+  std::optional<ClaimedJob> claim_in_transaction(const std::string& preferred_key);
+  bool complete_in_transaction(const ClaimedJob& job, const JobOutcome& outcome);
   Database& db_;
   std::string worker_;
   double lease_s_;

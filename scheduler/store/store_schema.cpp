@@ -118,6 +118,11 @@ CREATE TABLE merged_shards (          -- in a store written by vsi merge: the sh
   PRIMARY KEY (study_id, shard_index)
 ) WITHOUT ROWID;
 )sql"},
+      {"jobs.rung: the rung planned at submission (moving_forces/modal, interaction/fe, ...); modal jobs of one "
+       "structure and train are claimed as one batch",
+       R"sql(
+ALTER TABLE jobs ADD COLUMN rung TEXT;  -- NULL for jobs submitted before the planner: FE as their analysis says
+)sql"},
   };
   return all;
 }

@@ -47,4 +47,20 @@ std::string operator_key(const std::string& structure_hash, const AnalysisOption
                                 analysis.hht.gamma, rail_flexibility ? 1 : 0, modal));
 }
 
+std::string modal_operator_key(const std::string& structure_hash, const StructureModel& structure, double cutoff_hz,
+                               double dt_s) {
+  Sha256 h;
+  h.update(fmt::format("railvsi modal v1|{}|cutoff={:a}|dt={:a}", structure_hash, cutoff_hz, dt_s));
+  for (const RailLine& r : structure.rails()) {
+    const std::int64_t n[2] = {static_cast<std::int64_t>(r.x_m.size()), static_cast<std::int64_t>(r.element_dofs.size())};
+    h.update(n, sizeof n);
+    h.update(r.x_m.data(), sizeof(double) * r.x_m.size());
+    for (const auto& e : r.element_dofs) h.update(e.data(), sizeof(int) * e.size());
+  }
+  for (const OutputPoint& o : structure.outputs()) {
+    h.update(fmt::format("|{}:{}|{:a}|{}", o.name.size(), o.name, o.x_m, o.dof));
+  }
+  return h.hex_digest();
+}
+
 }  // namespace railvsi::scheduler

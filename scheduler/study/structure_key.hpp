@@ -18,4 +18,11 @@ std::string structure_model_hash(const StructureModel& structure);
 // whether the rail flexibility block is needed (multibody trains).
 std::string operator_key(const std::string& structure_hash, const AnalysisOptions& analysis, bool rail_flexibility);
 
+// The key of a modal basis and the pass built on it (modal moving forces):
+// the structure hash, its rail lines (node x and element DOFs) and output
+// points (name, x, DOF), which the run reads from the basis's structure,
+// the modal cut-off and dt.
+std::string modal_operator_key(const std::string& structure_hash, const StructureModel& structure, double cutoff_hz,
+                               double dt_s);
+
 }  // namespace railvsi::scheduler

@@ -14,7 +14,10 @@
 #include "study/canonical_json.hpp"
 #include "envelopes/code_filter.hpp"
 #include "planning/time_step_policy.hpp"
+#include "analysis/modal_moving_forces.hpp"
+#include "planning/effects_planner.hpp"
 #include "study/deck_frequencies.hpp"
+#include "study/scene_plan.hpp"
 #include "study/speed_list.hpp"
 #include "study/structure_key.hpp"
 #include "study/study_plan.hpp"
@@ -131,17 +134,41 @@ struct TrainFacts {
   bool rail_flexibility = false;
   std::shared_ptr<const StructureModel> structure;
   Scene first_scene;
+  EffectsPlan plan;             // the rung of this train's jobs
+  nlohmann::json fidelity;      // what the job scenes say of it (null: the study's own)
 };
+
+// What the study asks of its jobs, from its checks: the deck always; wheel
+// unloading and comfort when a check needs them; with no checks at all,
+// what the train can give.
+StudyAsks study_asks(const json& doc, bool load_model) {
+  StudyAsks a;
+  if (!doc.contains("checks") || doc.at("checks").empty()) {
+    a.wheel_unloading = a.comfort = !load_model;
+    return a;
+  }
+  const json& c = doc.at("checks");
+  a.wheel_unloading = c.contains("max_unloading_ratio");
+  a.comfort = c.contains("carbody_acceleration_limit_mps2") || c.contains("comfort_level");
+  return a;
+}
 
 struct JobTimeStep {
   double dt_s = 0.0;
   std::string reason;
 };
 
-// The study's dt_s, else the policy's rung of the ladder for this train,
+// The study's dt_s, else on the modal rung the sampling step of the code
+// frequency, else the policy's rung of the ladder for this train,
 // structure and speed.
-JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequencies& f) {
+JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequencies& f, const EffectsPlan& plan) {
   if (dt_given) return {scene.analysis.dt_s, "given in the study (analysis.dt_s)"};
+  if (plan.rung.structure == "modal") {
+    const double dt = modal_time_step_s(plan.code_frequency_hz, scene.fidelity.tolerance);
+    return {dt, fmt::format("modal rung (exact recurrence: dt samples the load and output only): the peak at the code "
+                            "frequency {:.1f} Hz sampled within the tolerance {:g} needs {:.3e} s",
+                            plan.code_frequency_hz, scene.fidelity.tolerance, dt)};
+  }
   TimeStepPolicy policy;
   policy.hht = scene.analysis.hht;
   const TimeStepChoice c = choose_time_step(*scene.structure, scene.train, scene.speed_mps, scene.analysis.contact,
@@ -190,6 +217,10 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   absolute_file_names(base["structure"], profiles, base_dir);
   base["analysis"] = doc.at("analysis");
   if (doc.contains("outputs")) base["outputs"] = doc.at("outputs");
+  if (doc.contains("accuracy")) base["accuracy"] = doc.at("accuracy");
+  // Fidelity "auto" (the default): the planner pins each train's rung in its jobs.
+  const bool auto_fidelity = !doc.contains("fidelity") || doc.at("fidelity").is_string();
+  if (!auto_fidelity) base["fidelity"] = doc.at("fidelity");
   const auto scene_doc = [&](const json& train, double speed_kmh, const json& profile, double dt_s) {
     json scene = base;
     scene["train"] = train;
@@ -213,6 +244,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   std::vector<TrainFacts> facts(trains.size());
   std::map<std::string, DeckFrequencies> frequencies_of_structure;
   std::map<std::string, std::shared_ptr<const StructureOperator>> operators;
+  std::map<std::string, int> modes_of_structure;
   for (std::size_t i = 0; i < trains.size(); ++i) {
     const std::string train_path = child_path("/trains", i);
     TrainFacts& f = facts[i];
@@ -225,13 +257,36 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     if (fresh) it->second = deck_frequencies(*f.structure);
     f.frequencies = it->second;
     f.cutoff_hz = code_cutoff_hz(f.frequencies.f0_hz, f.frequencies.f3_hz);
+    if (auto_fidelity) {
+      const double modal_cutoff_hz = kModalCutoffMargin * f.cutoff_hz;
+      auto [m, counted] = modes_of_structure.try_emplace(f.structure_hash, -1);
+      if (counted && f.frequencies.f0_hz > 0.0 && f.frequencies.f3_hz > 0.0)
+        m->second = count_modes(f.structure, modal_cutoff_hz);
+      f.plan = plan_effects(planner_input(f.first_scene, study_asks(doc, f.first_scene.train.is_moving_forces()),
+                                          f.frequencies, m->second));
+      f.fidelity = pinned_fidelity_json(f.plan);
+    } else {
+      const ScenePlan pinned = plan_scene(f.first_scene, f.frequencies);
+      f.plan.rung = pinned.rung;
+      f.plan.code_frequency_hz = f.cutoff_hz;
+      f.plan.modal_cutoff_hz = pinned.modal_cutoff_hz;
+    }
     Scene dry = f.first_scene;
-    const JobTimeStep first_dt = job_time_step(dt_given, dry, f.frequencies);
+    const JobTimeStep first_dt = job_time_step(dt_given, dry, f.frequencies, f.plan);
     dry.analysis.dt_s = first_dt.dt_s;
     try {
-      auto& op = operators[operator_key(f.structure_hash, dry.analysis, f.rail_flexibility)];
-      if (!op) op = make_structure_operator(dry);
-      const Simulation setup(dry, op);
+      if (f.plan.rung.structure == "modal") {
+        // The modal rung's setup: its modes and the train on its rails.
+        ModalBasisOptions mo;
+        mo.max_frequency_hz = f.plan.modal_cutoff_hz;
+        const ModalBasis basis(f.structure, mo);
+        const ModalSweep sweep(basis, dry.train, dry.analysis.contact.rail_lines, dry.analysis.dt_s);
+        (void)modal_run_steps(dry);
+      } else {
+        auto& op = operators[operator_key(f.structure_hash, dry.analysis, f.rail_flexibility)];
+        if (!op) op = make_structure_operator(dry);
+        const Simulation setup(dry, op);
+      }
     } catch (const InputError& e) {
       throw in_study(e.with_file(file), file, train_path, profiles.front().path);
     }
@@ -251,12 +306,19 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     for (double speed_kmh : speeds) {
       Scene at_speed = f.first_scene;
       at_speed.speed_mps = speed_kmh / 3.6;
-      const JobTimeStep dt = job_time_step(dt_given, at_speed, f.frequencies);
+      const JobTimeStep dt = job_time_step(dt_given, at_speed, f.frequencies, f.plan);
       at_speed.analysis.dt_s = dt.dt_s;
-      const std::string key = operator_key(f.structure_hash, at_speed.analysis, f.rail_flexibility);
+      const bool modal = f.plan.rung.structure == "modal";
+      const std::string key =
+          modal ? modal_operator_key(f.structure_hash, *f.structure, f.plan.modal_cutoff_hz, dt.dt_s)
+                : operator_key(f.structure_hash, at_speed.analysis, f.rail_flexibility);
       for (const Profile& p : profiles) {
         JobSpec job;
-        job.scene = canonical_text(scene_doc(trains[i], speed_kmh, p.value, dt.dt_s));
+        json scene = scene_doc(trains[i], speed_kmh, p.value, dt.dt_s);
+        if (auto_fidelity) scene["fidelity"] = f.fidelity;
+        else if (modal && !scene["fidelity"].contains("modal_cutoff_hz"))
+          scene["fidelity"]["modal_cutoff_hz"] = f.plan.modal_cutoff_hz;  // the job runs without the frequencies
+        job.scene = canonical_text(scene);
         job.id = sha256_hex(job.scene);
         if (!ids.insert(job.id).second) continue;  // the same scene listed twice is one job
         job.train = train_labels[i];
@@ -266,6 +328,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
         job.dt_s = dt.dt_s;
         job.dt_reason = dt.reason;
         job.cutoff_hz = f.cutoff_hz;
+        job.rung = f.plan.rung.name();
         plan.jobs.push_back(std::move(job));
       }
     }

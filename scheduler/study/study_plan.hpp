@@ -24,6 +24,7 @@ struct JobSpec {
   double dt_s = 0.0;
   std::string dt_reason;
   double cutoff_hz = 0.0;  // deck acceleration low-pass cut-off of the code
+  std::string rung;        // the planned rung (Rung::name()), e.g. "moving_forces/modal"
 };
 
 struct StudyPlan {

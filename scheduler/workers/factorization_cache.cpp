@@ -24,40 +24,52 @@ int FactorizationCache::evict_to_fit(std::size_t incoming_bytes) {
 
 CacheLookup FactorizationCache::get(const std::string& key,
                                     const std::function<std::shared_ptr<const StructureOperator>()>& build) {
+  const Lookup l = lookup(key, [&] { return Model{build(), nullptr}; });
+  return {l.model.op, l.built, l.build_s, l.evictions};
+}
+
+BasisLookup FactorizationCache::get_basis(const std::string& key,
+                                          const std::function<std::shared_ptr<const ModalBasis>()>& build) {
+  const Lookup l = lookup(key, [&] { return Model{nullptr, build()}; });
+  return {l.model.basis, l.built, l.build_s, l.evictions};
+}
+
+FactorizationCache::Lookup FactorizationCache::lookup(const std::string& key, const std::function<Model()>& build) {
   std::unique_lock lock(mutex_);
   for (;;) {
     if (const auto it = entries_.find(key); it != entries_.end()) {
       lru_.splice(lru_.begin(), lru_, it->second.lru);
       ++stats_.hits;
-      return {it->second.op, false, 0.0, 0};
+      return {it->second.model, false, 0.0, 0};
     }
     if (!building_.count(key)) break;
-    built_.wait(lock);  // another thread factorizes this key
+    built_.wait(lock);  // another thread builds this key
   }
   building_.insert(key);
   lock.unlock();
-  CacheLookup result;
+  Lookup result;
   const auto start = std::chrono::steady_clock::now();
   try {
-    result.op = build();
+    result.model = build();
   } catch (...) {
     lock.lock();
     building_.erase(key);
     built_.notify_all();
     throw;
   }
-  result.factorized = true;
-  result.factorization_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const std::size_t bytes = estimated_bytes(*result.op);
+  result.built = true;
+  result.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::size_t bytes =
+      result.model.op ? estimated_bytes(*result.model.op) : (result.model.basis ? result.model.basis->memory_bytes() : 0);
   lock.lock();
   building_.erase(key);
   ++stats_.factorizations;
-  stats_.factorization_s += result.factorization_s;
+  stats_.factorization_s += result.build_s;
   result.evictions = evict_to_fit(bytes);
-  // An operator larger than the whole budget is used but not kept.
+  // A model larger than the whole budget is used but not kept.
   if (bytes <= budget_bytes_) {
     lru_.push_front(key);
-    entries_[key] = Entry{result.op, bytes, lru_.begin()};
+    entries_[key] = Entry{result.model, bytes, lru_.begin()};
     used_bytes_ += bytes;
   }
   built_.notify_all();

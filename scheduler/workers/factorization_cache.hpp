@@ -16,6 +16,7 @@
 #include <set>
 #include <string>
 
+#include "solver/modal_basis.hpp"
 #include "solver/structure_operator.hpp"
 
 namespace railvsi::scheduler {
@@ -34,6 +35,15 @@ struct CacheLookup {
   int evictions = 0;        // entries dropped to make room for it
 };
 
+// The modal rung's counterpart of an operator: the structure's modes up to
+// a cut-off, shared by every job on that structure (keyed like an operator).
+struct BasisLookup {
+  std::shared_ptr<const ModalBasis> basis;
+  bool built = false;  // this call computed the modes
+  double build_s = 0.0;
+  int evictions = 0;
+};
+
 class FactorizationCache {
  public:
   explicit FactorizationCache(std::size_t budget_bytes = std::size_t{2} << 30);
@@ -41,6 +51,9 @@ class FactorizationCache {
   // The operator of `key`, built by `build` when absent (exceptions of
   // build propagate to this caller; a waiting caller then builds itself).
   CacheLookup get(const std::string& key, const std::function<std::shared_ptr<const StructureOperator>()>& build);
+  // The same for a modal basis, sized by ModalBasis::memory_bytes(); bases
+  // and operators share the budget and the LRU order.
+  BasisLookup get_basis(const std::string& key, const std::function<std::shared_ptr<const ModalBasis>()>& build);
   CacheStats stats() const;
 
   // Estimated memory of an operator (StructureOperator::memory_bytes: the
@@ -48,11 +61,23 @@ class FactorizationCache {
   static std::size_t estimated_bytes(const StructureOperator& op);
 
  private:
-  struct Entry {
+  // One of the two is set.
+  struct Model {
     std::shared_ptr<const StructureOperator> op;
+    std::shared_ptr<const ModalBasis> basis;
+  };
+  struct Entry {
+    Model model;
     std::size_t bytes = 0;
     std::list<std::string>::iterator lru;
   };
+  struct Lookup {
+    Model model;
+    bool built = false;
+    double build_s = 0.0;
+    int evictions = 0;
+  };
+  Lookup lookup(const std::string& key, const std::function<Model()>& build);
   int evict_to_fit(std::size_t incoming_bytes);  // with mutex_ held
 
   std::size_t budget_bytes_;

@@ -1,57 +1,246 @@
 #include "workers/job_runner.hpp"
 
 #include <chrono>
+#include <cstdlib>
+#include <optional>
+#include <string_view>
 
+#include <fmt/format.h>
+
+#include "analysis/modal_moving_forces.hpp"
+#include "analysis/modal_sweep.hpp"
 #include "core/input_error.hpp"
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "simulation/simulation.hpp"
+#include "envelopes/code_filter.hpp"
 #include "envelopes/envelope_rows.hpp"
 #include "envelopes/job_envelopes.hpp"
 #include "planning/time_step_warnings.hpp"
 #include "summary/summary_json.hpp"
+#include "workers/rung_runner.hpp"
 
 namespace railvsi::scheduler {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::string job_name(const ClaimedJob& job) { return "job " + job.id.substr(0, 12); }
+
+// File names in a job are absolute (made so at submission).
+Scene parse_job_scene(const ClaimedJob& job) {
+  const std::string name = job_name(job);
+  return parse_scene(parse_json_text(job.scene, name), "/", name);
+}
+
+// The outcome's record of a run and its envelopes; fidelity_text: the
+// fidelity record's JSON when the caller has it already.
+void store_run(const RunSummary& s, const JobEnvelopes& envelopes, const std::string& run_message, JobOutcome& out,
+               const std::string* fidelity_text = nullptr) {
+  out.warnings = warnings_json(s.warnings).dump();
+  out.fidelity = fidelity_text ? *fidelity_text : fidelity_json(s.fidelity).dump();
+  out.steps = s.steps;
+  // The envelopes may find what the run did not report (a non-finite value).
+  out.status = envelopes.status;
+  if (!envelopes.ok()) {
+    out.ok = false;
+    out.error = envelopes.message.empty() ? run_message : envelopes.message;
+  } else {
+    out.envelopes = envelope_rows(envelopes);
+  }
+}
+
+void invalid_input(const InputError& e, JobOutcome& out) {
+  // The job was validated at submission; a library file edited since, or
+  // a setup the dry run did not meet (another speed), ends here.
+  out.ok = false;
+  out.status = "invalid_input";
+  out.error = e.describe();
+}
+
+// The canonical scene text around its speed: jobs whose texts agree outside
+// the number run the same scene at another speed. Empty when the text has
+// no single top-level "speed_kmh".
+struct SpeedSplit {
+  std::string_view before, after;
+  std::string_view number;
+};
+std::optional<SpeedSplit> split_at_speed(std::string_view text) {
+  static constexpr std::string_view kKey = "\"speed_kmh\":";
+  const std::size_t at = text.find(kKey);
+  if (at == std::string_view::npos || text.find(kKey, at + 1) != std::string_view::npos) return std::nullopt;
+  const std::size_t start = at + kKey.size();
+  const std::size_t end = text.find_first_of(",}", start);
+  if (end == std::string_view::npos) return std::nullopt;
+  return SpeedSplit{text.substr(0, start), text.substr(end), text.substr(start, end - start)};
+}
+
+// What the modal jobs of one batch share.
+struct ModalPass {
+  std::string scene_text;  // of the job that built it
+  std::optional<SpeedSplit> split;
+  Scene scene;
+  ScenePlan plan;
+  std::shared_ptr<const ModalBasis> basis;
+  std::unique_ptr<ModalSweep> sweep;
+  std::unique_ptr<CodeFilter> filter;
+  std::string obstacle;  // why no filtered acceleration, "" when there is one
+  // The fidelity record's JSON: the same for every job of the pass (rung,
+  // plan, modes, dt, what it ignores), written once.
+  std::string fidelity_text;
+};
+
+// The scene of `job` on `pass` (same text but the speed), else nullopt.
+std::optional<Scene> same_scene_at_speed(const ModalPass& pass, const ClaimedJob& job) {
+  if (!pass.split) return std::nullopt;
+  const auto split = split_at_speed(job.scene);
+  if (!split || split->before != pass.split->before || split->after != pass.split->after) return std::nullopt;
+  // The number as the parser reads it (shortest round-trip form): the speed column.
+  const std::string number(split->number);
+  char* end = nullptr;
+  const double speed_kmh = std::strtod(number.c_str(), &end);
+  if (end != number.c_str() + number.size() || speed_kmh != job.speed_kmh) return std::nullopt;
+  Scene scene = pass.scene;
+  scene.speed_mps = speed_kmh / 3.6;  // as the scene loader
+  return scene;
+}
+
+std::unique_ptr<ModalPass> make_modal_pass(const ClaimedJob& job, Scene scene, ScenePlan plan, FactorizationCache& cache,
+                                           JobOutcome& out) {
+  auto pass = std::make_unique<ModalPass>();
+  pass->scene_text = job.scene;
+  pass->split = split_at_speed(pass->scene_text);
+  pass->scene = std::move(scene);
+  pass->plan = std::move(plan);
+  const BasisLookup lookup = cache.get_basis(job.operator_key, [&] {
+    ModalBasisOptions o;
+    o.max_frequency_hz = pass->plan.modal_cutoff_hz;
+    return std::make_shared<const ModalBasis>(pass->scene.structure, o);
+  });
+  out.factorized = lookup.built;
+  out.factorization_s = lookup.build_s;
+  out.evictions = lookup.evictions;
+  // The cached basis may have been computed on another job's structure
+  // object: the modal key (modal_operator_key) covers everything the sweep
+  // reads of it (matrices, rail lines, output points), so it is this one's.
+  pass->basis = lookup.basis;
+  const Scene& s = pass->scene;
+  pass->sweep = std::make_unique<ModalSweep>(*pass->basis, s.train, s.analysis.contact.rail_lines, s.analysis.dt_s);
+  if (0.5 / s.analysis.dt_s < job.cutoff_hz)
+    pass->obstacle = fmt::format("the Nyquist frequency 1/(2 dt) = {:.3g} Hz is below the code cut-off {:.3g} Hz",
+                                 0.5 / s.analysis.dt_s, job.cutoff_hz);
+  else
+    pass->filter = std::make_unique<CodeFilter>(s.analysis.dt_s, job.cutoff_hz);
+  return pass;
+}
+
+// One modal job on its pass: the run, its maxima and filtered acceleration
+// from the workspace, the envelopes.
+void run_on_pass(ModalPass& pass, const Scene& scene, const ClaimedJob& job, ModalSweepWorkspace& ws,
+                 std::vector<double>& filter_ws, JobOutcome& out) {
+  const auto start = Clock::now();
+  const long n_steps = modal_run_steps(scene);
+  const ModalSweepRun run = pass.sweep->run(modal_run_start_x_m(scene), scene.speed_mps, n_steps, ws, true);
+  RunSummary summary;
+  fill_modal_summary(*pass.sweep, run, summary);
+  if (pass.fidelity_text.empty()) {
+    record_rung(scene, pass.plan, pass.plan.rung, summary);
+    pass.fidelity_text = fidelity_json(summary.fidelity).dump();
+  }
+  out.loop_s = seconds_since(start);
+  std::vector<double> filtered;
+  if (pass.filter) {
+    // A run that stopped early filters what it computed.
+    for (auto& a : ws.acceleration) {
+      a.resize(static_cast<std::size_t>(run.steps) + 1);
+      filtered.push_back(pass.filter->max_abs_filtered(a, filter_ws));
+    }
+  }
+  summary.wall_s = seconds_since(start);
+  const JobEnvelopes envelopes = compute_envelopes(run.status, summary, scene.analysis.dt_s, job.cutoff_hz,
+                                                   pass.filter ? &filtered : nullptr, pass.obstacle);
+  store_run(summary, envelopes, run.status.message(), out, &pass.fidelity_text);
+}
+
+std::vector<JobOutcome> run_modal_jobs(const std::vector<ClaimedJob>& jobs, FactorizationCache& cache,
+                                       std::optional<std::pair<Scene, ScenePlan>> first) {
+  std::vector<JobOutcome> outcomes(jobs.size());
+  std::unique_ptr<ModalPass> pass;
+  ModalSweepWorkspace ws;
+  std::vector<double> filter_ws;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const auto start = Clock::now();
+    JobOutcome& out = outcomes[i];
+    try {
+      std::optional<Scene> scene;
+      if (pass) scene = same_scene_at_speed(*pass, jobs[i]);
+      if (!scene) {
+        // A new pass: this job's scene, parsed (or as the caller parsed it).
+        std::pair<Scene, ScenePlan> parsed = first && i == 0 ? std::move(*first) : [&] {
+          Scene s = parse_job_scene(jobs[i]);
+          ScenePlan p = plan_scene(s, DeckFrequencies{});
+          return std::make_pair(std::move(s), std::move(p));
+        }();
+        if (parsed.second.rung.name() != kBatchedRung) {
+          out = run_job(jobs[i], cache);  // not modal after all (an edited scene): alone
+          continue;
+        }
+        pass.reset();
+        pass = make_modal_pass(jobs[i], std::move(parsed.first), std::move(parsed.second), cache, out);
+        scene = pass->scene;
+        out.setup_s = seconds_since(start);
+      }
+      run_on_pass(*pass, *scene, jobs[i], ws, filter_ws, out);
+    } catch (const InputError& e) {
+      invalid_input(e, out);
+      pass.reset();
+    }
+    out.wall_s = seconds_since(start);
+  }
+  return outcomes;
+}
+
+}  // namespace
 
 JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   JobOutcome out;
-  const std::string name = "job " + job.id.substr(0, 12);
   try {
-    // File names in a job are absolute (made so at submission).
-    const Scene scene = parse_scene(parse_json_text(job.scene, name), "/", name);
-    const CacheLookup lookup = cache.get(job.operator_key, [&] { return make_structure_operator(scene); });
+    Scene scene = parse_job_scene(job);
+    // Job scenes carry their rung (pinned at submission) or none (the
+    // analysis as given): no frequencies needed.
+    ScenePlan plan = plan_scene(scene, DeckFrequencies{});
+    if (plan.rung.name() == kBatchedRung)
+      return run_modal_jobs({job}, cache, std::make_pair(std::move(scene), std::move(plan))).front();
+    CacheLookup lookup;
+    RungModels models;
+    models.fe_operator = [&](const Scene& s) {
+      lookup = cache.get(job.operator_key, [&] { return make_structure_operator(s); });
+      return lookup.op;
+    };
+    Result result = run_at_rung(scene, plan, models);
     out.factorized = lookup.factorized;
     out.factorization_s = lookup.factorization_s;
     out.evictions = lookup.evictions;
-    const Simulation simulation(scene, lookup.op);
-    Result result = simulation.run();
     for (RunWarning& w : time_step_warnings(scene, job.cutoff_hz)) result.summary.warnings.push_back(std::move(w));
-    out.warnings = warnings_json(result.summary.warnings).dump();
     const RunSummary& s = result.summary;
-    out.fidelity = fidelity_json(s.fidelity).dump();
-    out.steps = s.steps;
     out.setup_s = s.setup_s + lookup.factorization_s;
     out.loop_s = s.wall_s - s.setup_s;
     const JobEnvelopes envelopes =
         compute_envelopes(result, scene.analysis.dt_s, scene.analysis.history_stride, job.cutoff_hz);
-    // The envelopes may find what the run did not report (a non-finite value).
-    out.status = envelopes.status;
-    if (!envelopes.ok()) {
-      out.ok = false;
-      out.error = envelopes.message.empty() ? result.status.message() : envelopes.message;
-    } else {
-      out.envelopes = envelope_rows(envelopes);
-    }
+    store_run(s, envelopes, result.status.message(), out);
   } catch (const InputError& e) {
-    // The job was validated at submission; a library file edited since, or
-    // a setup the dry run did not meet (another speed), ends here.
-    out.ok = false;
-    out.status = "invalid_input";
-    out.error = e.describe();
+    invalid_input(e, out);
   }
-  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.wall_s = seconds_since(start);
   return out;
+}
+
+std::vector<JobOutcome> run_jobs(const std::vector<ClaimedJob>& jobs, FactorizationCache& cache) {
+  if (jobs.size() == 1 && jobs.front().rung != kBatchedRung) return {run_job(jobs.front(), cache)};
+  return run_modal_jobs(jobs, cache, std::nullopt);
 }
 
 }  // namespace railvsi::scheduler

@@ -1,7 +1,10 @@
 #pragma once
-// One claimed job from its scene text to what the database keeps: the scene
-// is parsed, the structure operator taken from the cache (or built), the
-// simulation run and its envelopes computed.
+// One claimed job, or a batch of them, from scene text to what the
+// database keeps: the scene is parsed, its planned rung run (the structure
+// operator or the modal basis taken from the cache, or built), and its
+// envelopes computed.
+#include <vector>
+
 #include "queue/job_queue.hpp"
 #include "workers/factorization_cache.hpp"
 
@@ -11,5 +14,13 @@ namespace railvsi::scheduler {
 // did not converge) come back as an outcome with ok = false; anything else
 // (out of memory, a bug) is an exception for the caller to retry.
 JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache);
+
+// A batch from JobQueue::claim_batch, one outcome per job in order. Jobs on
+// the modal moving-force rung that differ only in speed share one pass: the
+// scene parsed once, the modal basis (from the cache), the modal steps, the
+// mode shapes on the rail elements and the code filter built once, one
+// workspace; only envelopes are kept (no histories). A job's outcome has
+// the same bits whether it runs alone or in a batch.
+std::vector<JobOutcome> run_jobs(const std::vector<ClaimedJob>& jobs, FactorizationCache& cache);
 
 }  // namespace railvsi::scheduler

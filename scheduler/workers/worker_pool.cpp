@@ -45,25 +45,26 @@ struct Tally {
   }
 };
 
-// The job each thread holds, for the heartbeat: it renews exactly these
-// (by job id and worker name), nothing else the name might match.
+// The jobs each thread holds (one, or a batch), for the heartbeat: it
+// renews exactly these (by job id and worker name), nothing else the name
+// might match.
 class HeldJobs {
  public:
-  explicit HeldJobs(std::size_t threads) : job_of_thread_(threads) {}
-  void hold(std::size_t thread, const std::string& job_id) {
+  explicit HeldJobs(std::size_t threads) : jobs_of_thread_(threads) {}
+  void hold(std::size_t thread, std::vector<std::string> job_ids) {
     std::lock_guard lock(mutex_);
-    job_of_thread_[thread] = job_id;
+    jobs_of_thread_[thread] = std::move(job_ids);
   }
   void drop(std::size_t thread) { hold(thread, {}); }
-  // thread -> job id; empty when it holds none.
-  std::vector<std::string> snapshot() {
+  // thread -> job ids; empty when it holds none.
+  std::vector<std::vector<std::string>> snapshot() {
     std::lock_guard lock(mutex_);
-    return job_of_thread_;
+    return jobs_of_thread_;
   }
 
  private:
   std::mutex mutex_;
-  std::vector<std::string> job_of_thread_;
+  std::vector<std::vector<std::string>> jobs_of_thread_;
 };
 
 // A stop flag the heartbeat and the progress loop can sleep on.
@@ -134,15 +135,15 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
   std::string last_key;
   const double idle_wait_s = std::clamp(options.lease_s / 4.0, 0.02, 0.2);
   for (;;) {
-    std::optional<ClaimedJob> job;
+    std::vector<ClaimedJob> batch;
     try {
-      job = queue.claim(last_key);
+      batch = queue.claim_batch(last_key, std::max<std::size_t>(1, options.max_batch_jobs));
       backoff.succeeded();
     } catch (const SqliteError& e) {
       backoff.failed(name, e.what());
       continue;
     }
-    if (!job) {
+    if (batch.empty()) {
       // Jobs still running elsewhere may come back if their worker dies:
       // wait for them rather than leave them behind. A job this process
       // could not put back is no longer renewed, so its lease expires and
@@ -151,30 +152,39 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
       std::this_thread::sleep_for(std::chrono::duration<double>(idle_wait_s));
       continue;
     }
-    held.hold(thread, job->id);
-    last_key = job->operator_key;
+    std::vector<std::string> ids;
+    for (const ClaimedJob& j : batch) ids.push_back(j.id);
+    held.hold(thread, ids);
+    last_key = batch.front().operator_key;
     try {
-      const JobOutcome outcome = run_job(*job, cache);
-      if (!queue.complete(*job, outcome)) {
-        ++tally.lost;
-        spdlog::warn("{}: job {} was taken over or cancelled while running; its result is dropped", name,
-                     job->id.substr(0, 12));
-      } else if (outcome.ok) {
-        ++tally.done;
-      } else {
-        ++tally.failed;
-        // Names and messages are user strings: escaped before they reach a terminal.
-        spdlog::warn("job {} ({} at {} km/h, {}) failed: {}", job->id.substr(0, 12), terminal_safe(job->train),
-                     job->speed_kmh, terminal_safe(job->irregularity), terminal_safe(outcome.error));
+      const std::vector<JobOutcome> outcomes = run_jobs(batch, cache);
+      // One transaction for the whole batch: all stored, or (a crash) none.
+      const std::vector<bool> stored = queue.complete_batch(batch, outcomes);
+      for (std::size_t i = 0; i < batch.size(); ++i) {
+        const ClaimedJob& job = batch[i];
+        if (!stored[i]) {
+          ++tally.lost;
+          spdlog::warn("{}: job {} was taken over or cancelled while running; its result is dropped", name,
+                       job.id.substr(0, 12));
+        } else if (outcomes[i].ok) {
+          ++tally.done;
+        } else {
+          ++tally.failed;
+          // Names and messages are user strings: escaped before they reach a terminal.
+          spdlog::warn("job {} ({} at {} km/h, {}) failed: {}", job.id.substr(0, 12), terminal_safe(job.train),
+                       job.speed_kmh, terminal_safe(job.irregularity), terminal_safe(outcomes[i].error));
+        }
       }
     } catch (const std::exception& e) {
-      spdlog::error("{}: job {} attempt {}: {}", name, job->id.substr(0, 12), job->attempt, terminal_safe(e.what()));
-      try {
-        queue.release_after_error(*job, e.what());
-      } catch (const std::exception& e2) {
-        spdlog::error("{}: could not put job {} back in the queue: {}; its lease is no longer renewed and it returns "
-                      "to the queue when the lease expires",
-                      name, job->id.substr(0, 12), e2.what());
+      for (const ClaimedJob& job : batch) {
+        spdlog::error("{}: job {} attempt {}: {}", name, job.id.substr(0, 12), job.attempt, terminal_safe(e.what()));
+        try {
+          queue.release_after_error(job, e.what());
+        } catch (const std::exception& e2) {
+          spdlog::error("{}: could not put job {} back in the queue: {}; its lease is no longer renewed and it "
+                        "returns to the queue when the lease expires",
+                        name, job.id.substr(0, 12), e2.what());
+        }
       }
     }
     held.drop(thread);
@@ -188,7 +198,7 @@ void heartbeat_loop(const WorkOptions& options, const std::vector<std::string>& 
   while (!stop.wait_for(period_s)) {
     try {
       if (!db) db = std::make_unique<Database>(options.db_file, OpenMode::kExisting);
-      const std::vector<std::string> jobs = held.snapshot();
+      const std::vector<std::vector<std::string>> jobs = held.snapshot();
       for (std::size_t k = 0; k < names.size(); ++k)
         if (!jobs[k].empty()) JobQueue(*db, names[k], options.lease_s).renew(jobs[k]);
     } catch (const std::exception& e) {

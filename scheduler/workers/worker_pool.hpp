@@ -23,6 +23,9 @@ struct WorkOptions {
   // How long a thread keeps retrying a database that refuses its claims
   // (disk full, locked past the busy timeout) before the process gives up.
   double db_retry_s = 300.0;
+  // Modal moving-force jobs of one structure, dt and train are claimed,
+  // run and stored together, up to this many at a time (1: one by one).
+  std::size_t max_batch_jobs = 256;
 };
 
 struct WorkSummary {

@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "analysis/modal_moving_forces.hpp"
+#include "cpu_time.hpp"
 #include "generators/bridge_2d.hpp"
 #include "io/train_loader.hpp"
 #include "integration/modal_recurrence.hpp"
@@ -21,11 +22,7 @@ namespace {
 using namespace railvsi;
 // CPU time of this thread: the machine may be shared, the ratios must not
 // depend on it.
-double cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+double cpu_s() { return bench::thread_cpu_s(); }
 
 }  // namespace
 

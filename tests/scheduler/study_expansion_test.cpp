@@ -149,6 +149,7 @@ TEST(StudyExpansion, SchemaErrorsNameTheirPath) {
 TEST(StudyExpansion, JobsWithoutDtGetTheTimeStepPolicysRungAndReason) {
   json doc = tiny_study();
   doc["analysis"].erase("dt_s");
+  doc["fidelity"] = {{"model", "moving_forces"}, {"structure", "fe"}};  // the policy is the FE rung's
   const StudyPlan plan = expand(doc);
   for (const auto& j : plan.jobs) {
     // A rung of the ladder 2 ms / 2^k.
@@ -156,6 +157,37 @@ TEST(StudyExpansion, JobsWithoutDtGetTheTimeStepPolicysRungAndReason) {
     EXPECT_NEAR(k, std::round(k), 1e-9) << j.dt_s;
     EXPECT_NE(j.dt_reason.find("ladder"), std::string::npos) << j.dt_reason;
     EXPECT_EQ(json::parse(j.scene)["analysis"]["dt_s"].get<double>(), j.dt_s);
+  }
+}
+
+TEST(StudyExpansion, PlannerPinsTheModalRungWithItsSamplingStepInEveryJob) {
+  json doc = tiny_study();
+  doc["analysis"].erase("dt_s");
+  doc["accuracy"] = {{"tolerance", 0.01}};
+  const StudyPlan plan = expand(doc);
+  ASSERT_FALSE(plan.jobs.empty());
+  for (const auto& j : plan.jobs) {
+    EXPECT_EQ(j.rung, "moving_forces/modal");
+    const json scene = json::parse(j.scene);
+    EXPECT_EQ(scene["fidelity"]["model"], "moving_forces");
+    EXPECT_EQ(scene["fidelity"]["structure"], "modal");
+    // 1.2 x the code frequency, and 23 samples per period of it (1 - cos(pi/23) < 1 %).
+    EXPECT_NEAR(scene["fidelity"]["modal_cutoff_hz"].get<double>(), 1.2 * j.cutoff_hz, 1e-9);
+    EXPECT_LE(j.dt_s, 1.0 / (23.0 * j.cutoff_hz));
+    EXPECT_GT(j.dt_s, 0.99 / (23.0 * j.cutoff_hz));
+    EXPECT_NE(j.dt_reason.find("modal rung"), std::string::npos) << j.dt_reason;
+    EXPECT_EQ(j.operator_key, plan.jobs.front().operator_key) << "one basis and pass for the whole structure";
+  }
+}
+
+TEST(StudyExpansion, PinnedInteractionForALoadModelIsRefusedAtItsPath) {
+  json doc = tiny_study();
+  doc["fidelity"] = {{"model", "interaction"}, {"structure", "fe"}};
+  try {
+    expand(doc);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/fidelity/model") << e.describe();
   }
 }
 

@@ -14,11 +14,14 @@ namespace {
 using nlohmann::json;
 using scheduler::Database;
 
-// 2 trains x 21 speeds, a few thousand steps each.
+// 2 trains x 21 speeds, a few thousand steps each, one job per claim: the
+// FE rung pinned (the planner would batch them on the modal rung, whose
+// kill test is in modal_batch_test).
 json sweep_study() {
   json doc = tiny_study();
   doc["speeds_kmh"] = {{"from", 100}, {"to", 300}, {"step", 10}};
   doc["analysis"]["dt_s"] = 2.0e-4;
+  doc["fidelity"] = {{"model", "moving_forces"}, {"structure", "fe"}};
   return doc;
 }
 
@@ -149,6 +152,8 @@ TEST_F(WorkerProcesses, RunExitsWithThreeWhenJobsFailAndShowsWhy) {
   doc["speeds_kmh"] = json::array({200});
   doc["analysis"]["max_newton_iterations"] = 1;  // the Hertz contact needs more: no_convergence
   doc["analysis"]["dt_s"] = 5.0e-4;
+  // Nonlinear Hertz pinned: the planner would start with linear Hertz, which converges in one iteration.
+  doc["fidelity"] = {{"model", "interaction"}, {"structure", "fe"}, {"contact_law", "hertz"}};
   const auto study = write_json("failing.json", doc);
   const std::string db_file = (dir_ / "f.sqlite").string();
   const VsiResult run = vsi({"run", study.string(), "--db", db_file});

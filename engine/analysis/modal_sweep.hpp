@@ -1,0 +1,78 @@
+#pragma once
+// The per-run path of the modal moving-force rung, split into what every
+// run of one train on one structure at one dt shares (built once: the
+// modal steps, the axles sorted by offset, the mode shapes at the four DOFs
+// of every rail element, contiguous) and what one speed needs (a workspace
+// the caller keeps between runs, so a sweep allocates nothing per step).
+// Axles are located incrementally: each moves forward along its rail, so
+// its element only ever advances; the set of axles on a rail at each step
+// and their elements are those of a bisection over the offsets and
+// RailLine::locate. Within an element the modes under an axle are the
+// cubic Hermite interpolation of its end values (as RailLine's weights),
+// stored as the cubic's coefficients in xi and summed by Horner's rule. A
+// run gives the same bits whether it is the first of a sweep or alone.
+#include <vector>
+
+#include "solver/modal_basis.hpp"
+#include "core/status.hpp"
+#include "integration/modal_recurrence.hpp"
+#include "model/train.hpp"
+#include "simulation/result.hpp"
+
+namespace railvsi {
+
+// What one run reuses from the previous one (sized on first use).
+struct ModalSweepWorkspace {
+  std::vector<double> p, p_next, q, qd, qdd;
+  // Deck acceleration at every step (n_steps + 1 samples) per output point,
+  // for the code filter; kept only when asked.
+  std::vector<std::vector<double>> acceleration;
+  std::vector<std::size_t> element;      // per (rail, axle): element under it
+  std::vector<std::size_t> first, last;  // per rail: axles on it, [first, last) by offset
+};
+
+struct ModalSweepRun {
+  Status status;
+  long steps = 0;
+  std::vector<double> max_abs_displacement_m, max_abs_acceleration_mps2;  // per output point
+};
+
+class ModalSweep {
+ public:
+  // rail_lines: the rails the forces bear on (shared equally); dt_s > 0.
+  ModalSweep(const ModalBasis& basis, const Train& train, const std::vector<int>& rail_lines, double dt_s);
+
+  // First axle at x0_m at t = 0, moving at speed_mps >= 0, for n_steps steps
+  // from the static modal response. Keeps the deck acceleration of every
+  // step in ws.acceleration when keep_acceleration; fills histories (every
+  // history_stride-th step and the last) when not null.
+  ModalSweepRun run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws, bool keep_acceleration,
+                    Histories* histories = nullptr, int history_stride = 1) const;
+
+  const ModalBasis& basis() const { return basis_; }
+  int num_modes() const { return n_modes_; }
+  double dt_s() const { return dt_s_; }
+
+ private:
+  struct Rail {
+    std::vector<double> x_m;
+    double start_m = 0.0, end_m = 0.0;
+    // Per element and mode, the modal load of a unit downward axle force as
+    // a cubic in xi (the Hermite interpolation of the element's end
+    // displacements and rotations, with the share of this rail and the
+    // sign): c0 + c1 xi + c2 xi^2 + c3 xi^3, stored [element][mode][4].
+    std::vector<double> cubic;
+  };
+  // p = Phi^T f for the first axle at x; x never decreases between calls.
+  void modal_load(double x, double* p, ModalSweepWorkspace& ws) const;
+
+  const ModalBasis& basis_;
+  int n_modes_ = 0;
+  double dt_s_ = 0.0;
+  double share_ = 1.0;
+  std::vector<ModalStep> steps_;
+  std::vector<double> offsets_, loads_N_;  // axles by offset
+  std::vector<Rail> rails_;
+};
+
+}  // namespace railvsi

@@ -1,0 +1,119 @@
+#include "planning/effects_planner.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "envelopes/code_filter.hpp"
+
+namespace railvsi {
+
+EffectsPlan plan_effects(const PlannerInput& in) {
+  EffectsPlan plan;
+  plan.code_frequency_hz = code_cutoff_hz(in.f0_hz, in.f3_hz);
+  plan.modal_cutoff_hz = kModalCutoffMargin * plan.code_frequency_hz;
+  Rung& r = plan.rung;
+  if (in.load_model) {
+    r.model = "moving_forces";
+    r.contact_law = "none";
+    plan.reasons.push_back("the train is a load model (axle forces): moving forces is its model");
+    if (in.asks.wheel_unloading || in.asks.comfort)
+      plan.reasons.push_back("wheel unloading and car-body comfort are asked but a load model has no wheels or car "
+                             "bodies: those values stay absent");
+  } else {
+    r.model = "interaction";
+    r.contact_law = "linear-hertz";
+    r.unilateral = false;
+    std::string why;
+    if (in.asks.wheel_unloading) why += ", wheel unloading";
+    if (in.asks.comfort) why += ", car-body comfort";
+    if (in.irregularity) why += ", a track irregularity";
+    plan.reasons.push_back(
+        why.empty() ? "multibody vehicles: their suspensions change the deck response near resonance, so they run "
+                      "with interaction"
+                    : fmt::format("interaction answers what a force cannot ({})", why.substr(2)));
+    plan.reasons.push_back(fmt::format("Hertz linearized at the static load first; repeated with nonlinear "
+                                       "unilateral Hertz if a contact force drops below {:g} % of its static load",
+                                       100.0 * kEscalationFraction));
+    plan.escalate_below_fraction = kEscalationFraction;
+  }
+  // The structure: modal unless its cut-off cannot be honoured.
+  std::string fe_because;
+  if (!(in.f0_hz > 0.0) || !(in.f3_hz > 0.0))
+    fe_because = "the deck frequencies f0 and f3 were not computed, so the modal cut-off max(30 Hz, 1.5 f0, f3) "
+                 "cannot be set";
+  else if (in.modes_below_cutoff < 0)
+    fe_because = fmt::format("the modes below {:.1f} Hz were not counted", plan.modal_cutoff_hz);
+  else if (in.modes_below_cutoff > kMaxModalModes)
+    fe_because = fmt::format("{} modes lie below the modal cut-off {:.1f} Hz, more than the modal rung's {}",
+                             in.modes_below_cutoff, plan.modal_cutoff_hz, kMaxModalModes);
+  else if (r.model == "interaction" && !in.modal_interaction_available)
+    fe_because = "the modal interaction rung is not available in this build";
+  if (fe_because.empty()) {
+    r.structure = "modal";
+    plan.reasons.push_back(fmt::format(
+        "modal structure: the {} modes up to {:.1f} Hz = {} x the code frequency {:.1f} Hz (max(30 Hz, 1.5 f0 = "
+        "{:.2f} Hz, f3 = {:.2f} Hz), EN 1990 A2.4.4.2.1) with exact recurrence",
+        in.modes_below_cutoff, plan.modal_cutoff_hz, kModalCutoffMargin, plan.code_frequency_hz, 1.5 * in.f0_hz,
+        in.f3_hz));
+  } else {
+    r.structure = "fe";
+    plan.reasons.push_back("FE structure: " + fe_because);
+    plan.modal_cutoff_hz = 0.0;
+  }
+  plan.ignores = rung_ignores(r, in.irregularity, plan.modal_cutoff_hz, plan.escalate_below_fraction);
+  return plan;
+}
+
+std::vector<FidelityRecord::Ignored> rung_ignores(const Rung& r, bool irregularity, double modal_cutoff_hz,
+                                                  std::optional<double> escalate_below) {
+  std::vector<FidelityRecord::Ignored> out;
+  if (r.structure == "modal")
+    out.push_back({fmt::format("structural modes above {:.1f} Hz", modal_cutoff_hz),
+                   "the deck acceleration envelope keeps frequencies up to the code frequency (EN 1990 A2.4.4.2.1); "
+                   "every mode up to the cut-off, with a 20 % margin, is kept"});
+  if (r.structure == "modal")
+    out.push_back({"damping coupling between modes",
+                   "each mode keeps its own ratio phi^T C phi / (2 omega), exact for Rayleigh damping"});
+  if (r.model == "moving_forces") {
+    out.push_back({"vehicle dynamics and wheel-rail contact",
+                   "the train is given as axle forces (a load model such as HSLM, EN 1991-2 6.4.6.1.1)"});
+    if (irregularity) out.push_back({"the track irregularity", "a moving force does not feel the rail profile"});
+  } else if (r.contact_law == "linear-hertz") {
+    const std::string what = r.unilateral ? "the nonlinearity of Hertz contact" : "the nonlinearity and unilaterality of Hertz contact";
+    out.push_back({what, escalate_below ? fmt::format("no contact force fell below {:g} % of its static load (else the "
+                                                      "run is repeated with nonlinear unilateral Hertz)",
+                                                      100.0 * *escalate_below)
+                                        : std::string("pinned: Hertz linearized at the static load, not checked")});
+  }
+  return out;
+}
+
+std::optional<std::string> escalation_reason(const RunSummary& summary, double fraction) {
+  for (const WheelSummary& w : summary.wheels) {
+    if (!w.evaluated || !(w.static_load_N > 0.0)) continue;
+    if (!(w.min_force_N >= fraction * w.static_load_N))
+      return fmt::format("wheel {}: contact force down to {:.0f} N, below {:g} % of its static load {:.0f} N: "
+                         "linearized bilateral Hertz does not hold, repeated with nonlinear unilateral Hertz",
+                         w.name, w.min_force_N, 100.0 * fraction, w.static_load_N);
+  }
+  return std::nullopt;
+}
+
+Rung escalated(const Rung& rung) {
+  Rung r = rung;
+  r.model = "interaction";
+  r.contact_law = "hertz";
+  r.unilateral = true;
+  return r;
+}
+
+double modal_time_step_s(double code_frequency_hz, double tolerance) {
+  const double n = std::ceil(std::numbers::pi / std::acos(1.0 - tolerance));
+  const double dt = 1.0 / (n * code_frequency_hz);
+  const double scale = std::pow(10.0, std::floor(std::log10(dt)) - 2.0);
+  return std::floor(dt / scale) * scale;
+}
+
+}  // namespace railvsi

@@ -1,0 +1,100 @@
+#pragma once
+// The effects planner: from what a study asks (the outputs and checks it
+// requests), whether a track irregularity is given and whether the train is
+// a load model (axle forces: HSLM, LM) or multibody vehicles, the cheapest
+// rung of the fidelity ladder that answers it within the study's tolerance.
+// A pure function of its input; the rules and their reasons (README "The
+// effects planner"):
+//   1. A load model has no vehicle: moving forces, whatever is asked (wheel
+//      and car-body values have no meaning for it and stay absent; an
+//      irregularity is not felt by a force).
+//   2. Multibody vehicles: interaction, since their suspensions change the
+//      deck response near resonance and wheel unloading, comfort and an
+//      irregularity need the vehicle. Linear Hertz (bilateral) first; the
+//      run is repeated with nonlinear unilateral Hertz when a contact force
+//      drops below kEscalationFraction of its static load (escalation()).
+//   3. The structure is modal (all modes up to kModalCutoffMargin x the code
+//      frequency max(30 Hz, 1.5 f0, f3) of EN 1990 A2.4.4.2.1(3), exact
+//      recurrence) unless the cut-off cannot be honoured: the deck
+//      frequencies or the mode count are unknown, more than kMaxModalModes
+//      modes lie below it, or (interaction) the modal interaction rung is
+//      not available; then FE.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "simulation/result.hpp"
+
+namespace railvsi {
+
+// The modes kept reach this multiple of the code frequency: a mode at the
+// code frequency is kept whatever its discretization error (a 20 % margin
+// covers the error of a coarse mesh on the third bending mode).
+inline constexpr double kModalCutoffMargin = 1.2;
+// Beyond this many modes the modal rung is neither cheap (the loads are
+// modes x axles per step) nor quick to set up (Lanczos): FE.
+inline constexpr int kMaxModalModes = 200;
+// Linearized Hertz holds while the force stays near its static load: the
+// Hertz tangent stiffness goes as P^(1/3), 0.79 of the static one at half
+// the load, and a bilateral spring would hold a wheel that lifts off.
+inline constexpr double kEscalationFraction = 0.5;
+
+struct Rung {
+  std::string model = "moving_forces";  // "moving_forces" | "interaction"
+  std::string structure = "modal";      // "modal" | "fe"
+  std::string contact_law = "none";     // "none" (moving forces), "linear-hertz", "hertz", "rigid"
+  bool unilateral = false;
+  std::string name() const { return model + "/" + structure; }
+};
+
+struct StudyAsks {
+  bool deck = true;              // deck acceleration / displacement
+  bool wheel_unloading = false;  // dQ/Q, contact loss
+  bool comfort = false;          // car-body acceleration
+};
+
+struct PlannerInput {
+  StudyAsks asks;
+  bool irregularity = false;
+  bool load_model = true;  // a train of moving forces; false: multibody vehicles
+  double f0_hz = 0.0, f3_hz = 0.0;  // deck frequencies; 0 when not computed
+  int modes_below_cutoff = -1;      // modes up to the modal cut-off; -1 when not counted
+  double tolerance = 0.01;          // relative, of every governing envelope value
+  // The hook for the modal interaction rung: false until it is built in.
+  bool modal_interaction_available = false;
+};
+
+struct EffectsPlan {
+  Rung rung;
+  double code_frequency_hz = 0.0;  // max(30 Hz, 1.5 f0, f3)
+  double modal_cutoff_hz = 0.0;    // modal rungs: kModalCutoffMargin x code frequency
+  std::vector<std::string> reasons;
+  std::vector<FidelityRecord::Ignored> ignores;
+  // Linear Hertz: repeat with unilateral Hertz below this fraction of a static load.
+  std::optional<double> escalate_below_fraction;
+};
+
+EffectsPlan plan_effects(const PlannerInput& input);
+
+// What a rung leaves out of the full model (FE, nonlinear unilateral Hertz)
+// and why, for the run's fidelity record.
+// escalate_below: the fraction below which linear Hertz is repeated as
+// unilateral Hertz, if the run does so.
+std::vector<FidelityRecord::Ignored> rung_ignores(const Rung& rung, bool irregularity, double modal_cutoff_hz,
+                                                  std::optional<double> escalate_below = std::nullopt);
+
+// The reason to repeat a run on unilateral Hertz: the first evaluated wheel
+// whose smallest contact force fell below fraction x its static load;
+// nullopt when none did.
+std::optional<std::string> escalation_reason(const RunSummary& summary, double fraction);
+// Interaction with nonlinear unilateral Hertz on the same structure.
+Rung escalated(const Rung& rung);
+
+// Time step of the modal rung, where dt only samples the load and the
+// output (the recurrence is exact): the peak of a harmonic at the code
+// frequency sampled n times a period is low by at most 1 - cos(pi / n);
+// n = ceil(pi / acos(1 - tolerance)) keeps it within the tolerance (23 for
+// 1 %). The step is rounded down to 3 significant digits.
+double modal_time_step_s(double code_frequency_hz, double tolerance);
+
+}  // namespace railvsi

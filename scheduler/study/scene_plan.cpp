@@ -1,0 +1,101 @@
+#include "study/scene_plan.hpp"
+
+#include <algorithm>
+
+#include "solver/modal_basis.hpp"
+#include "envelopes/code_filter.hpp"
+
+namespace railvsi::scheduler {
+
+StudyAsks scene_asks(const Scene& scene) {
+  StudyAsks a;
+  if (!scene.fidelity.asks) {
+    a.wheel_unloading = a.comfort = !scene.train.is_moving_forces();
+    return a;
+  }
+  const auto& list = *scene.fidelity.asks;
+  const auto has = [&](const char* what) { return std::find(list.begin(), list.end(), what) != list.end(); };
+  a.deck = has("deck");
+  a.wheel_unloading = has("wheel_unloading");
+  a.comfort = has("comfort");
+  return a;
+}
+
+PlannerInput planner_input(const Scene& scene, const StudyAsks& asks, const DeckFrequencies& f, int modes_below_cutoff) {
+  PlannerInput in;
+  in.asks = asks;
+  in.irregularity = scene.irregularity != nullptr;
+  in.load_model = scene.train.is_moving_forces();
+  in.f0_hz = f.f0_hz;
+  in.f3_hz = f.f3_hz;
+  in.modes_below_cutoff = modes_below_cutoff;
+  in.tolerance = scene.fidelity.tolerance;
+  in.modal_interaction_available = false;  // the hook: true once the modal interaction rung is built in
+  return in;
+}
+
+int count_modes(const std::shared_ptr<const StructureModel>& structure, double cutoff_hz, int max_dofs) {
+  if (structure->num_dofs() > max_dofs || !(cutoff_hz > 0.0)) return -1;
+  ModalBasisOptions o;
+  o.max_frequency_hz = cutoff_hz;
+  o.min_modes = 0;
+  return ModalBasis(structure, o).num_modes();
+}
+
+namespace {
+
+Rung rung_of_analysis(const Scene& scene) {
+  Rung r;
+  r.structure = "fe";
+  if (scene.train.is_moving_forces()) return r;
+  r.model = "interaction";
+  r.contact_law = scene.analysis.contact.law;
+  r.unilateral = scene.analysis.contact.unilateral.value_or(scene.analysis.contact.law != "rigid");
+  return r;
+}
+
+}  // namespace
+
+ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f) {
+  const FidelityRequest& req = scene.fidelity;
+  ScenePlan p;
+  if (req.mode == FidelityRequest::Mode::kAuto) {
+    const double cutoff = kModalCutoffMargin * code_cutoff_hz(f.f0_hz, f.f3_hz);
+    const int modes = f.f0_hz > 0.0 && f.f3_hz > 0.0 ? count_modes(scene.structure, cutoff) : -1;
+    const EffectsPlan e = plan_effects(planner_input(scene, scene_asks(scene), f, modes));
+    p.rung = e.rung;
+    p.chosen_by = "planner";
+    p.modal_cutoff_hz = e.modal_cutoff_hz;
+    p.escalate_below_fraction = e.escalate_below_fraction;
+    p.reasons = e.reasons;
+    return p;
+  }
+  p.rung = rung_of_analysis(scene);
+  if (req.mode == FidelityRequest::Mode::kAsGiven) {
+    p.chosen_by = "analysis";
+    p.reasons.push_back("no fidelity given: the FE structure with the analysis options as given");
+    return p;
+  }
+  p.rung.model = req.model;
+  p.rung.structure = req.structure;
+  p.chosen_by = req.reasons.empty() ? "pinned" : "planner";
+  p.reasons = req.reasons.empty() ? std::vector<std::string>{"pinned in the scene"} : req.reasons;
+  p.escalate_below_fraction = req.escalate_below_fraction;
+  if (p.rung.structure == "modal")
+    p.modal_cutoff_hz = req.modal_cutoff_hz.value_or(kModalCutoffMargin * code_cutoff_hz(f.f0_hz, f.f3_hz));
+  return p;
+}
+
+nlohmann::json pinned_fidelity_json(const EffectsPlan& plan) {
+  nlohmann::json j = {{"model", plan.rung.model}, {"structure", plan.rung.structure}};
+  if (plan.rung.model == "interaction") {
+    j["contact_law"] = plan.rung.contact_law;
+    if (plan.rung.contact_law == "linear-hertz") j["unilateral"] = plan.rung.unilateral;
+  }
+  if (plan.rung.structure == "modal") j["modal_cutoff_hz"] = plan.modal_cutoff_hz;
+  if (plan.escalate_below_fraction) j["escalate_below_fraction"] = *plan.escalate_below_fraction;
+  j["reasons"] = plan.reasons;
+  return j;
+}
+
+}  // namespace railvsi::scheduler

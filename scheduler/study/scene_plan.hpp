@@ -1,0 +1,45 @@
+#pragma once
+// The rung a scene runs on, from its "fidelity": the analysis as given (FE),
+// a pinned rung, or the effects planner's choice for "auto" (with what the
+// scene asks, its irregularity, its train and the structure's frequencies
+// and modes).
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "planning/effects_planner.hpp"
+#include "simulation/scene.hpp"
+#include "study/deck_frequencies.hpp"
+
+namespace railvsi::scheduler {
+
+struct ScenePlan {
+  Rung rung;
+  std::string chosen_by;  // "planner", "pinned", "analysis" (no fidelity key)
+  double modal_cutoff_hz = 0.0;
+  std::optional<double> escalate_below_fraction;
+  std::vector<std::string> reasons;
+};
+
+// What a scene asks: its "asks", else what the train can give.
+StudyAsks scene_asks(const Scene& scene);
+
+// The planner's input for a scene on a structure with these frequencies;
+// modes_below_cutoff as counted by count_modes (-1: not counted).
+PlannerInput planner_input(const Scene& scene, const StudyAsks& asks, const DeckFrequencies& f, int modes_below_cutoff);
+
+// Modes of the structure up to cutoff_hz; -1 when the structure is larger
+// than max_dofs (its Lanczos would cost more than planning is worth).
+int count_modes(const std::shared_ptr<const StructureModel>& structure, double cutoff_hz, int max_dofs = 20000);
+
+// For "auto" the frequencies are needed (and the modes counted); a pinned
+// or as-given scene ignores them.
+ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f);
+
+// The pinned rung object of a job scene for a plan (schemas fidelity_rung).
+nlohmann::json pinned_fidelity_json(const EffectsPlan& plan);
+
+}  // namespace railvsi::scheduler

@@ -1,0 +1,33 @@
+#pragma once
+// A scene run on its planned rung (study/scene_plan): the modal moving-force
+// rung, or the FE rung (moving forces or interaction). An interaction plan
+// with an escalation fraction is repeated with nonlinear unilateral Hertz
+// when a contact force drops below that fraction of its static load; the
+// Result is then the repeated run's, its fidelity says why, and its wall
+// time counts both runs. Every Result's fidelity names the rung, who chose
+// it and why, its mode count and dt, and what it ignores and why.
+#include <functional>
+#include <memory>
+
+#include "solver/modal_basis.hpp"
+#include "simulation/result.hpp"
+#include "simulation/scene.hpp"
+#include "solver/structure_operator.hpp"
+#include "study/scene_plan.hpp"
+
+namespace railvsi::scheduler {
+
+// Where the rung's structure comes from (a cache, or built for this run).
+struct RungModels {
+  std::function<std::shared_ptr<const StructureOperator>(const Scene&)> fe_operator;
+  std::function<std::shared_ptr<const ModalBasis>(double cutoff_hz)> modal_basis;
+};
+
+// Throws InputError when the scene cannot run on the rung.
+Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& models);
+
+// The fidelity record's rung, choice, reasons and ignores for a run of
+// `scene` on `rung` (the plan's, or its escalation).
+void record_rung(const Scene& scene, const ScenePlan& plan, const Rung& rung, RunSummary& summary);
+
+}  // namespace railvsi::scheduler

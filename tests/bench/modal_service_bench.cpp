@@ -1,0 +1,185 @@
+// The standard EN 1991-2 HSLM check through the whole study service, as
+// `vsi run --threads 1` runs it: HSLM-A1 to A10 x 101 speeds (100-400 km/h
+// in steps of 3), 15 m simply supported span, f0 = 5 Hz, 15 t/m, 1 %
+// damping, midspan; fidelity "auto" (the planner puts it on the modal
+// moving-force rung, batched per train). Reported in one run, one core:
+//   service    submit (expansion, planning, insert) + work (claim, run,
+//              store) wall and process CPU time, jobs/s;
+//   per job    the batched job path (run_jobs: scene, sweep, filter,
+//              envelopes) timed in this thread, against
+//   bare       the modal recurrence of the same jobs (their steps x modes
+//              with their own modal steps, loads precomputed) in this thread.
+// Run by hand: OPENBLAS_NUM_THREADS=1 build/tests/bench/modal_service_bench
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <map>
+#include <cmath>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/modal_moving_forces.hpp"
+#include "cpu_time.hpp"
+#include "envelopes/code_filter.hpp"
+#include "integration/modal_recurrence.hpp"
+#include "io/scene_loader.hpp"
+#include "queue/job_queue.hpp"
+#include "store/sqlite.hpp"
+#include "store/store_schema.hpp"
+#include "study/study_plan.hpp"
+#include "workers/job_runner.hpp"
+#include "workers/worker_pool.hpp"
+
+namespace {
+
+using namespace railvsi;
+using namespace railvsi::scheduler;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+using bench::process_cpu_s;
+using bench::thread_cpu_s;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+json hslm_study() {
+  json trains = json::array();
+  for (int a = 1; a <= 10; ++a) trains.push_back("HSLM-A" + std::to_string(a));
+  return {{"name", "HSLM sweep, 15 m span"},
+          {"structure",
+           {{"generator", "bridge-2d"},
+            {"spans_m", {15.0}},
+            {"continuous", false},
+            {"deck", {{"first_frequency_hz", 5.0}, {"mass_kg_per_m", 15000.0}}},
+            {"damping", {{"ratio", 0.01}}},
+            {"track", nullptr}}},
+          {"trains", trains},
+          {"speeds_kmh", {{"from", 100}, {"to", 400}, {"step", 3}}},
+          {"analysis", json::object()},
+          {"outputs", {{"points", {{{"name", "midspan"}, {"x_m", 7.5}}}}}},
+          {"checks", {{"deck_acceleration_limit_mps2", 3.5}}}};
+}
+
+}  // namespace
+
+int main() {
+  single_threaded_blas();
+  const json doc = hslm_study();
+  const auto db_file = std::filesystem::temp_directory_path() / ("modal-service-bench-" + std::to_string(::getpid()) + ".sqlite");
+  const auto remove_db = [&] {
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db_file.string() + suffix);
+  };
+  remove_db();
+
+  // 1. The service: submit + work + store.
+  const double cpu0 = process_cpu_s();
+  const auto t0 = Clock::now();
+  const StudyPlan plan = expand_study(doc, std::filesystem::current_path(), "bench-study.json");
+  const double expand_s = since(t0);
+  {
+    Database db(db_file.string());
+    migrate(db);
+    submit_study(db, plan);
+  }
+  const double submit_s = since(t0);
+  WorkOptions o;
+  o.db_file = db_file.string();
+  o.threads = 1;
+  const WorkSummary work = run_workers(o);
+  const double service_s = since(t0);
+  const double service_cpu_s = process_cpu_s() - cpu0;
+  double job_wall_s = 0.0, loop_s = 0.0, basis_s = 0.0;
+  long jobs = 0, steps = 0;
+  std::string rung, fidelity;
+  {
+    Database db(db_file.string());
+    Statement s = db.prepare("SELECT count(*), total(wall_s), total(loop_s), total(steps), total(factorization_s), "
+                             "min(rung), max(fidelity) FROM jobs WHERE state = 'done'");
+    s.step();
+    jobs = s.int64(0);
+    job_wall_s = s.real(1);
+    loop_s = s.real(2);
+    steps = static_cast<long>(s.real(3));
+    basis_s = s.real(4);
+    rung = s.text(5);
+    fidelity = s.text(6);
+  }
+  remove_db();
+  const json f = json::parse(fidelity);
+  const int modes = f.at("modes").get<int>();
+  const double dt = f.at("dt_s").get<double>();
+
+  // 2. The per-job path in this thread: the batches as the worker runs them.
+  std::map<std::string, std::vector<ClaimedJob>> batches;
+  for (const JobSpec& j : plan.jobs)
+    batches[j.train].push_back({j.id, j.scene, j.operator_key, j.train, j.irregularity, j.speed_kmh, j.dt_s, j.cutoff_hz, 1, j.rung});
+  FactorizationCache cache;
+  double sink = 0.0;
+  long path_steps = 0;
+  const double tp = thread_cpu_s();
+  for (const auto& [train, batch] : batches)
+    for (const JobOutcome& out : run_jobs(batch, cache)) path_steps += out.steps;
+  const double path_s = thread_cpu_s() - tp;
+
+  // Where the per-job path goes: the sweep's time loop and the code filter,
+  // timed apart on the same jobs (scene parsed once per train).
+  double sweep_s = 0.0, filter_s = 0.0;
+  for (const auto& [train, batch] : batches) {
+    const Scene scene = parse_scene(json::parse(batch.front().scene), "/", "job");
+    ModalBasisOptions mo;
+    mo.max_frequency_hz = scene.fidelity.modal_cutoff_hz.value();
+    const ModalBasis basis(scene.structure, mo);
+    const ModalSweep sweep(basis, scene.train, scene.analysis.contact.rail_lines, scene.analysis.dt_s);
+    const CodeFilter filter(scene.analysis.dt_s, batch.front().cutoff_hz);
+    ModalSweepWorkspace ws;
+    std::vector<double> fws;
+    for (const ClaimedJob& j : batch) {
+      Scene at = scene;
+      at.speed_mps = j.speed_kmh / 3.6;
+      const double t1 = thread_cpu_s();
+      const ModalSweepRun run = sweep.run(modal_run_start_x_m(at), at.speed_mps, modal_run_steps(at), ws, true);
+      const double t2 = thread_cpu_s();
+      sink += filter.max_abs_filtered(ws.acceleration[0], fws) + static_cast<double>(run.steps);
+      filter_s += thread_cpu_s() - t2;
+      sweep_s += t2 - t1;
+    }
+  }
+
+  // 3. The bare recurrence of the same steps with as many modal steps.
+  std::vector<ModalStep> ms;
+  for (int k = 0; k < modes; ++k) {
+    // Simply supported span: f_k = k^2 f0 (the modes the basis holds to within the mesh's error).
+    const double w = 2.0 * std::numbers::pi * 5.0 * (k + 1) * (k + 1);
+    ms.push_back(make_modal_step(w, 0.01, dt));
+  }
+  std::vector<double> load(4096);
+  for (std::size_t i = 0; i < load.size(); ++i) load[i] = 1e3 * std::sin(0.01 * static_cast<double>(i));
+  std::vector<double> q(static_cast<std::size_t>(modes), 0.0), qd(q);
+  const double tb = thread_cpu_s();
+  for (long n = 0; n < path_steps; ++n) {
+    const double p0 = load[static_cast<std::size_t>(n) & 4095], p1 = load[static_cast<std::size_t>(n + 1) & 4095];
+    for (int k = 0; k < modes; ++k) sink += ms[static_cast<std::size_t>(k)].advance(q[k], qd[k], p0, p1, dt);
+  }
+  const double bare_s = thread_cpu_s() - tb;
+
+  std::printf("HSLM sweep through the service (%s, %d modes, dt %.3g s): %ld jobs, %ld steps\n", rung.c_str(), modes,
+              dt, jobs, steps);
+  std::printf("  service: %.3f s wall (%.3f s CPU, all threads) = submit %.3f s (expansion %.3f s) + work %.3f s; "
+              "%.0f jobs/s; failed %lld\n",
+              service_s, service_cpu_s, submit_s, expand_s, work.wall_s, jobs / service_s,
+              static_cast<long long>(work.jobs_failed));
+  std::printf("  work: jobs %.3f s (loops %.3f s, envelopes and scene %.3f s, modes %.4f s); claims, commits, "
+              "progress %.3f s\n",
+              job_wall_s, loop_s, job_wall_s - loop_s, basis_s, work.wall_s - job_wall_s);
+  std::printf("  per job (this thread): path %.3f s = %.1f us/job; bare recurrence %.4f s = %.1f us/job; "
+              "path / bare = %.2f (sink %g)\n",
+              path_s, 1e6 * path_s / jobs, bare_s, 1e6 * bare_s / jobs, path_s / bare_s, sink);
+  std::printf("  of the path: time loop (loads, recurrence, outputs) %.1f us/job = %.2f x bare; code filter %.1f "
+              "us/job = %.2f x bare; the rest (scene, summary, envelopes) %.1f us/job\n",
+              1e6 * sweep_s / jobs, sweep_s / bare_s, 1e6 * filter_s / jobs, filter_s / bare_s,
+              1e6 * (path_s - sweep_s - filter_s) / jobs);
+  return 0;
+}

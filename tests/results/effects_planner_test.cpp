@@ -1,0 +1,163 @@
+// The effects planner: the rung it picks for each kind of study, when it
+// falls back to FE, and the escalation from linear to unilateral Hertz.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "planning/effects_planner.hpp"
+
+namespace railvsi {
+namespace {
+
+// The 15 m span of the HSLM benchmark: f0 = 5 Hz, f3 = 45 Hz, 3 modes up to 54 Hz.
+PlannerInput span_15m() {
+  PlannerInput in;
+  in.f0_hz = 5.0;
+  in.f3_hz = 45.0;
+  in.modes_below_cutoff = 3;
+  return in;
+}
+
+bool ignores(const EffectsPlan& plan, std::string_view what) {
+  for (const auto& i : plan.ignores)
+    if (i.what.find(what) != std::string::npos) return true;
+  return false;
+}
+
+TEST(EffectsPlanner, HslmDeckOnlyRunsMovingForcesOnTheModalRung) {
+  const EffectsPlan plan = plan_effects(span_15m());
+  EXPECT_EQ(plan.rung.name(), "moving_forces/modal");
+  EXPECT_EQ(plan.rung.contact_law, "none");
+  EXPECT_DOUBLE_EQ(plan.code_frequency_hz, 45.0);  // f3 sets it
+  EXPECT_DOUBLE_EQ(plan.modal_cutoff_hz, 1.2 * 45.0);
+  EXPECT_FALSE(plan.escalate_below_fraction);
+  EXPECT_TRUE(ignores(plan, "modes above 54.0 Hz"));
+  EXPECT_TRUE(ignores(plan, "vehicle dynamics"));
+  EXPECT_FALSE(ignores(plan, "irregularity"));
+}
+
+TEST(EffectsPlanner, LoadModelStaysMovingForcesWhateverIsAsked) {
+  PlannerInput in = span_15m();
+  in.asks.wheel_unloading = in.asks.comfort = true;
+  in.irregularity = true;
+  const EffectsPlan plan = plan_effects(in);
+  EXPECT_EQ(plan.rung.name(), "moving_forces/modal");
+  EXPECT_TRUE(ignores(plan, "irregularity"));
+  ASSERT_GE(plan.reasons.size(), 2u);
+  EXPECT_NE(plan.reasons[1].find("no wheels"), std::string::npos);
+}
+
+TEST(EffectsPlanner, WheelUnloadingComfortOrIrregularityNeedInteractionWithLinearHertz) {
+  for (int kind = 0; kind < 3; ++kind) {
+    PlannerInput in = span_15m();
+    in.load_model = false;
+    if (kind == 0) in.asks.wheel_unloading = true;
+    if (kind == 1) in.asks.comfort = true;
+    if (kind == 2) in.irregularity = true;
+    const EffectsPlan plan = plan_effects(in);
+    EXPECT_EQ(plan.rung.model, "interaction") << kind;
+    EXPECT_EQ(plan.rung.contact_law, "linear-hertz") << kind;
+    EXPECT_FALSE(plan.rung.unilateral) << kind;
+    ASSERT_TRUE(plan.escalate_below_fraction) << kind;
+    EXPECT_DOUBLE_EQ(*plan.escalate_below_fraction, kEscalationFraction);
+    // Until the modal interaction rung is built in, interaction runs on FE.
+    EXPECT_EQ(plan.rung.structure, "fe") << kind;
+    EXPECT_NE(plan.reasons.back().find("modal interaction rung is not available"), std::string::npos);
+    EXPECT_TRUE(ignores(plan, "nonlinearity and unilaterality of Hertz"));
+  }
+}
+
+TEST(EffectsPlanner, MultibodyDeckOnlyStillNeedsTheVehicles) {
+  PlannerInput in = span_15m();
+  in.load_model = false;
+  const EffectsPlan plan = plan_effects(in);
+  EXPECT_EQ(plan.rung.model, "interaction");
+  EXPECT_NE(plan.reasons.front().find("suspensions"), std::string::npos);
+}
+
+TEST(EffectsPlanner, ModalInteractionIsChosenOnceAvailable) {
+  PlannerInput in = span_15m();
+  in.load_model = false;
+  in.asks.wheel_unloading = true;
+  in.modal_interaction_available = true;
+  EXPECT_EQ(plan_effects(in).rung.name(), "interaction/modal");
+}
+
+TEST(EffectsPlanner, FeWhenTheModalCutoffCannotBeHonoured) {
+  PlannerInput unknown_frequencies = span_15m();
+  unknown_frequencies.f3_hz = 0.0;
+  PlannerInput uncounted = span_15m();
+  uncounted.modes_below_cutoff = -1;
+  PlannerInput too_many = span_15m();
+  too_many.modes_below_cutoff = kMaxModalModes + 1;
+  PlannerInput just_enough = span_15m();
+  just_enough.modes_below_cutoff = kMaxModalModes;
+  for (const auto* in : {&unknown_frequencies, &uncounted, &too_many}) {
+    const EffectsPlan plan = plan_effects(*in);
+    EXPECT_EQ(plan.rung.name(), "moving_forces/fe");
+    EXPECT_EQ(plan.modal_cutoff_hz, 0.0);
+    EXPECT_EQ(plan.reasons.back().rfind("FE structure: ", 0), 0u) << plan.reasons.back();
+    EXPECT_FALSE(ignores(plan, "modes above"));
+  }
+  EXPECT_EQ(plan_effects(just_enough).rung.name(), "moving_forces/modal");
+}
+
+TEST(EffectsPlanner, CodeFrequencyIsTheLargestOfItsThreeTerms) {
+  PlannerInput stiff = span_15m();
+  stiff.f0_hz = 25.0;  // 1.5 f0 = 37.5 Hz governs
+  stiff.f3_hz = 20.0;
+  EXPECT_DOUBLE_EQ(plan_effects(stiff).code_frequency_hz, 37.5);
+  PlannerInput soft = span_15m();
+  soft.f0_hz = 2.0;
+  soft.f3_hz = 18.0;
+  EXPECT_DOUBLE_EQ(plan_effects(soft).code_frequency_hz, 30.0);
+}
+
+RunSummary two_wheels(double min_force_N) {
+  RunSummary s;
+  WheelSummary a, b;
+  a.name = "v0_w0";
+  a.static_load_N = b.static_load_N = 80000.0;
+  a.min_force_N = 70000.0;
+  a.evaluated = b.evaluated = true;
+  b.name = "v0_w1";
+  b.min_force_N = min_force_N;
+  s.wheels = {a, b};
+  return s;
+}
+
+TEST(EffectsPlanner, EscalatesWhenAContactForceDropsBelowTheStatedFraction) {
+  EXPECT_FALSE(escalation_reason(two_wheels(40000.0), 0.5));  // exactly half: still linear
+  const auto why = escalation_reason(two_wheels(39999.0), 0.5);
+  ASSERT_TRUE(why);
+  EXPECT_NE(why->find("wheel v0_w1"), std::string::npos);
+  EXPECT_NE(why->find("50 %"), std::string::npos);
+  // Contact lost (force 0) escalates; a wheel outside the evaluation window does not count.
+  EXPECT_TRUE(escalation_reason(two_wheels(0.0), 0.5));
+  RunSummary outside = two_wheels(0.0);
+  outside.wheels[1].evaluated = false;
+  EXPECT_FALSE(escalation_reason(outside, 0.5));
+  // A non-finite force is not "above the fraction".
+  EXPECT_TRUE(escalation_reason(two_wheels(std::nan("")), 0.5));
+
+  PlannerInput in = span_15m();
+  in.load_model = false;
+  in.asks.wheel_unloading = true;
+  const Rung full = escalated(plan_effects(in).rung);
+  EXPECT_EQ(full.contact_law, "hertz");
+  EXPECT_TRUE(full.unilateral);
+  EXPECT_EQ(full.name(), "interaction/fe");
+  EXPECT_FALSE(ignores(EffectsPlan{full, 0, 0, {}, rung_ignores(full, true, 0.0), {}}, "Hertz"));
+}
+
+TEST(EffectsPlanner, ModalTimeStepSamplesTheCodeFrequencyWithinTheTolerance) {
+  // 1 %: n = ceil(pi / acos(0.99)) = 23 samples per period of 45 Hz: 0.966 ms.
+  const double dt = modal_time_step_s(45.0, 0.01);
+  EXPECT_DOUBLE_EQ(dt, 9.66e-4);
+  EXPECT_LE(1.0 - std::cos(M_PI * 45.0 * dt), 0.01);
+  // A tighter tolerance samples more finely.
+  EXPECT_LT(modal_time_step_s(45.0, 0.001), dt / 3.0);
+}
+
+}  // namespace
+}  // namespace railvsi

@@ -1,0 +1,217 @@
+// Batched sweeps on the modal moving-force rung: the planner puts HSLM-like
+// studies on it, a worker claims the jobs of one structure and train as a
+// batch and stores them in one transaction, and every job's envelopes are
+// the same bits as when it runs alone, or through `vsi simulate`'s path
+// (histories, then the filter). A worker killed in the middle of a batched
+// sweep loses nothing.
+#include <algorithm>
+#include <csignal>
+#include <thread>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "analysis/modal_moving_forces.hpp"
+#include "envelopes/code_filter.hpp"
+#include "envelopes/job_envelopes.hpp"
+#include "io/scene_loader.hpp"
+#include "queue/job_queue.hpp"
+#include "scheduler_test_support.hpp"
+#include "store/store_schema.hpp"
+#include "study/study_plan.hpp"
+#include "workers/worker_pool.hpp"
+
+namespace railvsi::test {
+namespace {
+
+using nlohmann::json;
+using scheduler::Database;
+using scheduler::Statement;
+
+// 2 trains x 13 speeds on the tiny span, time step left to the planner.
+json modal_study() {
+  json doc = tiny_study();
+  doc["analysis"].erase("dt_s");
+  doc["speeds_kmh"] = {{"from", 100}, {"to", 340}, {"step", 20}};
+  return doc;
+}
+
+class ModalBatches : public ServiceTest {
+ protected:
+  // Submits `doc` into a new store and works it with batches of max_batch.
+  std::string run_study(const json& doc, const std::string& db_name, std::size_t max_batch) {
+    const std::string db_file = (dir_ / db_name).string();
+    {
+      Database db(db_file);
+      scheduler::migrate(db);
+      scheduler::submit_study(db, scheduler::expand_study(doc, dir_, (dir_ / "s.json").string()));
+    }
+    scheduler::WorkOptions o;
+    o.db_file = db_file;
+    o.max_batch_jobs = max_batch;
+    const scheduler::WorkSummary w = scheduler::run_workers(o);
+    EXPECT_EQ(w.jobs_failed, 0);
+    EXPECT_TRUE(w.error.empty()) << w.error;
+    return db_file;
+  }
+  // Every stored envelope value and run record, as text with exact (hex) doubles.
+  static std::string stored(const std::string& db_file) {
+    Database db(db_file);
+    std::string out;
+    Statement e = db.prepare("SELECT job_id, quantity, location, value FROM envelopes ORDER BY job_id, quantity, location");
+    while (e.step()) out += fmt::format("{}|{}|{}|{:a}\n", e.text(0), e.text(1), e.text(2), e.is_null(3) ? -1.0 : e.real(3));
+    Statement j = db.prepare("SELECT id, state, status, fidelity, steps, warnings, rung FROM jobs ORDER BY id");
+    while (j.step())
+      out += fmt::format("{}|{}|{}|{}|{}|{}|{}\n", j.text(0), j.text(1), j.text(2), j.text(3), j.int64(4), j.text(5),
+                         j.text(6));
+    return out;
+  }
+};
+
+TEST_F(ModalBatches, PlannerPutsMovingForceStudiesOnTheModalRungAndRecordsWhy) {
+  const std::string db_file = run_study(modal_study(), "modal.sqlite", 256);
+  Database db(db_file);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done'"), 26);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE rung = 'moving_forces/modal'"), 26);
+  // One basis for the structure: built once, every other job a cache hit.
+  EXPECT_EQ(count_rows(db, "SELECT factorizations FROM cache_stats"), 1);
+  EXPECT_EQ(count_rows(db, "SELECT hits FROM cache_stats"), 25);
+  Statement s = db.prepare("SELECT fidelity, dt_s, dt_reason FROM jobs LIMIT 1");
+  ASSERT_TRUE(s.step());
+  const json f = json::parse(s.text(0));
+  EXPECT_EQ(f["rung"], "moving_forces/modal");
+  EXPECT_EQ(f["chosen_by"], "planner");
+  EXPECT_GE(f["modes"].get<int>(), 1);
+  EXPECT_GT(f["modal_cutoff_hz"].get<double>(), 30.0);
+  EXPECT_EQ(f["dt_s"].get<double>(), s.real(1));
+  EXPECT_NE(s.text(2).find("modal rung"), std::string::npos) << s.text(2);
+  ASSERT_GE(f["ignores"].size(), 2u);
+  EXPECT_NE(f["ignores"][0]["what"].get<std::string>().find("modes above"), std::string::npos);
+  EXPECT_FALSE(f["ignores"][0]["why"].get<std::string>().empty());
+  EXPECT_NE(f["reasons"][0].get<std::string>().find("load model"), std::string::npos);
+  // 11 rows per job, as on the FE rung: displacement, filtered and unfiltered
+  // acceleration at 2 points and overall, Newton iterations (0) and the most in a step.
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 26 * 11);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE quantity = 'deck_acceleration_mps2' AND value IS NULL"), 0);
+}
+
+TEST_F(ModalBatches, BatchedResultsAreBitIdenticalToUnbatched) {
+  const json doc = modal_study();
+  const std::string batched = run_study(doc, "batched.sqlite", 256);
+  const std::string single = run_study(doc, "single.sqlite", 1);
+  const std::string a = stored(batched), b = stored(single);
+  ASSERT_GT(a.size(), 1000u);
+  EXPECT_EQ(a, b);
+}
+
+TEST_F(ModalBatches, BatchedJobEqualsTheHistoriesPathOfSimulate) {
+  // The batch keeps no histories and filters a workspace; `vsi simulate`
+  // runs run_modal_moving_forces (histories) and the envelopes filter
+  // those: the same bits.
+  const std::string db_file = run_study(modal_study(), "one.sqlite", 256);
+  Database db(db_file);
+  Statement s = db.prepare("SELECT id, scene, cutoff_hz FROM jobs WHERE speed_kmh = 260 AND train = 'two axles'");
+  ASSERT_TRUE(s.step());
+  const Scene scene = parse_scene(json::parse(s.text(1)), "/", "job");
+  ModalBasisOptions o;
+  o.max_frequency_hz = scene.fidelity.modal_cutoff_hz.value();
+  const Result r = run_modal_moving_forces(scene, ModalBasis(scene.structure, o));
+  const JobEnvelopes e = compute_envelopes(r, scene.analysis.dt_s, 1, s.real(2));
+  Statement v = db.prepare("SELECT quantity, value FROM envelopes WHERE job_id = ? AND location = ''");
+  v.bind(1, s.text(0));
+  int compared = 0;
+  while (v.step()) {
+    if (v.text(0) == "deck_acceleration_mps2") {
+      EXPECT_EQ(v.real(1), e.max_abs_acceleration_mps2.value());
+      ++compared;
+    } else if (v.text(0) == "deck_displacement_m") {
+      EXPECT_EQ(v.real(1), e.max_abs_displacement_m.value());
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 2);
+}
+
+TEST_F(ModalBatches, ClaimTakesOneStructureAndTrainTogether) {
+  const std::string db_file = (dir_ / "claims.sqlite").string();
+  Database db(db_file);
+  scheduler::migrate(db);
+  scheduler::submit_study(db, scheduler::expand_study(modal_study(), dir_, (dir_ / "s.json").string()));
+  scheduler::JobQueue queue(db, "w", 60.0);
+  const auto batch = queue.claim_batch({}, 256);
+  ASSERT_EQ(batch.size(), 13u) << "all speeds of one train";
+  for (const auto& j : batch) {
+    EXPECT_EQ(j.train, batch.front().train);
+    EXPECT_EQ(j.operator_key, batch.front().operator_key);
+  }
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'running'"), 13);
+  EXPECT_EQ(queue.claim_batch({}, 5).size(), 5u) << "the other train, at most max_jobs";
+  EXPECT_EQ(queue.renew(std::vector<std::string>{batch[0].id, batch[1].id, "no such job"}), 2u);
+}
+
+TEST_F(ModalBatches, KilledWorkerInABatchedSweepLosesNothing) {
+  // 3 trains x 21 speeds with 20 s of free vibration each (about 50,000
+  // steps): a batch of 21 jobs takes long enough to be interrupted.
+  json doc = modal_study();
+  doc["speeds_kmh"] = {{"from", 100}, {"to", 300}, {"step", 10}};
+  doc["analysis"]["extra_time_s"] = 20.0;
+  doc["trains"].push_back({{"name", "three axles"},
+                           {"moving_forces", json::array({{{"offset_m", 0}, {"load_N", 1.0e5}},
+                                                          {{"offset_m", 2.5}, {"load_N", 1.0e5}},
+                                                          {{"offset_m", 5.0}, {"load_N", 1.0e5}}})}});
+  const auto study = write_json("sweep.json", doc);
+  const auto interrupted = dir_ / "interrupted.sqlite", reference = dir_ / "reference.sqlite";
+  const VsiResult submitted = vsi({"submit", study.string(), "--db", interrupted.string()});
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.err;
+  const std::int64_t total = 3 * 21;
+
+  auto victim = start_vsi({"work", "--db", interrupted.string(), "--threads", "1", "--lease-s", "1"}, "victim");
+  const auto done = [&] {
+    Database db(interrupted.string());
+    return count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done'");
+  };
+  const auto running = [&] {
+    Database db(interrupted.string());
+    return count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'running'");
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  // Killed while it holds a batch, after at least one batch was stored.
+  while ((done() < 21 || running() < 2) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  victim->kill9();
+  EXPECT_EQ(victim->wait(), -SIGKILL);
+  const std::int64_t done_before = done();
+  const std::int64_t held_at_kill = running();  // the batch the victim held
+  EXPECT_GE(held_at_kill, 2);
+  ASSERT_GE(done_before, 21);
+  ASSERT_LT(done_before, total) << "the worker finished before it was killed: make the jobs longer";
+  {
+    // A batch is stored in one transaction: whole batches only.
+    Database db(interrupted.string());
+    EXPECT_EQ(count_rows(db, "SELECT count(*) FROM (SELECT train FROM jobs WHERE state = 'done' GROUP BY train "
+                             "HAVING count(*) NOT IN (21))"),
+              0);
+  }
+
+  const VsiResult resumed = vsi({"work", "--db", interrupted.string(), "--threads", "2", "--lease-s", "1"}, "resumed");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(done(), total);
+  ASSERT_EQ(vsi({"run", study.string(), "--db", reference.string(), "--threads", "1", "--batch", "1"}, "reference")
+                .exit_code,
+            0);
+  Database a(interrupted.string()), b(reference.string());
+  const auto envelopes = [](Database& db) {
+    std::string out;
+    Statement e = db.prepare("SELECT job_id, quantity, location, value FROM envelopes ORDER BY job_id, quantity, location");
+    while (e.step()) out += fmt::format("{}|{}|{}|{:a}\n", e.text(0), e.text(1), e.text(2), e.is_null(3) ? -1.0 : e.real(3));
+    return out;
+  };
+  const std::string ea = envelopes(a);
+  EXPECT_EQ(std::count(ea.begin(), ea.end(), '\n'), total * 11);
+  EXPECT_EQ(ea, envelopes(b)) << "the resumed sweep differs from an uninterrupted unbatched run";
+  // Only the killed batch ran twice.
+  EXPECT_EQ(count_rows(a, "SELECT count(*) FROM jobs WHERE attempts > 1"), held_at_kill);
+}
+
+}  // namespace
+}  // namespace railvsi::test

@@ -1,0 +1,76 @@
+// A scene run on its planned rung: the escalation from linearized bilateral
+// Hertz to nonlinear unilateral Hertz when a wheel unloads past the stated
+// fraction (re-run, recorded), none when it does not, and the fidelity
+// record of each rung.
+#include <gtest/gtest.h>
+
+#include "../engine/test_scenes.hpp"
+#include "simulation/simulation.hpp"
+#include "workers/rung_runner.hpp"
+
+namespace railvsi::scheduler {
+namespace {
+
+ScenePlan linear_hertz_plan() {
+  ScenePlan p;
+  p.rung.model = "interaction";
+  p.rung.structure = "fe";
+  p.rung.contact_law = "linear-hertz";
+  p.chosen_by = "planner";
+  p.escalate_below_fraction = kEscalationFraction;
+  p.reasons = {"test"};
+  return p;
+}
+
+Scene dip_scene(double depth_m) {
+  Scene s = testing::small_viaduct_with_dip(300.0, depth_m);
+  s.analysis.contact.law = "linear-hertz";
+  s.analysis.contact.unilateral = false;
+  s.analysis.duration_s = 0.25;
+  s.analysis.dt_s = 1.0e-4;
+  return s;
+}
+
+RungModels fe_models() {
+  RungModels m;
+  m.fe_operator = [](const Scene& s) { return make_structure_operator(s); };
+  return m;
+}
+
+TEST(RungRunner, WheelThatUnloadsPastTheFractionEscalatesToUnilateralHertz) {
+  // The 4 mm dip lifts the leading wheelset off the rail (contact_loss_test).
+  const Scene scene = dip_scene(0.004);
+  const Result r = run_at_rung(scene, linear_hertz_plan(), fe_models());
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  const FidelityRecord& f = r.summary.fidelity;
+  EXPECT_EQ(f.rung, "interaction/fe");
+  EXPECT_EQ(f.contact_law, "hertz");
+  EXPECT_TRUE(f.unilateral);
+  EXPECT_NE(f.escalation.find("below 50 % of its static load"), std::string::npos) << f.escalation;
+  EXPECT_GE(r.summary.min_contact_force_N, 0.0) << "unilateral: never tensile";
+  EXPECT_GT(r.summary.contact_loss_s, 0.0);
+  // The repeated run is the unilateral Hertz run itself.
+  Scene hertz = scene;
+  hertz.analysis.contact.law = "hertz";
+  hertz.analysis.contact.unilateral = true;
+  const Result direct = Simulation(hertz).run();
+  EXPECT_EQ(r.summary.max_unloading_ratio, direct.summary.max_unloading_ratio);
+  EXPECT_EQ(r.summary.max_abs_acceleration_mps2, direct.summary.max_abs_acceleration_mps2);
+}
+
+TEST(RungRunner, SmallUnloadingStaysOnLinearHertzAndSaysWhatItIgnores) {
+  const Scene scene = dip_scene(0.0002);
+  const Result r = run_at_rung(scene, linear_hertz_plan(), fe_models());
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  const FidelityRecord& f = r.summary.fidelity;
+  EXPECT_EQ(f.contact_law, "linear-hertz");
+  EXPECT_TRUE(f.escalation.empty()) << f.escalation;
+  EXPECT_LT(r.summary.max_unloading_ratio, 0.5);
+  ASSERT_FALSE(f.ignores.empty());
+  EXPECT_NE(f.ignores.back().what.find("Hertz"), std::string::npos);
+  EXPECT_EQ(f.chosen_by, "planner");
+  EXPECT_EQ(f.dt_s, 1.0e-4);
+}
+
+}  // namespace
+}  // namespace railvsi::scheduler
