@@ -271,7 +271,7 @@ std::string format_csv(const std::vector<JobResult>& jobs) {
         // {} writes the shortest text that reads back to the same double.
         out += fmt::format("{},{},{},{},{},{}{}\n", csv_field(j.train), csv_field(j.irregularity), j.speed_kmh, quantity,
                            csv_field(location), value ? fmt::format("{}", *value) : std::string(),
-                           variants ? "," + csv_field(j.variant) : std::string());
+                           variants ? fmt::format(",{}", csv_field(j.variant)) : std::string());
   return out;
 }
 
