@@ -75,9 +75,10 @@ TEST(LineSpeedRange, ResonanceSpeedsOfTheRegularSpacingAreAddedWithNineSpeedsAro
     const double v_i = kF0Hz * 3.0 * 3.6 / i;
     for (int k = -4; k <= 4; ++k) {
       const double v = v_i * (1.0 + 0.005 * k);
-      // The study takes f0 from the FE model (10 elements of 1 m), which
-      // differs from the closed form by MEASURED relative.
-      const bool found = std::any_of(speeds.begin(), speeds.end(), [&](double s) { return std::abs(s / v - 1.0) < 1e-6; });
+      // The study takes f0 from the FE model (10 elements of 1 m): 12.41831 Hz,
+      // 6.1e-6 above the closed form (measured with vsi inspect).
+      const bool found =
+          std::any_of(speeds.begin(), speeds.end(), [&](double s) { return std::abs(s / v - 1.0) < 1e-5; });
       EXPECT_TRUE(found) << "v_" << i << " (1 + " << 0.005 * k << ") = " << v << " km/h is missing";
     }
   }

@@ -40,12 +40,15 @@ TEST(StructureVariants, ExpandIntoOneStructurePerCombinationWithTheNominalJobsUn
   // Each variant is its own structure: no factorization key is shared across variants.
   for (const auto& [a, ka] : keys)
     for (const auto& [b, kb] : keys)
-      if (a != b)
+      if (a != b) {
         for (const auto& k : ka) EXPECT_EQ(kb.count(k), 0u) << a << " and " << b << " share a factorization";
+      }
   // The nominal jobs are the jobs of the same study without variants.
   std::set<std::string> plain_ids;
   for (const auto& j : plain.jobs) plain_ids.insert(j.id);
-  for (const auto& j : plan.jobs) EXPECT_EQ(plain_ids.count(j.id) == 1, j.variant == "nominal") << j.variant;
+  for (const auto& j : plan.jobs) {
+    EXPECT_EQ(plain_ids.count(j.id) == 1, j.variant == "nominal") << j.variant;
+  }
 
   // The structures: the deck mass scaled by the factor, the stiffness not;
   // f0 scales as 1/sqrt(mass factor).
@@ -53,8 +56,11 @@ TEST(StructureVariants, ExpandIntoOneStructurePerCombinationWithTheNominalJobsUn
   for (const auto& j : plan.jobs)
     if (!scenes.count(j.variant)) {
       const json scene = json::parse(j.scene);
-      if (j.variant == "nominal") EXPECT_FALSE(scene["structure"].contains("variant"));
-      else EXPECT_EQ(scene["structure"]["variant"]["EI_factor"], 1.0);
+      if (j.variant == "nominal") {
+        EXPECT_FALSE(scene["structure"].contains("variant"));
+      } else {
+        EXPECT_EQ(scene["structure"]["variant"]["EI_factor"], 1.0);
+      }
       scenes.emplace(j.variant, parse_scene(scene, std::filesystem::temp_directory_path(), "scene"));
     }
   const StructureModel& nominal = *scenes.at("nominal").structure;
