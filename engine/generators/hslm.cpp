@@ -41,4 +41,20 @@ Train make_hslm_a(const HslmAOptions& o, std::string name) {
   return t;
 }
 
+Train make_hslm_b(const HslmBOptions& o, std::string name) {
+  if (o.span_m != 0.0 && !(o.span_m > 0.0 && o.span_m < 7.0))
+    throw InputError("/span_m", fmt::format("HSLM-B is the universal train of simply supported spans L < 7 m "
+                                            "(EN 1991-2 6.4.6.1.1); got L = {} m: use HSLM-A",
+                                            o.span_m));
+  if (o.point_forces < 1)
+    throw InputError("/point_forces", fmt::format("must be >= 1 (got {})", o.point_forces));
+  if (!(o.spacing_m > 0.0)) throw InputError("/spacing_m", fmt::format("must be > 0 (got {})", o.spacing_m));
+  if (!(o.axle_load_N > 0.0)) throw InputError("/axle_load_N", fmt::format("must be > 0 (got {})", o.axle_load_N));
+  Train t;
+  t.name = std::move(name);
+  t.coach_length_m = o.spacing_m;
+  for (int k = 0; k < o.point_forces; ++k) t.moving_forces.push_back({k * o.spacing_m, o.axle_load_N});
+  return t;
+}
+
 }  // namespace railvsi

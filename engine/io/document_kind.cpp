@@ -25,7 +25,7 @@ struct KindInfo {
 
 constexpr std::array<KindInfo, 3> kKinds{{
     {DocumentKind::kScene, "scene", "scene.schema.json", {"structure", "speed_kmh", "analysis"}},
-    {DocumentKind::kTrain, "train", "train.schema.json", {"vehicles", "moving_forces", "hslm_a"}},
+    {DocumentKind::kTrain, "train", "train.schema.json", {"vehicles", "moving_forces", "hslm_a", "hslm_b"}},
     {DocumentKind::kIrregularity, "irregularity", "irregularity.schema.json", {"csv", "x_m", "r_m", "spectrum", "defects"}},
 }};
 
@@ -59,7 +59,7 @@ DocumentKind detect_document_kind(const json& doc, const std::string& file) {
   throw InputError("/",
                    fmt::format("cannot tell what kind of document this is: name its schema in \"$schema\" ({}) or "
                                "use the keys of a scene (structure, train, speed_kmh, analysis), a train "
-                               "(vehicles, moving_forces or hslm_a) or an irregularity profile (csv, x_m and r_m, "
+                               "(vehicles, moving_forces, hslm_a or hslm_b) or an irregularity profile (csv, x_m and r_m, "
                                "spectrum or defects)",
                                known_schemas()),
                    file);

@@ -426,6 +426,13 @@ std::shared_ptr<const StructureModel> import_structure(const json& s, const json
     throw InputError("/structure/damping", "give either import.C or damping, not both");
   ImportedMatrices m = read_matrices(files, base_dir);
   check_no_empty_rows(m);
+  if (s.contains("variant")) {  // a bound of mass and stiffness (EN 1991-2 6.4.6.3): the whole model
+    const double mass_factor = s.at("variant").value("mass_factor", 1.0);
+    const double EI_factor = s.at("variant").value("EI_factor", 1.0);
+    m.M *= mass_factor;
+    m.K *= EI_factor;
+    m.notes.push_back(fmt::format("variant: M x {:g}, K x {:g}", mass_factor, EI_factor));
+  }
   if (s.contains("damping")) m.C = rayleigh_damping(m, s.at("damping"));
   const auto map_file = resolve_relative(base_dir, files.at("map").get<std::string>());
   const json map_doc = read_json_file(map_file);

@@ -1,5 +1,6 @@
 #include "io/structure_loader.hpp"
 
+#include <cmath>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -48,6 +49,14 @@ Bridge2dOptions bridge_options(const json& s, const json& outputs, double min_ap
   o.deck_EI_Nm2 = s.at("deck").value("EI_Nm2", 0.0);
   o.deck_first_frequency_hz = s.at("deck").value("first_frequency_hz", 0.0);
   o.deck_mass_kg_per_m = s.at("deck").at("mass_kg_per_m").get<double>();
+  if (s.contains("variant")) {  // a bound of mass and stiffness (EN 1991-2 6.4.6.3) of the deck
+    const double mass_factor = s.at("variant").value("mass_factor", 1.0);
+    const double EI_factor = s.at("variant").value("EI_factor", 1.0);
+    o.deck_mass_kg_per_m *= mass_factor;
+    o.deck_EI_Nm2 *= EI_factor;
+    // EI = m (2 L^2 f1 / pi)^2: the given f1 stands for the unscaled deck.
+    o.deck_first_frequency_hz *= std::sqrt(EI_factor / mass_factor);
+  }
   const json& damping = s.at("damping");
   // Checked here rather than by a oneOf in the schema: the message can say what to do.
   if (damping.contains("en1991") == damping.contains("ratio"))

@@ -176,6 +176,20 @@ Train hslm_a_train(const json& h, std::string name) {
   return with_path_prefix("/hslm_a", [&] { return make_hslm_a(o, std::move(name)); });
 }
 
+Train hslm_b_train(const json& h, std::string name) {
+  HslmBOptions o;
+  o.span_m = h.value("span_m", 0.0);
+  if (!h.contains("point_forces") || !h.contains("spacing_m"))
+    throw InputError("/hslm_b",
+                     "give point_forces (N) and spacing_m (d) read from EN 1991-2 Figure 6.14 (Annex E) for the span: "
+                     "railvsi does not derive them from span_m, the figure's values are not built in (not confirmed "
+                     "against the standard's text)");
+  o.point_forces = h.at("point_forces").get<int>();
+  o.spacing_m = h.at("spacing_m").get<double>();
+  o.axle_load_N = h.value("axle_load_N", o.axle_load_N);
+  return with_path_prefix("/hslm_b", [&] { return make_hslm_b(o, std::move(name)); });
+}
+
 }  // namespace
 
 std::filesystem::path train_library_dir() {
@@ -242,17 +256,19 @@ Train parse_train(const json& train) {
   Train t;
   t.name = train.at("name").get<std::string>();
   const char* given = nullptr;
-  for (const char* form : {"moving_forces", "hslm_a", "vehicles"}) {
+  for (const char* form : {"moving_forces", "hslm_a", "hslm_b", "vehicles"}) {
     if (!train.contains(form)) continue;
     if (given != nullptr)
-      throw InputError(std::string("/") + form,
-                       fmt::format("give one of moving_forces, hslm_a and vehicles, not both {} and {}", given, form));
+      throw InputError(std::string("/") + form, fmt::format("give one of moving_forces, hslm_a, hslm_b and vehicles, "
+                                                            "not both {} and {}",
+                                                            given, form));
     given = form;
   }
-  if (train.contains("moving_forces") || train.contains("hslm_a")) {
+  if (!train.contains("vehicles")) {
     if (train.contains("as"))
       throw InputError("/as", fmt::format("applies to vehicles only; {} are moving forces already", given));
     if (train.contains("hslm_a")) return hslm_a_train(train.at("hslm_a"), t.name);
+    if (train.contains("hslm_b")) return hslm_b_train(train.at("hslm_b"), t.name);
     t.moving_forces = moving_forces(train.at("moving_forces"));
     return t;
   }

@@ -24,8 +24,9 @@ struct Train {
   std::string name;
   std::vector<MovingForce> moving_forces;
   std::vector<TrainVehicle> vehicles;
-  // HSLM-A coach length D (EN 1991-2 Annex E), the length whose passages
-  // excite resonance at v = f0 D / i; 0 for other trains.
+  // HSLM-A coach length D (EN 1991-2 Annex E) or HSLM-B spacing d, the
+  // regular length whose passages excite resonance at v = f0 D / i; 0 for
+  // other trains.
   double coach_length_m = 0.0;
 
   bool is_moving_forces() const { return vehicles.empty(); }

@@ -19,6 +19,7 @@ struct CheckCase {
   double speed_kmh = 0.0;
   std::string irregularity;
   std::optional<double> value;  // nullopt: no value (the job did not produce one)
+  std::string variant = {};  // bound of the structure (EN 1991-2 6.4.6.3); empty when the study has none
 };
 
 struct CheckResult {

@@ -10,7 +10,8 @@ std::vector<TrainEnvelope> envelope_over_speeds(const std::vector<CaseValue>& ro
   // Does case a govern over the current choice g?
   const auto governs = [extreme](const CaseValue& a, const TrainEnvelope& g) {
     if (*a.value != *g.value) return extreme == Extreme::kMax ? *a.value > *g.value : *a.value < *g.value;
-    return std::tie(a.speed_kmh, a.irregularity) < std::tie(g.governing_speed_kmh, g.governing_irregularity);
+    return std::tie(a.speed_kmh, a.irregularity, a.variant) <
+           std::tie(g.governing_speed_kmh, g.governing_irregularity, g.governing_variant);
   };
   std::map<std::string, TrainEnvelope> by_train;  // ordered by name
   for (const CaseValue& c : rows) {
@@ -25,6 +26,7 @@ std::vector<TrainEnvelope> envelope_over_speeds(const std::vector<CaseValue>& ro
       t.value = c.value;
       t.governing_speed_kmh = c.speed_kmh;
       t.governing_irregularity = c.irregularity;
+      t.governing_variant = c.variant;
     }
   }
   std::vector<TrainEnvelope> out;

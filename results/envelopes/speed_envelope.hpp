@@ -17,6 +17,7 @@ struct CaseValue {
   double speed_kmh = 0.0;
   std::string irregularity;  // profile label, "none" for a perfect track
   std::optional<double> value;
+  std::string variant = "nominal";  // bound of the structure (EN 1991-2 6.4.6.3)
 };
 
 struct TrainEnvelope {
@@ -24,6 +25,7 @@ struct TrainEnvelope {
   std::optional<double> value;  // absent when no case of the train has one
   double governing_speed_kmh = 0.0;
   std::string governing_irregularity;
+  std::string governing_variant = "nominal";
   int cases = 0;
   int cases_without_value = 0;  // a hole the user must see: the envelope may miss it
 };
@@ -31,7 +33,8 @@ struct TrainEnvelope {
 // One entry per train, ordered by train name, whatever the order of the
 // rows. The governing case is the largest value (kMax) or the smallest
 // (kMin); equal values are broken by the lowest speed, then by the
-// irregularity label, so the answer never depends on row order.
+// irregularity label, then by the variant label, so the answer never
+// depends on row order.
 std::vector<TrainEnvelope> envelope_over_speeds(const std::vector<CaseValue>& rows, Extreme extreme = Extreme::kMax);
 
 }  // namespace railvsi

@@ -63,6 +63,8 @@ std::string checks_table(const ComplianceReport& r) {
       train = esc(c.governing->train);
       speed = std::isfinite(c.governing->speed_kmh) ? fmt::format("{:g}", c.governing->speed_kmh) : "-";
       profile = esc(c.governing->irregularity);
+      if (!c.governing->variant.empty())
+        profile += fmt::format(", <span class=\"bound\">bound: {}</span>", esc(c.governing->variant));
     }
     out += fmt::format(
         "<tr data-check=\"{}\"><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"

@@ -1,5 +1,6 @@
 // vsi inspect: the models of a scene, study, train or irregularity document in
 // numbers an engineer checks before trusting them.
+#include <algorithm>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -33,7 +34,16 @@ double fundamental_hz(const StructureModel& structure) { return scheduler::deck_
 // the study's speed range.
 ordered_json study_report(const nlohmann::json& doc, const std::filesystem::path& file, int modes) {
   SchemaValidator("study.schema.json").validate(doc, file.string());
-  const std::vector<double> speeds = scheduler::expand_speeds(doc.at("speeds_kmh"), 100000);
+  // The given speeds and the steps of a line_speed_kmh range (its speeds
+  // around the resonances are listed with the resonance speeds below).
+  std::vector<double> speeds;
+  if (doc.contains("speeds_kmh")) speeds = scheduler::expand_speeds(doc.at("speeds_kmh"), 100000);
+  if (const auto range = scheduler::line_speed_range(doc)) {
+    const std::vector<double> steps = scheduler::line_speed_speeds(*range, 0.0, 0.0, 0.0, 100000);
+    speeds.insert(speeds.end(), steps.begin(), steps.end());
+    std::sort(speeds.begin(), speeds.end());
+  }
+  if (speeds.empty()) throw InputError("/speeds_kmh", "give speeds_kmh, line_speed_kmh or both", file.string());
   ordered_json report;
   report["file"] = file.string();
   report["document"] = "study";

@@ -26,7 +26,8 @@ namespace {
 using nlohmann::json;
 
 std::string case_label(const JobResult& j) {
-  return fmt::format("{} at {:g} km/h, {}", j.train, j.speed_kmh, j.irregularity);
+  return fmt::format("{} at {:g} km/h, {}{}", j.train, j.speed_kmh, j.irregularity,
+                     j.variant == "nominal" ? std::string() : ", " + j.variant);
 }
 
 // A stored job's scene, loaded as the worker loaded it.
@@ -112,8 +113,12 @@ std::vector<double> spans_of(const StructureInfo& info) {
 
 // The check of a stored quantity against an upper limit, one case per job.
 CheckResult quantity_check(CheckResult check, const std::vector<JobResult>& jobs) {
+  // The bound of the structure is named only when the study has several.
+  const bool variants =
+      std::any_of(jobs.begin(), jobs.end(), [](const JobResult& j) { return j.variant != "nominal"; });
   std::vector<CheckCase> cases;
-  for (const JobResult& j : jobs) cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(check.quantity)});
+  for (const JobResult& j : jobs)
+    cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(check.quantity), variants ? j.variant : ""});
   return evaluate_upper_limit(std::move(check), cases);
 }
 
@@ -246,9 +251,17 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     report.trains.push_back({t, it == infos.end() ? std::string("given in the study document") : it->second.source});
   }
 
-  // The structure, and each train as the jobs built it.
+  // The structure, and each train as the jobs built it: on the nominal
+  // structure when the study has bounds of it and the nominal among them.
   std::map<std::string, Scene> scenes;
-  for (const std::string& t : train_order) scenes.emplace(t, load_job_scene(db, by_train[t].front()->id));
+  std::vector<std::string> variants;
+  for (const JobResult& j : jobs)
+    if (std::find(variants.begin(), variants.end(), j.variant) == variants.end()) variants.push_back(j.variant);
+  for (const std::string& t : train_order) {
+    const auto& list = by_train[t];
+    const auto nominal = std::find_if(list.begin(), list.end(), [](const JobResult* j) { return j->variant == "nominal"; });
+    scenes.emplace(t, load_job_scene(db, (nominal == list.end() ? list.front() : *nominal)->id));
+  }
   const Scene& first = scenes.begin()->second;
   const StructureModel& structure = *first.structure;
   const StructureInfo& sinfo = structure.info();
@@ -265,6 +278,16 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
 
   // Model summary.
   report.model.push_back({"structure", sinfo.source});
+  if (variants.size() > 1 || (variants.size() == 1 && variants.front() != "nominal")) {
+    std::string list;
+    for (const std::string& v : variants) list += (list.empty() ? "" : "; ") + v;
+    report.model.push_back({"bounds of the structure (EN 1991-2 6.4.6.3)",
+                            list + ". The values below are those of the " +
+                                (std::find(variants.begin(), variants.end(), "nominal") != variants.end()
+                                     ? std::string("nominal structure")
+                                     : "first bound") +
+                                "; each job records its bound."});
+  }
   if (!spans.empty()) {
     std::string s;
     for (double x : spans) s += (s.empty() ? "" : ", ") + fmt::format("{:g}", x);
@@ -564,7 +587,8 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       if (!c.governing || !c.governing->value || c.id == "lm71_deflection" || c.id == "dynamic_enhancement") continue;
       const auto it = std::find_if(jobs.begin(), jobs.end(), [&](const JobResult& j) {
         return j.train == c.governing->train && j.speed_kmh == c.governing->speed_kmh &&
-               j.irregularity == c.governing->irregularity;
+               j.irregularity == c.governing->irregularity &&
+               (c.governing->variant.empty() || j.variant == c.governing->variant);
       });
       if (it == jobs.end() || done.count(it->id) ||
           static_cast<int>(done.size()) >= options.max_governing_cases)

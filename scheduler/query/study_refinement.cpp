@@ -40,6 +40,7 @@ std::size_t refine_study(Database& db, const std::string& study_id, int max_atte
     nlohmann::json part = doc;
     part["trains"] = nlohmann::json::array({train});
     part["speeds_kmh"] = speeds;
+    for (const char* key : {"line_speed_kmh", "speed_min_kmh", "speed_step_kmh"}) part.erase(key);
     ExpandOptions expand;
     expand.allow_large = true;
     StudyPlan plan = expand_study(part, file.parent_path(), file.string(), expand);

@@ -55,9 +55,20 @@ std::string marked(const std::string& text, bool warned) { return warned ? text 
 
 const JobResult* governing_job(const std::vector<JobResult>& jobs, const TrainEnvelope& e) {
   for (const JobResult& j : jobs)
-    if (j.train == e.train && j.speed_kmh == e.governing_speed_kmh && j.irregularity == e.governing_irregularity)
+    if (j.train == e.train && j.speed_kmh == e.governing_speed_kmh && j.irregularity == e.governing_irregularity &&
+        j.variant == e.governing_variant)
       return &j;
   return nullptr;
+}
+
+// Does the study run several bounds of the structure (its "variants")?
+bool has_variants(const std::vector<JobResult>& jobs) {
+  return std::any_of(jobs.begin(), jobs.end(), [](const JobResult& j) { return j.variant != "nominal"; });
+}
+
+// The profile cell of the job table: the profile, and the bound when there are several.
+std::string case_label(const JobResult& j, bool variants) {
+  return variants ? j.irregularity + ", " + j.variant : j.irregularity;
 }
 
 bool any_value(const std::vector<JobResult>& jobs, const char* quantity) {
@@ -70,7 +81,7 @@ std::vector<TrainEnvelope> study_envelope_over_speeds(const std::vector<JobResul
   std::vector<CaseValue> cases;
   std::map<std::string, std::size_t> train_order;
   for (const JobResult& j : jobs) {
-    cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(quantity)});
+    cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(quantity), j.variant});
     train_order.try_emplace(j.train, train_order.size());
   }
   std::vector<TrainEnvelope> out = envelope_over_speeds(cases, extreme_of(quantity).value_or(Extreme::kMax));
@@ -191,12 +202,14 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
   std::vector<const Column*> columns;
   for (const Column& c : kColumns)
     if (any_value(jobs, c.quantity)) columns.push_back(&c);
+  const bool variants = has_variants(jobs);
+  const char* irr_heading = variants ? "profile, bound" : "irregularity";
   std::size_t train_w = 5, irr_w = 12;
   std::vector<std::size_t> value_w;
   for (const Column* c : columns) value_w.push_back(std::string(c->heading).size());
   for (const JobResult& j : jobs) {
     train_w = std::max(train_w, terminal_safe(j.train).size());
-    irr_w = std::max(irr_w, terminal_safe(j.irregularity).size());
+    irr_w = std::max(irr_w, terminal_safe(case_label(j, variants)).size());
     for (std::size_t k = 0; k < columns.size(); ++k)
       value_w[k] = std::max(value_w[k], marked(shown(j.overall(columns[k]->quantity), columns[k]->scale),
                                                 j.has_warnings() && j.overall(columns[k]->quantity).has_value())
@@ -212,12 +225,12 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
   for (const Column* c : columns)
     if (*c->unit != '\0') units += fmt::format("; {} {}", c->heading, c->unit);
   out += table_line(units) + "\n";
-  std::string heading = fmt::format("{:<{}}  {:>5}  {:<{}}  {:>8}", "train", train_w, "km/h", "irregularity", irr_w, "dt");
+  std::string heading = fmt::format("{:<{}}  {:>5}  {:<{}}  {:>8}", "train", train_w, "km/h", irr_heading, irr_w, "dt");
   for (std::size_t k = 0; k < columns.size(); ++k) heading += fmt::format("  {:>{}}", columns[k]->heading, value_w[k]);
   out += table_line(heading + "  state");
   for (const JobResult& j : jobs) {
     std::string line = fmt::format("{:<{}}  {:>5}  {:<{}}  {:>8.3g}", fit(j.train, train_w), train_w,
-                                   speed_text(j.speed_kmh), fit(j.irregularity, irr_w), irr_w, j.dt_s);
+                                   speed_text(j.speed_kmh), fit(case_label(j, variants), irr_w), irr_w, j.dt_s);
     for (std::size_t k = 0; k < columns.size(); ++k)
       line += fmt::format("  {:>{}}", marked(shown(j.overall(columns[k]->quantity), columns[k]->scale),
                                             j.has_warnings() && j.overall(columns[k]->quantity).has_value()),
@@ -240,6 +253,7 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
   for (const Column* c : columns)
     for (const TrainEnvelope& e : study_envelope_over_speeds(jobs, c->quantity)) {
       std::vector<std::string> notes;
+      if (variants && e.value) notes.push_back("bound: " + e.governing_variant);
       if (study.checks.contains(c->check) && e.value) {
         const double limit = study.checks.at(c->check).get<double>();
         notes.push_back(fmt::format("{} (limit {})", *e.value <= limit ? "ok" : "EXCEEDED", shown(limit, c->scale)));
@@ -298,13 +312,17 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
 }
 
 std::string format_csv(const std::vector<JobResult>& jobs) {
-  std::string out = "train,irregularity,speed_kmh,quantity,location,value\n";
+  // A study with bounds of the structure gets a last column naming each row's.
+  const bool variants = has_variants(jobs);
+  std::string out = variants ? "train,irregularity,speed_kmh,quantity,location,value,variant\n"
+                             : "train,irregularity,speed_kmh,quantity,location,value\n";
   for (const JobResult& j : jobs)
     for (const auto& [quantity, locations] : j.envelopes)
       for (const auto& [location, value] : locations)
         // {} writes the shortest text that reads back to the same double.
-        out += fmt::format("{},{},{},{},{},{}\n", csv_field(j.train), csv_field(j.irregularity), j.speed_kmh, quantity,
-                           csv_field(location), value ? fmt::format("{}", *value) : std::string());
+        out += fmt::format("{},{},{},{},{},{}{}\n", csv_field(j.train), csv_field(j.irregularity), j.speed_kmh, quantity,
+                           csv_field(location), value ? fmt::format("{}", *value) : std::string(),
+                           variants ? fmt::format(",{}", csv_field(j.variant)) : std::string());
   return out;
 }
 
@@ -320,6 +338,7 @@ ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& j
                         {"train", j.train},
                         {"speed_kmh", j.speed_kmh},
                         {"irregularity", j.irregularity},
+                        {"variant", j.variant},
                         {"state", j.state},
                         {"status", j.status.empty() ? ordered_json(nullptr) : ordered_json(j.status)},
                         {"dt_s", j.dt_s},
@@ -343,6 +362,7 @@ ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& j
                         {"value", number(e.value)},
                         {"governing_speed_kmh", e.governing_speed_kmh},
                         {"governing_irregularity", e.governing_irregularity},
+                        {"governing_variant", e.governing_variant},
                         {"cases", e.cases},
                         {"cases_without_value", e.cases_without_value},
                         {"at_edge_of_speed_range", at_edge_of_speed_range(jobs, e)}});

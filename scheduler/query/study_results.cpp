@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "study/structure_variants.hpp"
+
 namespace railvsi::scheduler {
 namespace {
 
@@ -46,7 +48,8 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
       "j.cutoff_hz, j.wall_s, j.loop_s, j.fidelity, j.warnings, "
       "CASE WHEN json_extract(j.scene, '$.irregularity.seed') IS NOT NULL "
       "THEN json_remove(json_extract(j.scene, '$.irregularity'), '$.seed') END, "
-      "json_extract(j.scene, '$.irregularity.spectrum') FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+      "json_extract(j.scene, '$.irregularity.spectrum'), json_extract(j.scene, '$.structure.variant') "
+      "FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
       "WHERE {} ORDER BY sj.position",
       kFilter));
   bind_filter(s, filter);
@@ -68,6 +71,7 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     r.warnings = s.text(13);
     r.profile_family = s.text(14);
     if (!r.profile_family.empty()) r.family_label = s.text(15);
+    if (!s.is_null(16)) r.variant = variant_label(nlohmann::json::parse(s.text(16)));
     index.emplace(r.id, jobs.size());
     jobs.push_back(std::move(r));
   }

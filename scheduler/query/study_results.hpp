@@ -25,6 +25,7 @@ struct JobResult {
   std::string train;
   double speed_kmh = 0.0;
   std::string irregularity;
+  std::string variant = "nominal";  // bound of the structure, from the scene's structure.variant
   std::string state;
   std::string status;  // engine status, empty before a run
   std::string error;

@@ -1,5 +1,6 @@
 #include "study/speed_list.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -29,6 +30,53 @@ std::vector<double> expand_speeds(const nlohmann::json& speeds_kmh, std::size_t 
     throw InputError("/speeds_kmh/step",
                      fmt::format("gives {:.0f} speeds, more than the {} jobs a study may have", intervals + 1.0, max_count));
   for (long k = 0; k <= static_cast<long>(intervals); ++k) speeds.push_back(rounded(from + static_cast<double>(k) * step));
+  return speeds;
+}
+
+double LineSpeedRange::rounded_speed_kmh(double speed_kmh) { return rounded(speed_kmh); }
+
+std::vector<double> resonance_speeds_kmh(double f0_hz, double spacing_m, double min_kmh, double max_kmh) {
+  std::vector<double> speeds;
+  if (!(f0_hz > 0.0) || !(spacing_m > 0.0)) return speeds;
+  for (int i = 1; i <= 4; ++i) {
+    const double v_kmh = f0_hz * spacing_m / i * 3.6;
+    if (v_kmh >= min_kmh && v_kmh <= max_kmh) speeds.push_back(v_kmh);
+  }
+  return speeds;
+}
+
+std::optional<LineSpeedRange> line_speed_range(const nlohmann::json& study) {
+  if (!study.contains("line_speed_kmh")) return std::nullopt;
+  LineSpeedRange r;
+  r.line_speed_kmh = study.at("line_speed_kmh").get<double>();
+  r.min_kmh = study.value("speed_min_kmh", r.min_kmh);
+  r.step_kmh = study.value("speed_step_kmh", r.step_kmh);
+  if (r.min_kmh > r.max_kmh())
+    throw InputError(study.contains("speed_min_kmh") ? "/speed_min_kmh" : "/line_speed_kmh",
+                     fmt::format("the speeds start at {} km/h, above the maximum design speed 1.2 x {} = {} km/h "
+                                 "(EN 1991-2 6.4.6.2); give a lower speed_min_kmh",
+                                 r.min_kmh, r.line_speed_kmh, r.max_kmh()));
+  return r;
+}
+
+std::vector<double> line_speed_speeds(const LineSpeedRange& range, double f0_hz, double spacing_m,
+                                      double damping_ratio, std::size_t max_count) {
+  const double max_kmh = range.max_kmh();
+  std::vector<double> speeds;
+  try {
+    speeds = expand_speeds({{"from", range.min_kmh}, {"to", max_kmh}, {"step", range.step_kmh}}, max_count);
+  } catch (const InputError& e) {
+    throw InputError("/speed_step_kmh", e.what());
+  }
+  if (speeds.back() != max_kmh) speeds.push_back(max_kmh);
+  const double zeta = damping_ratio > 0.0 ? damping_ratio : 0.005;
+  for (double v_r : resonance_speeds_kmh(f0_hz, spacing_m, range.min_kmh, max_kmh))
+    for (int k = -4; k <= 4; ++k) {
+      const double v = rounded(v_r * (1.0 + 0.5 * k * zeta));
+      if (v >= range.min_kmh && v <= max_kmh) speeds.push_back(v);
+    }
+  std::sort(speeds.begin(), speeds.end());
+  speeds.erase(std::unique(speeds.begin(), speeds.end()), speeds.end());
   return speeds;
 }
 

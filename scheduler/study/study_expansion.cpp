@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include <fmt/format.h>
@@ -20,6 +21,7 @@
 #include "study/scene_plan.hpp"
 #include "study/speed_list.hpp"
 #include "study/structure_key.hpp"
+#include "study/structure_variants.hpp"
 #include "study/study_plan.hpp"
 
 namespace railvsi::scheduler {
@@ -125,8 +127,9 @@ void absolute_file_names(json& structure, std::vector<Profile>& profiles, const 
   for (Profile& p : profiles) make_absolute(p.value, "csv", base_dir);
 }
 
-// What every job of one train shares: its structure (the train may size the
-// approach embankment), whose hash and cut-off are computed once.
+// What every job of one train on one variant of the structure shares: its
+// structure (the train may size the approach embankment), whose hash and
+// cut-off are computed once, and its speeds.
 struct TrainFacts {
   std::string structure_hash;
   DeckFrequencies frequencies;
@@ -136,6 +139,7 @@ struct TrainFacts {
   Scene first_scene;
   EffectsPlan plan;             // the rung of this train's jobs
   nlohmann::json fidelity;      // what the job scenes say of it (null: the study's own)
+  std::vector<double> speeds_kmh;
 };
 
 // What the study asks of its jobs, from its checks: the deck always; wheel
@@ -197,20 +201,29 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   if (doc.contains("checks")) plan.checks = doc.at("checks");
 
   const json& trains = doc.at("trains");
-  std::vector<double> speeds;
+  std::vector<double> speeds;  // given in speeds_kmh; a line_speed_kmh range adds per train and variant
+  std::optional<LineSpeedRange> line_range;
+  std::vector<StructureVariant> variants;
   try {
-    speeds = expand_speeds(doc.at("speeds_kmh"), max_jobs);
+    if (doc.contains("speeds_kmh")) speeds = expand_speeds(doc.at("speeds_kmh"), max_jobs);
+    line_range = line_speed_range(doc);
+    if (speeds.empty() && !line_range)
+      throw InputError("/speeds_kmh", "give the speeds (speeds_kmh), the maximum line speed (line_speed_kmh) or both");
+    variants = study_variants(doc);
   } catch (const InputError& e) {
     throw e.with_file(file);
   }
   std::vector<Profile> profiles = study_profiles(doc);
-  const std::size_t count = trains.size() * speeds.size() * profiles.size();
-  if (count > max_jobs)
-    throw InputError("/speeds_kmh",
-                     fmt::format("the study expands into {} jobs ({} trains x {} speeds x {} profiles), more than {}; "
-                                 "pass --allow-large to submit it anyway",
-                                 count, trains.size(), speeds.size(), profiles.size(), max_jobs),
-                     file);
+  const auto check_count = [&](std::size_t count, std::size_t speed_count) {
+    if (count > max_jobs)
+      throw InputError(line_range ? "/line_speed_kmh" : "/speeds_kmh",
+                       fmt::format("the study expands into {} jobs ({} variants x {} trains x {} speeds x {} "
+                                   "profiles), more than {}; pass --allow-large to submit it anyway",
+                                   count, variants.size(), trains.size(), speed_count, profiles.size(), max_jobs),
+                       file);
+  };
+  check_count(variants.size() * trains.size() * speeds.size() * profiles.size(), speeds.size());
+  const double first_speed_kmh = speeds.empty() ? line_range->min_kmh : speeds.front();
 
   json base = json::object();
   base["structure"] = doc.at("structure");
@@ -221,8 +234,10 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   // Fidelity "auto" (the default): the planner pins each train's rung in its jobs.
   const bool auto_fidelity = !doc.contains("fidelity") || doc.at("fidelity").is_string();
   if (!auto_fidelity) base["fidelity"] = doc.at("fidelity");
-  const auto scene_doc = [&](const json& train, double speed_kmh, const json& profile, double dt_s) {
+  const auto scene_doc = [&](const StructureVariant& variant, const json& train, double speed_kmh, const json& profile,
+                             double dt_s) {
     json scene = base;
+    if (!variant.nominal()) scene["structure"]["variant"] = variant.scene_value();
     scene["train"] = train;
     scene["speed_kmh"] = speed_kmh;
     scene["irregularity"] = profile;
@@ -241,15 +256,19 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   // structure it runs on and the engine's setup (a dry run, without the
   // time loop). Then every other profile with the first train.
   const double placeholder_dt_s = dt_given ? doc.at("analysis").at("dt_s").get<double>() : 1e-3;
-  std::vector<TrainFacts> facts(trains.size());
+  // Facts of train i on variant v at [v * trains + i].
+  std::vector<TrainFacts> facts(variants.size() * trains.size());
   std::map<std::string, DeckFrequencies> frequencies_of_structure;
   std::map<std::string, std::shared_ptr<const StructureOperator>> operators;
   std::map<std::string, int> modes_of_structure;
-  for (std::size_t i = 0; i < trains.size(); ++i) {
+  std::size_t count = 0, most_speeds = 0;
+  for (std::size_t n = 0; n < facts.size(); ++n) {
+    const std::size_t i = n % trains.size();
+    const StructureVariant& variant = variants[n / trains.size()];
     const std::string train_path = child_path("/trains", i);
-    TrainFacts& f = facts[i];
-    f.first_scene = parse(scene_doc(trains[i], speeds.front(), profiles.front().value, placeholder_dt_s), train_path,
-                          profiles.front().path);
+    TrainFacts& f = facts[n];
+    f.first_scene = parse(scene_doc(variant, trains[i], first_speed_kmh, profiles.front().value, placeholder_dt_s),
+                          train_path, profiles.front().path);
     f.structure = f.first_scene.structure;
     f.structure_hash = structure_model_hash(*f.structure);
     f.rail_flexibility = !f.first_scene.train.is_moving_forces();
@@ -271,6 +290,23 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
       f.plan.code_frequency_hz = f.cutoff_hz;
       f.plan.modal_cutoff_hz = pinned.modal_cutoff_hz;
     }
+    f.speeds_kmh = speeds;
+    if (line_range) {
+      const std::optional<double> zeta = f.structure->info().damping_ratio;
+      try {
+        const std::vector<double> range =
+            line_speed_speeds(*line_range, f.frequencies.f0_hz, f.first_scene.train.coach_length_m,
+                              zeta ? *zeta : 0.0, max_jobs);
+        f.speeds_kmh.insert(f.speeds_kmh.end(), range.begin(), range.end());
+      } catch (const InputError& e) {
+        throw e.with_file(file);
+      }
+      std::sort(f.speeds_kmh.begin(), f.speeds_kmh.end());
+      f.speeds_kmh.erase(std::unique(f.speeds_kmh.begin(), f.speeds_kmh.end()), f.speeds_kmh.end());
+    }
+    count += f.speeds_kmh.size() * profiles.size();
+    most_speeds = std::max(most_speeds, f.speeds_kmh.size());
+    check_count(count, most_speeds);
     Scene dry = f.first_scene;
     const JobTimeStep first_dt = job_time_step(dt_given, dry, f.frequencies, f.plan);
     dry.analysis.dt_s = first_dt.dt_s;
@@ -292,8 +328,8 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     }
   }
   for (std::size_t j = 1; j < profiles.size(); ++j)
-    parse(scene_doc(trains[0], speeds.front(), profiles[j].value, placeholder_dt_s), child_path("/trains", 0),
-          profiles[j].path);
+    parse(scene_doc(variants.front(), trains[0], first_speed_kmh, profiles[j].value, placeholder_dt_s),
+          child_path("/trains", 0), profiles[j].path);
 
   std::vector<std::string> train_labels;
   for (const json& t : trains) train_labels.push_back(study_train_label(t));
@@ -301,9 +337,11 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
 
   plan.jobs.reserve(count);
   std::set<std::string> ids;
-  for (std::size_t i = 0; i < trains.size(); ++i) {
-    const TrainFacts& f = facts[i];
-    for (double speed_kmh : speeds) {
+  for (std::size_t n = 0; n < facts.size(); ++n) {
+    const std::size_t i = n % trains.size();
+    const StructureVariant& variant = variants[n / trains.size()];
+    const TrainFacts& f = facts[n];
+    for (double speed_kmh : f.speeds_kmh) {
       Scene at_speed = f.first_scene;
       at_speed.speed_mps = speed_kmh / 3.6;
       const JobTimeStep dt = job_time_step(dt_given, at_speed, f.frequencies, f.plan);
@@ -314,7 +352,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
                 : operator_key(f.structure_hash, at_speed.analysis, f.rail_flexibility);
       for (const Profile& p : profiles) {
         JobSpec job;
-        json scene = scene_doc(trains[i], speed_kmh, p.value, dt.dt_s);
+        json scene = scene_doc(variant, trains[i], speed_kmh, p.value, dt.dt_s);
         if (auto_fidelity) scene["fidelity"] = f.fidelity;
         else if (modal && !scene["fidelity"].contains("modal_cutoff_hz"))
           scene["fidelity"]["modal_cutoff_hz"] = f.plan.modal_cutoff_hz;  // the job runs without the frequencies
@@ -324,6 +362,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
         job.train = train_labels[i];
         job.speed_kmh = speed_kmh;
         job.irregularity = p.label;
+        job.variant = variant_label(variant);
         job.operator_key = key;
         job.dt_s = dt.dt_s;
         job.dt_reason = dt.reason;

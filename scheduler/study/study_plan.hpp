@@ -1,6 +1,6 @@
 #pragma once
-// A study (schemas/study.schema.json) expanded into jobs: trains x speeds x
-// irregularity profiles (x seeds). Each job is one canonical scene; its id is
+// A study (schemas/study.schema.json) expanded into jobs: structure variants
+// x trains x speeds x irregularity profiles (x seeds). Each job is one canonical scene; its id is
 // the SHA-256 of that text, so the same job submitted twice is one job.
 #include <cstddef>
 #include <filesystem>
@@ -17,6 +17,7 @@ struct JobSpec {
   std::string train;         // label of the train (its name)
   double speed_kmh = 0.0;
   std::string irregularity;  // label of the profile, "none" for a perfect track
+  std::string variant = "nominal";  // bound of the structure (study "variants"), in the scene too
   // Jobs with the same key share one structure factorization: SHA-256 of the
   // structure model's matrices and rail DOFs, dt, the HHT parameters and
   // whether the rail flexibility is needed.
