@@ -133,7 +133,9 @@ const char* const kShort[] = {"disp", "acc", "acc_raw", "Q_min", "dQ/Q", "loss",
 
 std::string percent(std::optional<double> e) {
   if (!e) return "-";
-  return fmt::format("{:+.2f}%", 100.0 * *e);
+  // Two decimals, or two digits for what two decimals would show as 0.00.
+  const double pct = 100.0 * *e;
+  return std::abs(pct) >= 0.005 || pct == 0.0 ? fmt::format("{:+.2f}%", pct) : fmt::format("{:+.1e}%", pct);
 }
 
 std::string modes_text(const PriceRow& r) { return r.modes ? std::to_string(*r.modes) : "all"; }
@@ -267,7 +269,8 @@ int price_scene_file(const PriceArgs& args) {
   if (args.format == "json") {
     ordered_json out;
     out["scene"] = args.scene_file;
-    for (auto& [k, v] : price_json(p).items()) out[k] = v;
+    const ordered_json body = price_json(p);
+    for (const auto& [k, v] : body.items()) out[k] = v;
     std::cout << out.dump(2) << '\n';
   } else if (args.format == "csv") {
     std::cout << csv_header(false) << price_csv(p, "");
