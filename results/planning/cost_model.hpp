@@ -3,21 +3,20 @@
 // fixes (README "What accuracy costs"):
 //
 //   cpu = setup + steps x per_step
-//   FE, per step:    c_solve x n_s x solves + c_contact x n_c^2 + c_axle x n_a
-//                    (solves = 2 for interaction, the condensed step's two
-//                    structure solves, 1 for moving forces; n_s structure
-//                    DOFs: one pass over a banded factor costs ~ n_s)
+//   FE, per step:    c_int x n_s (interaction: two structure solves, the
+//                    contact problem folded in) or c_mf x n_s + c_axle x n_a
+//                    (moving forces); n_s structure DOFs: one pass over a
+//                    banded factor costs ~ n_s
 //   FE, setup:       c_factor x n_s + c_flex x n_rail x n_s (interaction:
 //                    one solve per rail DOF for the rail flexibility)
 //   modal, per step: c_mode x modes x (n_a + n_points)
 //   modal, setup:    c_basis x n_s x modes (Lanczos)
 //
-// The coefficients were fitted on this repository's README scenes by
-// `vsi price` itself (one core of the 2-core CI machine, 2026-11-23; the
-// fit and its residuals are in the README); `vsi price` prints predicted
-// against measured for every run, which is how a user sees whether the
-// model holds for a scene. A plane model has a banded factor; a 3D deck's
-// factor is denser and the prediction then low: treat it as an order of
+// The coefficients (cost_model.cpp) were fitted on two README scenes
+// measured by `vsi price` itself; `vsi price` prints predicted against
+// measured for every run, which is how a user sees whether the model
+// holds for a scene. A plane model has a banded factor; a 3D deck's factor
+// is denser and the prediction then low: treat it as an order of
 // magnitude.
 #include <string>
 
@@ -31,7 +30,6 @@ struct CostInputs {
   double steps = 0.0;
   double structure_dofs = 0.0;
   double rail_dofs = 0.0;
-  double contacts = 0.0;
   double axles = 0.0;  // moving forces
   double modes = 0.0;
   double output_points = 0.0;

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "analysis/modal_moving_forces.hpp"
-#include "cli/vsi_test_support.hpp"
+#include "vsi_test_support.hpp"
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
 
