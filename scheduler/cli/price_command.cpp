@@ -1,7 +1,6 @@
 #include "cli/price_command.hpp"
 
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -281,13 +280,10 @@ int price_scene_file(const PriceArgs& args) {
 }
 
 int price_study(const PriceArgs& args) {
-  if (!std::filesystem::is_regular_file(args.db)) {
-    std::cerr << "error: no such database: " << args.db << '\n';
-    return kExitInvalidInput;
-  }
-  const auto db = open_store(args.db);
-  const auto id = find_study(*db, args.study_id);
-  if (!id) return kExitInvalidInput;
+  const auto opened = open_study(args.db, args.study_id);
+  if (!opened) return kExitInvalidInput;
+  scheduler::Database* const db = opened->db.get();
+  const std::string* const id = &opened->id;
   const std::vector<scheduler::SampledJob> sample = scheduler::price_sample(*db, *id, args.jobs);
   ordered_json jobs = ordered_json::array();
   bool all_ok = true;
