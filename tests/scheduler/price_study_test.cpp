@@ -28,14 +28,15 @@ TEST_F(PriceStudy, SamplesTheGoverningCasesAndPricesThem) {
   ASSERT_EQ(query.exit_code, 0) << query.err;
   std::string governing;
   double best = -1.0;
-  for (const json& job : json::parse(query.out).at("jobs")) {
+  const json query_json = json::parse(query.out);
+  for (const json& job : query_json.at("jobs")) {
     const double a = job.at("envelopes").at("deck_acceleration_mps2").at("all").get<double>();
     if (a > best) {
       best = a;
       governing = job.at("id").get<std::string>();
     }
   }
-  ASSERT_FALSE(governing.empty());
+  ASSERT_FALSE(governing.empty()) << query.out;
 
   const VsiResult price = vsi({"price", "--db", db, "--study", id.substr(0, 12), "--jobs", "2", "--format", "json"});
   ASSERT_EQ(price.exit_code, 0) << price.err;
