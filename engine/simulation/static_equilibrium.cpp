@@ -1,5 +1,6 @@
 #include "simulation/static_equilibrium.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -37,6 +38,18 @@ Vector static_wheel_loads_on_rigid_track(const VehicleModel& vehicle) {
     throw InputError("", fmt::format("vehicle '{}' is not statically supported by its wheels",
                                      vehicle.name()));
   return lu.solve(rhs).tail(nw);
+}
+
+std::vector<MovingForce> axle_loads(const Train& train) {
+  if (train.is_moving_forces()) return train.moving_forces;
+  std::vector<MovingForce> out;
+  for (const TrainVehicle& v : train.vehicles) {
+    const Vector loads = static_wheel_loads_on_rigid_track(*v.model);
+    for (std::size_t w = 0; w < v.model->wheels().size(); ++w)
+      out.push_back({v.offset_m + v.model->wheels()[w].offset_m, loads[static_cast<Eigen::Index>(w)]});
+  }
+  std::stable_sort(out.begin(), out.end(), [](const MovingForce& a, const MovingForce& b) { return a.offset_m < b.offset_m; });
+  return out;
 }
 
 void add_moving_force_loads(const Scene& scene, double front_x_m, Vector& f, const StructureCoordinates& coords) {

@@ -36,6 +36,10 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
 // InputError if the vehicle is not carried by its wheels.
 Vector static_wheel_loads_on_rigid_track(const VehicleModel& vehicle);
 
+// Axle loads of a train: its moving forces, or each wheel's static load on
+// a rigid, level track, ordered by offset (what "as": "moving_forces" gives).
+std::vector<MovingForce> axle_loads(const Train& train);
+
 // Adds the downward moving-force loads of the scene's train with its first
 // axle at front_x_m, split over ContactOptions::rail_lines, to f (in the
 // structure coordinates `coords`).

@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/generate_command.hpp"
+#include "cli/price_command.hpp"
 #include "cli/report_command.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/shard_command.hpp"
@@ -59,6 +60,7 @@ int run(int argc, char** argv) {
   ServiceCommands service(app);
   GenerateCommand generate(app);
   ReportCommand report(app);
+  PriceCommand price(app);
   ClusterCommands cluster(app);
 
   try {
@@ -72,6 +74,7 @@ int run(int argc, char** argv) {
   if (const auto code = service.run_parsed()) return *code;
   if (const auto code = generate.run_parsed()) return *code;
   if (const auto code = report.run_parsed()) return *code;
+  if (const auto code = price.run_parsed()) return *code;
   if (const auto code = cluster.run_parsed()) return *code;
   return validate_command(validate_file);
 }

@@ -54,13 +54,10 @@ std::optional<int> ReportCommand::run_parsed() const {
 }
 
 int report_command(const ReportArgs& args) {
-  if (!std::filesystem::is_regular_file(args.db)) {
-    std::cerr << "error: no such database: " << args.db << '\n';
-    return kExitInvalidInput;
-  }
-  const auto db = open_store(args.db);
-  const auto id = find_study(*db, args.study_id);
-  if (!id) return kExitInvalidInput;
+  auto opened = open_study(args.db, args.study_id);
+  if (!opened) return kExitInvalidInput;
+  const auto& db = opened->db;
+  const std::optional<std::string> id = opened->id;
   // A damaged file is reported, never turned into a partial report.
   scheduler::require_consistent_study(*db, *id);
   scheduler::ComplianceOptions options;

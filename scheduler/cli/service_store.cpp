@@ -1,5 +1,6 @@
 #include "cli/service_store.hpp"
 
+#include <filesystem>
 #include <iostream>
 
 #include "core/terminal_text.hpp"
@@ -29,6 +30,18 @@ std::optional<std::string> find_study(scheduler::Database& db, const std::string
     return std::nullopt;
   }
   return id;
+}
+
+std::optional<OpenedStudy> open_study(const std::string& file, const std::string& id_or_prefix) {
+  if (!std::filesystem::is_regular_file(file)) {
+    std::cerr << "error: no such database: " << file << '\n';
+    return std::nullopt;
+  }
+  OpenedStudy s{open_store(file), {}};
+  const auto id = find_study(*s.db, id_or_prefix);
+  if (!id) return std::nullopt;
+  s.id = *id;
+  return s;
 }
 
 }  // namespace railvsi::cli

@@ -12,6 +12,7 @@
 #include "query/study_refinement.hpp"
 #include "query/study_report.hpp"
 #include "queue/job_queue.hpp"
+#include "study/study_cost.hpp"
 #include "study/study_plan.hpp"
 #include "workers/worker_pool.hpp"
 
@@ -30,6 +31,7 @@ Submitted submit(const ServiceArgs& args) {
   options.allow_large = args.allow_large;
   require_study_file(args.study_file);
   const scheduler::StudyPlan plan = scheduler::load_study(args.study_file, options);
+  spdlog::info("study {}: {}", plan.id.substr(0, 12), scheduler::describe(scheduler::estimate_study_cost(plan)));
   Submitted s{open_store(args.db, scheduler::OpenMode::kCreate), {}};
   s.result = scheduler::submit_study(*s.db, plan, args.max_attempts);
   return s;

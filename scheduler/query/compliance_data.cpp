@@ -30,27 +30,6 @@ std::string case_label(const JobResult& j) {
                      j.variant == "nominal" ? std::string() : ", " + j.variant);
 }
 
-// A stored job's scene, loaded as the worker loaded it.
-Scene load_job_scene(Database& db, const std::string& job_id) {
-  Statement s = db.prepare("SELECT scene FROM jobs WHERE id = ?");
-  if (!s.bind(1, job_id).step()) throw std::runtime_error("job " + job_id + " is not in the database");
-  const std::string name = "job " + job_id.substr(0, 12);
-  return parse_scene(parse_json_text(s.text(0), name), "/", name);
-}
-
-// Axle loads of a train: its moving forces, or each wheel's static load on
-// a rigid, level track (what "as": "moving_forces" gives).
-std::vector<MovingForce> axle_loads(const Train& train) {
-  if (train.is_moving_forces()) return train.moving_forces;
-  std::vector<MovingForce> out;
-  for (const TrainVehicle& v : train.vehicles) {
-    const Vector loads = static_wheel_loads_on_rigid_track(*v.model);
-    for (std::size_t w = 0; w < v.model->wheels().size(); ++w)
-      out.push_back({v.offset_m + v.model->wheels()[w].offset_m, loads[static_cast<Eigen::Index>(w)]});
-  }
-  return out;
-}
-
 // Largest value per speed over the profiles of one train (the envelope a
 // designer plots against speed), in the order of increasing speed.
 std::vector<std::pair<double, double>> per_speed_maximum(const std::vector<const JobResult*>& jobs,

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "io/json_document.hpp"
+#include "io/scene_loader.hpp"
 #include "study/structure_variants.hpp"
 
 namespace railvsi::scheduler {
@@ -143,6 +145,13 @@ std::optional<std::string> filter_error(Database& db, const QueryFilter& f) {
     }
   }
   return std::nullopt;
+}
+
+Scene load_job_scene(Database& db, const std::string& job_id) {
+  Statement s = db.prepare("SELECT scene FROM jobs WHERE id = ?");
+  if (!s.bind(1, job_id).step()) throw std::runtime_error("job " + job_id + " is not in the database");
+  const std::string name = "job " + job_id.substr(0, 12);
+  return parse_scene(parse_json_text(s.text(0), name), "/", name);
 }
 
 }  // namespace railvsi::scheduler

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "simulation/scene.hpp"
 #include "store/sqlite.hpp"
 
 namespace railvsi::scheduler {
@@ -54,6 +55,9 @@ struct StudyInfo {
 // Throws std::runtime_error when the study is not in the database.
 StudyInfo study_info(Database& db, const std::string& study_id);
 std::vector<JobResult> study_results(Database& db, const QueryFilter& filter);
+// A stored job's scene, loaded as the worker loaded it (jobs.scene).
+// Throws std::runtime_error when the job is not in the database.
+Scene load_job_scene(Database& db, const std::string& job_id);
 
 // Why a filter cannot mean what the user asked (nullopt when it can): a
 // train or profile the study does not have (with the list of those it has),

@@ -1,0 +1,51 @@
+#pragma once
+// The CPU time of a run predicted before it runs, from the sizes a scene
+// fixes (README "What accuracy costs"):
+//
+//   cpu = setup + steps x per_step
+//   FE, per step:    c_int x n_s (interaction: two structure solves, the
+//                    contact problem folded in) or c_mf x n_s + c_axle x n_a
+//                    (moving forces); n_s structure DOFs: one pass over a
+//                    banded factor costs ~ n_s
+//   FE, setup:       c_factor x n_s + c_flex x n_rail x n_s (interaction:
+//                    one solve per rail DOF for the rail flexibility)
+//   modal, per step: c_mode x modes x (n_a + n_points)
+//   modal, setup:    c_basis x n_s x modes (Lanczos)
+//
+// The coefficients (cost_model.cpp) were fitted on two README scenes
+// measured by `vsi price` itself; `vsi price` prints predicted against
+// measured for every run, which is how a user sees whether the model
+// holds for a scene. A plane model has a banded factor; a 3D deck's factor
+// is denser and the prediction then low: treat it as an order of
+// magnitude.
+#include <string>
+
+#include "simulation/scene.hpp"
+
+namespace railvsi {
+
+struct CostInputs {
+  bool modal = false;        // the structure's modes instead of the FE operator
+  bool interaction = false;  // multibody train with contact
+  double steps = 0.0;
+  double structure_dofs = 0.0;
+  double rail_dofs = 0.0;
+  double axles = 0.0;  // moving forces
+  double modes = 0.0;
+  double output_points = 0.0;
+};
+
+struct CostPrediction {
+  double setup_cpu_s = 0.0;
+  double loop_cpu_s = 0.0;
+  double total_cpu_s() const { return setup_cpu_s + loop_cpu_s; }
+};
+
+// Sizes of a scene as run (planned_steps for the steps); `modes` for a
+// modal run (0 otherwise).
+CostInputs cost_inputs(const Scene& scene, bool modal, int modes = 0);
+CostPrediction predict_cost(const CostInputs& inputs);
+// "setup c_factor x n_s ... + steps x ..." with the numbers, for a person.
+std::string describe_cost_model();
+
+}  // namespace railvsi

@@ -1,0 +1,56 @@
+#include "price/fidelity_ladder.hpp"
+
+#include "analysis/modal_moving_forces.hpp"
+#include "simulation/simulation.hpp"
+#include "simulation/static_equilibrium.hpp"
+
+namespace railvsi {
+namespace {
+
+Result run_fe(const Scene& scene, const RungResources& resources) {
+  const Simulation simulation(scene, resources.structure_operator());
+  return simulation.run();
+}
+
+Result run_modal_moving_forces_rung(const Scene& scene, const RungResources& resources) {
+  return run_modal_moving_forces(scene, *resources.modal_basis());
+}
+
+// Cheapest first; the last rung that applies to a scene is its reference.
+// The modal interaction rung belongs between the moving-force rungs and
+// the FE interaction rungs, one line per contact law.
+const std::vector<Rung> kLadder = {
+    {"moving-forces", RungStructure::kModal, "none", run_modal_moving_forces_rung},
+    {"moving-forces", RungStructure::kFe, "none", run_fe},
+    {"interaction", RungStructure::kFe, "rigid", run_fe},
+    {"interaction", RungStructure::kFe, "linear-hertz", run_fe},
+    {"interaction", RungStructure::kFe, "hertz", run_fe},
+};
+
+}  // namespace
+
+std::string Rung::label() const { return model + " / " + structure_name() + " / " + contact_law; }
+
+const std::vector<Rung>& fidelity_ladder() { return kLadder; }
+
+bool rung_applies(const Rung& rung, const Scene& scene) {
+  return rung.model == "moving-forces" || !scene.train.is_moving_forces();
+}
+
+Scene rung_scene(const Rung& rung, const Scene& scene, double dt_s) {
+  Scene s = scene;
+  s.analysis.dt_s = dt_s;
+  if (rung.model == "moving-forces") {
+    if (!s.train.is_moving_forces()) {
+      s.train.moving_forces = axle_loads(s.train);
+      s.train.vehicles.clear();
+    }
+    return s;
+  }
+  s.analysis.contact.law = rung.contact_law;
+  s.analysis.contact.unilateral =
+      rung.contact_law == "linear-hertz" ? std::optional<bool>(true) : std::optional<bool>();
+  return s;
+}
+
+}  // namespace railvsi

@@ -1,0 +1,46 @@
+#include "study/study_cost.hpp"
+
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "io/json_document.hpp"
+#include "io/scene_loader.hpp"
+#include "planning/cost_model.hpp"
+
+namespace railvsi::scheduler {
+
+StudyCostEstimate estimate_study_cost(const StudyPlan& plan) {
+  StudyCostEstimate e;
+  std::map<std::string, Scene> by_train;  // the first job's scene of each train
+  std::set<std::string> operators;
+  for (const JobSpec& job : plan.jobs) {
+    auto it = by_train.find(job.train);
+    if (it == by_train.end()) {
+      // File names in a job are absolute (made so at submission).
+      const std::string name = "job " + job.id.substr(0, 12);
+      it = by_train.emplace(job.train, parse_scene(parse_json_text(job.scene, name), "/", name)).first;
+    }
+    Scene scene = it->second;
+    scene.speed_mps = job.speed_kmh / 3.6;
+    scene.analysis.dt_s = job.dt_s;
+    const CostPrediction p = predict_cost(cost_inputs(scene, false));
+    e.cpu_s += p.loop_cpu_s;
+    if (operators.insert(job.operator_key).second) {
+      e.cpu_s += p.setup_cpu_s;
+      e.setup_cpu_s += p.setup_cpu_s;
+    }
+    ++e.jobs;
+  }
+  e.factorizations = operators.size();
+  return e;
+}
+
+std::string describe(const StudyCostEstimate& e) {
+  return fmt::format("estimated CPU time {:.3g} s for {} jobs ({:.3g} s of it for {} factorizations; cost model: "
+                     "README \"What accuracy costs\")",
+                     e.cpu_s, e.jobs, e.setup_cpu_s, e.factorizations);
+}
+
+}  // namespace railvsi::scheduler
