@@ -361,16 +361,23 @@ ordered_json format_checks_json(const std::vector<CheckResult>& checks, const st
 std::string format_verdict_lines(const std::vector<CheckResult>& checks, Verdict overall) {
   std::string out = fmt::format("\nchecks: {}\n", verdict_name(overall));
   for (const CheckResult& c : checks) {
-    std::string line = fmt::format("  {:<20} {:<13}", fit(c.id, 20), verdict_name(c.verdict));
+    std::string line = fmt::format("  {:<20}  {:<13}", fit(c.id, 20), verdict_name(c.verdict));
+    std::vector<std::string> notes;
     if (c.governing && c.governing->value) {
       const CheckCase& g = *c.governing;
-      line += fmt::format(" {:.4g} (limit {:.4g}{}{}) {}", *g.value, c.limit, c.unit.empty() ? "" : " ", c.unit,
-                          terminal_safe(g.train));
-      if (std::isfinite(g.speed_kmh)) line += fmt::format(" at {:g} km/h", g.speed_kmh);
-      if (!g.location.empty()) line += ", " + terminal_safe(g.location);
+      line += fmt::format("  {:.4g}{}{} (limit {:.4g})", *g.value, c.unit.empty() ? "" : " ", c.unit, c.limit);
+      std::string where = terminal_safe(g.train);
+      if (std::isfinite(g.speed_kmh)) where += fmt::format(" {:g} km/h", g.speed_kmh);
+      if (!g.location.empty()) where.append(" ").append(terminal_safe(g.location));
+      notes.push_back(where);
     }
-    if (c.missing > 0) line += fmt::format("; {} of {} cases without a value", c.missing, c.cases);
-    out += table_line(line);
+    if (c.missing > 0) notes.push_back(fmt::format("{} of {} cases without a value", c.missing, c.cases));
+    line.erase(line.find_last_not_of(' ') + 1);
+    std::string note_text;
+    for (const auto& n : notes) note_text += (note_text.empty() ? "" : "; ") + n;
+    if (note_text.empty()) out += table_line(line);
+    else if (line.size() + 2 + note_text.size() <= kTableWidth) out += table_line(line + ", " + note_text);
+    else out += table_line(line) + table_line("    " + note_text);
   }
   return out;
 }
