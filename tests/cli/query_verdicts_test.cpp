@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <map>
-#include <regex>
 #include <set>
 
 #include "vsi_test_support.hpp"
@@ -33,12 +32,6 @@ json study(double speed_from_kmh, double speed_to_kmh, double step_kmh, double l
   s["speeds_kmh"] = {{"from", speed_from_kmh}, {"to", speed_to_kmh}, {"step", step_kmh}};
   s["checks"] = {{"deck_acceleration_limit_mps2", limit_mps2}};
   return s;
-}
-
-std::string study_id_of(const std::string& out) {
-  std::smatch m;
-  const std::regex re("study ([0-9a-f]{64})");
-  return std::regex_search(out, m, re) ? m[1].str() : std::string();
 }
 
 std::vector<std::string> split(const std::string& line) {
@@ -81,6 +74,11 @@ class QueryVerdictsTest : public VsiCliTest {
     const VsiRun s = vsi("submit '" + write_json(name, doc).string() + "'" + db_arg());
     EXPECT_EQ(s.exit_code, 0) << s.err;
     return study_id_of(s.out);
+  }
+  int report_exit_code(const std::string& id) const {
+    return vsi("report" + db_arg() + " --study " + id + " --no-histories --out '" + (dir_ / "r.html").string() +
+               "' --fail-on-exceeded")
+        .exit_code;
   }
   VsiRun query(const std::string& id, const std::string& extra) const {
     return vsi("query" + db_arg() + " --study " + id + " " + extra);
@@ -169,10 +167,7 @@ TEST_F(QueryVerdictsTest, CancelledJobsMakeTheChecksIncompleteAndStayInTheCsv) {
   // --fail-on-exceeded: incomplete is 5 for query, report and run alike.
   EXPECT_EQ(query(b, "--format csv --fail-on-exceeded").exit_code, 5);
   EXPECT_EQ(query(b, "--fail-on-exceeded").exit_code, 5);
-  EXPECT_EQ(vsi("report" + db_arg() + " --study " + b + " --no-histories --out '" + (dir_ / "r.html").string() +
-                "' --fail-on-exceeded")
-                .exit_code,
-            5);
+  EXPECT_EQ(report_exit_code(b), 5);
   const VsiRun run = vsi("run '" + (dir_ / "b.json").string() + "'" + db_arg() + " --threads 2 --fail-on-exceeded");
   EXPECT_EQ(run.exit_code, 5) << run.out << run.err;
   EXPECT_NE(run.out.find("checks: INCOMPLETE"), std::string::npos) << run.out;
@@ -196,10 +191,7 @@ TEST_F(QueryVerdictsTest, ExceededCheckExitsFourOnlyWhenAsked) {
   EXPECT_EQ(query(id, "--format json").exit_code, 0);
   EXPECT_EQ(query(id, "--fail-on-exceeded").exit_code, 4);
   EXPECT_EQ(query(id, "--format json --fail-on-exceeded").exit_code, 4);
-  EXPECT_EQ(vsi("report" + db_arg() + " --study " + id + " --no-histories --out '" + (dir_ / "r.html").string() +
-                "' --fail-on-exceeded")
-                .exit_code,
-            4);
+  EXPECT_EQ(report_exit_code(id), 4);
   const json out = json::parse(query(id, "--format json").out);
   EXPECT_EQ(out.at("verdict"), "FAIL");
   const json& acc = check_of(out, "deck_acceleration");
