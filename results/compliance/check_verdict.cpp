@@ -1,6 +1,7 @@
 #include "compliance/check_verdict.hpp"
 
 #include <cmath>
+#include <map>
 
 namespace railvsi {
 
@@ -18,6 +19,7 @@ CheckResult evaluate_upper_limit(CheckResult check, const std::vector<CheckCase>
   check.cases = static_cast<int>(cases.size());
   check.missing = 0;
   check.governing.reset();
+  check.all_cases = cases;
   bool exceeded = false;
   for (const CheckCase& c : cases) {
     if (!c.value || !std::isfinite(*c.value)) {
@@ -32,6 +34,23 @@ CheckResult evaluate_upper_limit(CheckResult check, const std::vector<CheckCase>
   else
     check.verdict = exceeded ? Verdict::kFail : check.missing > 0 ? Verdict::kIncomplete : Verdict::kPass;
   return check;
+}
+
+std::vector<CheckResult> per_train(const CheckResult& check) {
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<CheckCase>> by_train;
+  for (const CheckCase& c : check.all_cases) {
+    auto [it, fresh] = by_train.try_emplace(c.train);
+    if (fresh) order.push_back(c.train);
+    it->second.push_back(c);
+  }
+  std::vector<CheckResult> out;
+  for (const std::string& t : order) {
+    CheckResult one = evaluate_upper_limit(check, by_train.at(t));
+    one.note.clear();  // the check's note speaks of its overall governing case
+    out.push_back(std::move(one));
+  }
+  return out;
 }
 
 Verdict overall_verdict(const std::vector<CheckResult>& checks) {

@@ -19,7 +19,9 @@ struct CheckCase {
   double speed_kmh = 0.0;
   std::string irregularity;
   std::optional<double> value;  // nullopt: no value (the job did not produce one)
-  std::string variant = {};  // bound of the structure (EN 1991-2 6.4.6.3); empty when the study has none
+  std::string job_id{};    // the job that gives the value; empty when the case is not one job
+  std::string location{};  // output point of the value, when the check names one
+  std::string variant{};   // bound of the structure (EN 1991-2 6.4.6.3); empty when the study has none
 };
 
 struct CheckResult {
@@ -36,10 +38,15 @@ struct CheckResult {
   int cases = 0;
   int missing = 0;
   std::string note;  // e.g. how the limit was derived, or why not evaluated
+  std::vector<CheckCase> all_cases;  // what the verdict was made of (set by evaluate_upper_limit)
 };
 
 // Verdict and governing case of `cases` against an upper limit.
 CheckResult evaluate_upper_limit(CheckResult check, const std::vector<CheckCase>& cases);
+
+// The check over the cases of each train separately (trains in the order
+// of their first case), by the same rules; empty when it has no cases.
+std::vector<CheckResult> per_train(const CheckResult& check);
 
 // The overall verdict of several checks: FAIL if any fails, else
 // INCOMPLETE if any is incomplete, else PASS (checks not evaluated do not

@@ -62,7 +62,9 @@ std::string checks_table(const ComplianceReport& r) {
       gov = value_text(*c.governing->value) + " " + esc(c.unit);
       train = esc(c.governing->train);
       speed = std::isfinite(c.governing->speed_kmh) ? fmt::format("{:g}", c.governing->speed_kmh) : "-";
-      profile = esc(c.governing->irregularity);
+      const std::string& irregularity = c.governing->irregularity;
+      const std::string& point = c.governing->location;
+      profile = esc(point.empty() ? irregularity : (irregularity.empty() ? "" : irregularity + ", ") + "point " + point);
       if (!c.governing->variant.empty())
         profile += fmt::format(", <span class=\"bound\">bound: {}</span>", esc(c.governing->variant));
     }

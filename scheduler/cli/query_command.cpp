@@ -1,8 +1,11 @@
 #include <iostream>
+#include <optional>
 
 #include "cli/commands.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/service_store.hpp"
+#include "cli/verdict_exit.hpp"
+#include "core/terminal_text.hpp"
 #include "query/study_report.hpp"
 #include "queue/job_queue.hpp"
 #include "store/store_check.hpp"
@@ -19,15 +22,37 @@ int query_command(const ServiceArgs& args) {
     std::cerr << "error: " << *why << '\n';
     return kExitInvalidInput;
   }
+  if (args.wide && args.format != "csv") {
+    std::cerr << "error: --wide applies to --format csv\n";
+    return kExitInvalidInput;
+  }
   const scheduler::StudyInfo info = scheduler::study_info(*db, *id);
   const auto jobs = scheduler::study_results(*db, filter);
-  if (args.format == "csv")
-    std::cout << scheduler::format_csv(jobs);
-  else if (args.format == "json")
-    std::cout << scheduler::format_json(info, jobs).dump(2) << '\n';
-  else
+  // The verdicts of vsi report's checks, over the jobs shown.
+  std::optional<ComplianceReport> judged;
+  std::string not_judged;
+  if (args.format == "json" || args.fail_on_exceeded) {
+    try {
+      judged = judge_jobs(*db, *id, jobs);
+    } catch (const InputError& e) {  // a stored scene that no longer loads (e.g. its train file removed)
+      not_judged = e.describe();
+      std::cerr << "warning: the checks cannot be evaluated: " << scheduler::terminal_safe(not_judged) << '\n';
+    }
+  }
+  if (args.format == "csv") {
+    std::cout << (args.wide ? scheduler::format_wide_csv(jobs) : scheduler::format_csv(jobs));
+  } else if (args.format == "json") {
+    nlohmann::ordered_json out = scheduler::format_json(info, jobs);
+    out["verdict"] = verdict_name(judged ? judged->overall : Verdict::kNotEvaluated);
+    out["checks"] = judged ? scheduler::format_checks_json(judged->checks, jobs) : nlohmann::ordered_json::array();
+    if (!judged) out["checks_error"] = not_judged;
+    std::cout << out.dump(2) << '\n';
+  } else {
     std::cout << scheduler::format_table(info, jobs);
-  return kExitOk;
+    if (judged) std::cout << scheduler::format_verdict_lines(judged->checks, judged->overall);
+  }
+  if (!args.fail_on_exceeded) return kExitOk;
+  return verdict_exit_code(judged ? judged->overall : Verdict::kNotEvaluated);
 }
 
 namespace {

@@ -11,6 +11,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/service_store.hpp"
+#include "cli/verdict_exit.hpp"
 #include "query/compliance_data.hpp"
 #include "report/compliance_report.hpp"
 #include "store/store_check.hpp"
@@ -44,8 +45,8 @@ ReportCommand::ReportCommand(CLI::App& app) {
   report_->add_option("--study", args_.study_id, "Study id (a unique prefix of at least 6 digits)")->required();
   report_->add_option("--out", args_.out, "Report file (default: report-<study id>.html)");
   report_->add_flag("!--no-histories", args_.histories, "Do not re-simulate the governing cases");
-  report_->add_flag("--fail-on-exceeded", args_.fail_on_exceeded,
-                    "Exit 4 when a check fails, 5 when a check is incomplete");
+  report_->add_flag("--fail-on-exceeded", args_.fail_on_exceeded, kFailOnExceededHelp);
+  report_->footer(verdict_exit_footer(false));
 }
 
 std::optional<int> ReportCommand::run_parsed() const {
@@ -84,11 +85,7 @@ int report_command(const ReportArgs& args) {
   }
   std::filesystem::rename(tmp, out);
   std::cout << "report: " << out.string() << " (" << verdict_name(report.overall) << ")\n";
-  if (args.fail_on_exceeded) {
-    if (report.overall == Verdict::kFail) return kExitCheckFailed;
-    if (report.overall == Verdict::kIncomplete) return kExitCheckIncomplete;
-  }
-  return kExitOk;
+  return args.fail_on_exceeded ? verdict_exit_code(report.overall) : kExitOk;
 }
 
 }  // namespace railvsi::cli

@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.hpp"
+#include "cli/verdict_exit.hpp"
 #include "store/sqlite.hpp"
 #include "workers/worker_pool.hpp"
 
@@ -85,6 +86,8 @@ ServiceCommands::ServiceCommands(CLI::App& app) {
   add_submit_options(run_, args_);
   add_db_option(run_, args_, true);
   add_work_options(run_, args_);
+  run_->add_flag("--fail-on-exceeded", args_.fail_on_exceeded, kFailOnExceededHelp);
+  run_->footer(verdict_exit_footer(true));
 
   status_ = app.add_subcommand("status", "Jobs per state, throughput, ETA and factorization cache of each study");
   add_db_option(status_, args_, false);
@@ -93,9 +96,15 @@ ServiceCommands::ServiceCommands(CLI::App& app) {
   query_ = app.add_subcommand("query", "Envelopes of a study: per job and per train over speeds");
   add_db_option(query_, args_, false);
   add_study_id(query_, args_, true);
-  query_->add_option("--format", args_.format, "table, csv (envelope values only) or json")
+  query_->add_option("--format", args_.format,
+                     "table, csv (one line per envelope value, and per job without values, with its state) or json "
+                     "(with the checks' verdicts)")
       ->capture_default_str()
       ->check(CLI::IsMember({"table", "csv", "json"}));
+  query_->add_flag("--wide", args_.wide,
+                   "With --format csv: one line per train x speed x profile, one column per quantity x location");
+  query_->add_flag("--fail-on-exceeded", args_.fail_on_exceeded, kFailOnExceededHelp);
+  query_->footer(verdict_exit_footer(false));
   query_->add_option("--train", args_.train, "Only this train (its name as shown)");
   query_->add_option("--speed-min", args_.speed_min_kmh, "Only speeds >= this, km/h")->check(finite_in(0.0, 1.0e4));
   query_->add_option("--speed-max", args_.speed_max_kmh, "Only speeds <= this, km/h")->check(finite_in(0.0, 1.0e4));

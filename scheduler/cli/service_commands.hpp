@@ -22,6 +22,8 @@ struct ServiceArgs {
   int batch = 256;  // modal jobs claimed, run and stored together
   bool allow_large = false;
   std::string format = "table";
+  bool wide = false;              // query --format csv --wide
+  bool fail_on_exceeded = false;  // query, run: exit 4 / 5 on the checks' verdict
   std::optional<std::string> train, irregularity;
   std::optional<double> speed_min_kmh, speed_max_kmh;
 };

@@ -8,6 +8,7 @@
 #include "cli/progress_display.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/service_store.hpp"
+#include "cli/verdict_exit.hpp"
 #include "core/terminal_text.hpp"
 #include "query/study_refinement.hpp"
 #include "query/study_report.hpp"
@@ -109,14 +110,23 @@ int run_command(const ServiceArgs& args) {
   spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id, r.jobs, r.new_jobs, scheduler::terminal_safe(args.db));
   if (!work_and_refine(args, db, {r.study_id}).error.empty()) return kExitRuntimeFailure;
   const scheduler::StudyInfo info = scheduler::study_info(db, r.study_id);
-  std::cout << scheduler::format_table(info, scheduler::study_results(db, {r.study_id, {}, {}, {}, {}}));
+  const auto jobs = scheduler::study_results(db, {r.study_id, {}, {}, {}, {}});
+  std::cout << scheduler::format_table(info, jobs);
   const scheduler::StateCounts c = scheduler::state_counts(db, r.study_id);
+  int code = kExitOk;
   if (c.failed > 0) {
     std::cerr << "error: " << c.failed << " jobs of the study failed (vsi query --study " << r.study_id.substr(0, 12)
               << " --format json shows why; vsi retry queues them again)\n";
-    return kExitStudyFailedJobs;
+    code = kExitStudyFailedJobs;
   }
-  return kExitOk;
+  if (args.fail_on_exceeded) {
+    // A failed check wins over failed jobs (3), which win over incomplete (5).
+    const ComplianceReport judged = judge_jobs(db, r.study_id, jobs);
+    std::cout << scheduler::format_verdict_lines(judged.checks, judged.overall);
+    const int verdict = verdict_exit_code(judged.overall);
+    if (verdict == kExitCheckFailed || code == kExitOk) code = verdict;
+  }
+  return code;
 }
 
 }  // namespace railvsi::cli

@@ -97,7 +97,8 @@ CheckResult quantity_check(CheckResult check, const std::vector<JobResult>& jobs
       std::any_of(jobs.begin(), jobs.end(), [](const JobResult& j) { return j.variant != "nominal"; });
   std::vector<CheckCase> cases;
   for (const JobResult& j : jobs)
-    cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(check.quantity), variants ? j.variant : ""});
+    cases.push_back(
+        {j.train, j.speed_kmh, j.irregularity, j.overall(check.quantity), j.id, "", variants ? j.variant : ""});
   return evaluate_upper_limit(std::move(check), cases);
 }
 
@@ -217,7 +218,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   report.date = options.date;
   report.study_document = study.dump(2);
 
-  const std::vector<JobResult> jobs = study_results(db, {study_id, {}, {}, {}, {}});
+  const std::vector<JobResult> jobs = options.jobs ? *options.jobs : study_results(db, {study_id, {}, {}, {}, {}});
   std::vector<std::string> train_order;
   std::map<std::string, std::vector<const JobResult*>> by_train;
   for (const JobResult& j : jobs) {
@@ -229,6 +230,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     const auto it = infos.find(t);
     report.trains.push_back({t, it == infos.end() ? std::string("given in the study document") : it->second.source});
   }
+  if (jobs.empty()) return report;  // a filter that keeps no job: nothing is evaluated
 
   // The structure, and each train as the jobs built it: on the nominal
   // structure when the study has bounds of it and the nominal among them.
@@ -431,7 +433,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       if (!L || Phi <= 0.0) continue;
       const double deflection_m = alpha * Phi * lm71_deflection_m[k];
       const double utilisation = deflection_m / (*L / deflection_span_ratio().value);
-      cases.push_back({"LM71", std::nan(""), p.name, utilisation});
+      cases.push_back({"LM71", std::nan(""), "", utilisation, "", p.name});
       if (utilisation > worst) {
         worst = utilisation;
         c.note = fmt::format("Governing point {} (span {:g} m): LM71 {:.4g} mm x Phi {:.4g} x alpha {:g} = {:.4g} mm "
@@ -467,12 +469,14 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     for (const std::string& t : train_order) {
       const std::vector<MovingForce> axles = axle_loads(scenes.at(t).train);
       std::optional<double> ratio;
-      double gov_speed = 0.0;
+      const JobResult* gov_job = nullptr;
+      std::string gov_point;
       bool missing = false;
       for (std::size_t k = 0; k < structure.outputs().size(); ++k) {
         const std::string& point = structure.outputs()[k].name;
         const double y_stat = influence->train_envelope(static_cast<int>(k), axles).max_deflection_m;
-        double y_dyn = -1.0, speed = 0.0;
+        double y_dyn = -1.0;
+        const JobResult* y_dyn_job = nullptr;
         for (const JobResult* j : by_train[t]) {
           const auto q = j->envelopes.find("deck_displacement_m");
           std::optional<double> v;
@@ -484,7 +488,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
             missing = true;
             continue;
           }
-          if (*v > y_dyn) y_dyn = *v, speed = j->speed_kmh;
+          if (*v > y_dyn) y_dyn = *v, y_dyn_job = j;
         }
         if (y_dyn < 0.0 || y_stat <= 0.0 || lm71_deflection_m[k] <= 0.0) continue;
         const double phi_dyn = y_dyn / y_stat - 1.0;
@@ -492,7 +496,8 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
         const double r = effect / (Phi * alpha * lm71_deflection_m[k]);
         if (!ratio || r > *ratio) {
           ratio = r;
-          gov_speed = speed;
+          gov_job = y_dyn_job;
+          gov_point = point;
           if (r > worst) {
             worst = r;
             worst_note = fmt::format(
@@ -505,7 +510,8 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
           }
         }
       }
-      cases.push_back({t, gov_speed, "", missing ? std::nullopt : ratio});
+      cases.push_back({t, gov_job ? gov_job->speed_kmh : 0.0, gov_job ? gov_job->irregularity : "",
+                       missing ? std::nullopt : ratio, gov_job ? gov_job->id : "", gov_point});
     }
     CheckResult r = evaluate_upper_limit(c, cases);
     r.note = worst_note;

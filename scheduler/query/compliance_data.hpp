@@ -5,7 +5,9 @@
 // stored scenes, the static response of each train and of LM71 from the
 // same structure, the model and the inputs.
 #include <string>
+#include <vector>
 
+#include "query/study_results.hpp"
 #include "report/compliance_report.hpp"
 #include "store/sqlite.hpp"
 
@@ -16,6 +18,9 @@ struct ComplianceOptions {
   std::string date;     // the date line (the only text that changes between two reports of one store)
   bool histories = true;  // re-simulate the governing cases
   int max_governing_cases = 4;
+  // The jobs to judge, already read (vsi query's, after its filters);
+  // all of the study's jobs, read here, when null.
+  const std::vector<JobResult>* jobs = nullptr;
 };
 
 // Throws std::runtime_error when the study is not in the database, and

@@ -81,7 +81,7 @@ std::vector<TrainEnvelope> study_envelope_over_speeds(const std::vector<JobResul
   std::vector<CaseValue> cases;
   std::map<std::string, std::size_t> train_order;
   for (const JobResult& j : jobs) {
-    cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(quantity), j.variant});
+    cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(quantity), j.id, "", j.variant});
     train_order.try_emplace(j.train, train_order.size());
   }
   std::vector<TrainEnvelope> out = envelope_over_speeds(cases, extreme_of(quantity).value_or(Extreme::kMax));
@@ -254,9 +254,16 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
     for (const TrainEnvelope& e : study_envelope_over_speeds(jobs, c->quantity)) {
       std::vector<std::string> notes;
       if (variants && e.value) notes.push_back("bound: " + e.governing_variant);
-      if (study.checks.contains(c->check) && e.value) {
+      if (study.checks.contains(c->check)) {
         const double limit = study.checks.at(c->check).get<double>();
-        notes.push_back(fmt::format("{} (limit {})", *e.value <= limit ? "ok" : "EXCEEDED", shown(limit, c->scale)));
+        // The train's verdict by the rules of the report: never "ok" on missing cases.
+        CheckResult check;
+        check.limit = limit;
+        std::vector<CheckCase> cases;
+        for (const JobResult& j : jobs)
+          if (j.train == e.train) cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(c->quantity), j.id, ""});
+        notes.push_back(fmt::format("{} (limit {})", verdict_name(evaluate_upper_limit(check, cases).verdict),
+                                    shown(limit, c->scale)));
       }
       if (at_edge_of_speed_range(jobs, e)) {
         notes.push_back("EDGE");
@@ -314,15 +321,135 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
 std::string format_csv(const std::vector<JobResult>& jobs) {
   // A study with bounds of the structure gets a last column naming each row's.
   const bool variants = has_variants(jobs);
-  std::string out = variants ? "train,irregularity,speed_kmh,quantity,location,value,variant\n"
-                             : "train,irregularity,speed_kmh,quantity,location,value\n";
-  for (const JobResult& j : jobs)
+  std::string out = variants ? "train,irregularity,speed_kmh,quantity,location,value,state,variant\n"
+                             : "train,irregularity,speed_kmh,quantity,location,value,state\n";
+  for (const JobResult& j : jobs) {
+    const std::string job = fmt::format("{},{},{}", csv_field(j.train), csv_field(j.irregularity), j.speed_kmh);
+    const std::string variant = variants ? "," + csv_field(j.variant) : std::string();
+    if (j.envelopes.empty()) out += fmt::format("{},,,,{}{}\n", job, csv_field(j.state), variant);
     for (const auto& [quantity, locations] : j.envelopes)
       for (const auto& [location, value] : locations)
         // {} writes the shortest text that reads back to the same double.
-        out += fmt::format("{},{},{},{},{},{}{}\n", csv_field(j.train), csv_field(j.irregularity), j.speed_kmh, quantity,
-                           csv_field(location), value ? fmt::format("{}", *value) : std::string(),
-                           variants ? fmt::format(",{}", csv_field(j.variant)) : std::string());
+        out += fmt::format("{},{},{},{},{}{}\n", job, quantity, csv_field(location),
+                           value ? fmt::format("{}", *value) : std::string(), csv_field(j.state), variant);
+  }
+  return out;
+}
+
+std::string format_wide_csv(const std::vector<JobResult>& jobs) {
+  // The columns: every quantity x location any job has, in map order (the
+  // whole job's value, location "", first).
+  std::map<std::string, std::set<std::string>> columns;
+  for (const JobResult& j : jobs)
+    for (const auto& [quantity, locations] : j.envelopes)
+      for (const auto& [location, value] : locations) columns[quantity].insert(location);
+  const bool variants = has_variants(jobs);
+  std::string out = variants ? "train,irregularity,speed_kmh,variant,state" : "train,irregularity,speed_kmh,state";
+  for (const auto& [quantity, locations] : columns)
+    for (const std::string& location : locations)
+      out.append(",").append(csv_field(location.empty() ? quantity : quantity + "@" + location));
+  out += "\n";
+  for (const JobResult& j : jobs) {
+    out += fmt::format("{},{},{},{}{}", csv_field(j.train), csv_field(j.irregularity), j.speed_kmh,
+                       variants ? csv_field(j.variant) + "," : std::string(), csv_field(j.state));
+    for (const auto& [quantity, locations] : columns) {
+      const auto q = j.envelopes.find(quantity);
+      for (const std::string& location : locations) {
+        std::optional<double> value;
+        if (q != j.envelopes.end())
+          if (const auto l = q->second.find(location); l != q->second.end()) value = l->second;
+        out += value ? fmt::format(",{}", *value) : std::string(",");
+      }
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+namespace {
+
+ordered_json case_json(const CheckCase& c) {
+  const auto text = [](const std::string& s) { return s.empty() ? ordered_json(nullptr) : ordered_json(s); };
+  return {{"train", c.train},
+          {"speed_kmh", number(c.speed_kmh)},
+          {"irregularity", text(c.irregularity)},
+          {"location", text(c.location)},
+          {"job_id", text(c.job_id)}};
+}
+
+// Verdict, governing case and missing cases of a check (or of one train's
+// part of it). For a check of a stored envelope quantity, whose cases are
+// the jobs, the missing cases are also counted by the job's state ("done"
+// for a job that ran but could not produce the value).
+ordered_json verdict_json(const CheckResult& c, const std::map<std::string, std::string>& job_states) {
+  const bool has_value = c.governing && c.governing->value;
+  ordered_json out = {{"verdict", verdict_name(c.verdict)},
+                      {"value", has_value ? number(c.governing->value) : ordered_json(nullptr)},
+                      {"governing", has_value ? case_json(*c.governing) : ordered_json(nullptr)},
+                      {"cases", c.cases},
+                      {"missing", c.missing}};
+  if (extreme_of(c.quantity)) {
+    std::map<std::string, int> by_state;
+    for (const CheckCase& k : c.all_cases)
+      if (!k.value || !std::isfinite(*k.value)) {
+        const auto state = job_states.find(k.job_id);
+        ++by_state[state == job_states.end() ? std::string("unknown") : state->second];
+      }
+    out["missing_by_state"] = by_state;
+  }
+  return out;
+}
+
+}  // namespace
+
+ordered_json format_checks_json(const std::vector<CheckResult>& checks, const std::vector<JobResult>& jobs) {
+  std::map<std::string, std::string> job_states;
+  for (const JobResult& j : jobs) job_states.emplace(j.id, j.state);
+  ordered_json out = ordered_json::array();
+  for (const CheckResult& c : checks) {
+    const bool no_limit = c.verdict == Verdict::kNotEvaluated && c.limit == 0.0;
+    ordered_json check = {{"id", c.id},
+                          {"title", c.title},
+                          {"quantity", c.quantity.empty() ? ordered_json(nullptr) : ordered_json(c.quantity)},
+                          {"unit", c.unit},
+                          {"limit", no_limit ? ordered_json(nullptr) : ordered_json(c.limit)},
+                          {"clause", c.clause},
+                          {"limit_verified", c.limit_verified}};
+    check.update(verdict_json(c, job_states));
+    check["note"] = c.note;
+    ordered_json trains = ordered_json::array();
+    for (const CheckResult& t : per_train(c)) {
+      ordered_json one = {{"train", t.all_cases.front().train}};
+      one.update(verdict_json(t, job_states));
+      trains.push_back(std::move(one));
+    }
+    check["trains"] = std::move(trains);
+    out.push_back(std::move(check));
+  }
+  return out;
+}
+
+std::string format_verdict_lines(const std::vector<CheckResult>& checks, Verdict overall) {
+  std::string out = fmt::format("\nchecks: {}\n", verdict_name(overall));
+  for (const CheckResult& c : checks) {
+    std::string line = fmt::format("  {:<20}  {:<13}", fit(c.id, 20), verdict_name(c.verdict));
+    std::vector<std::string> notes;
+    if (c.governing && c.governing->value) {
+      const CheckCase& g = *c.governing;
+      line += fmt::format("  {:.4g}{}{} (limit {:.4g})", *g.value, c.unit.empty() ? "" : " ", c.unit, c.limit);
+      std::string where = terminal_safe(g.train);
+      if (std::isfinite(g.speed_kmh)) where += fmt::format(" {:g} km/h", g.speed_kmh);
+      if (!g.location.empty()) where.append(" ").append(terminal_safe(g.location));
+      notes.push_back(where);
+    }
+    if (c.missing > 0) notes.push_back(fmt::format("{} of {} cases without a value", c.missing, c.cases));
+    line.erase(line.find_last_not_of(' ') + 1);
+    std::string note_text;
+    for (const auto& n : notes) note_text += (note_text.empty() ? "" : "; ") + n;
+    if (note_text.empty()) out += table_line(line);
+    else if (line.size() + 2 + note_text.size() <= kTableWidth) out += table_line(line + ", " + note_text);
+    else out += table_line(line) + table_line("    " + note_text);
+  }
   return out;
 }
 

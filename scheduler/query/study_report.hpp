@@ -6,15 +6,20 @@
 //   range, then, for random profiles with several seeds, the mean, standard
 //   deviation and extreme over the seeds;
 // - csv: one line per envelope value (train, irregularity, speed, quantity,
-//   location, value), values only, in full precision: two runs of the same
-//   study give identical files;
+//   location, value, state) in full precision, and one line with empty
+//   quantity, location and value for a job without values (cancelled,
+//   failed, not yet run), so that no job silently drops out; two runs of
+//   the same study give identical files. Wide: one line per job (train x
+//   speed x profile), one column per quantity x location;
 // - json: everything, timings, fidelity and the statistics over seeds per
-//   train x speed (profile_statistics) included.
+//   train x speed (profile_statistics) included; the verdicts of the checks
+//   (compliance_data) are added by format_checks_json.
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "compliance/check_verdict.hpp"
 #include "envelopes/profile_statistics.hpp"
 #include "envelopes/speed_envelope.hpp"
 #include "query/study_results.hpp"
@@ -35,6 +40,17 @@ bool at_edge_of_speed_range(const std::vector<JobResult>& jobs, const TrainEnvel
 
 std::string format_table(const StudyInfo& study, const std::vector<JobResult>& jobs);
 std::string format_csv(const std::vector<JobResult>& jobs);
+// Columns: train, irregularity, speed_kmh, state, then per quantity (in the
+// order of format_csv) the whole job's value named by the quantity
+// ("deck_acceleration_mps2") and one column per location named
+// "quantity@location" ("deck_acceleration_mps2@midspan"); a cell is empty
+// where the job has no such value.
+std::string format_wide_csv(const std::vector<JobResult>& jobs);
+// Per check: its limit, clause, verdict, governing case (with its job id)
+// and missing cases, overall and per train (README "vsi query --format json").
+nlohmann::ordered_json format_checks_json(const std::vector<CheckResult>& checks, const std::vector<JobResult>& jobs);
+// One line per check for the terminal: its verdict, governing value and limit.
+std::string format_verdict_lines(const std::vector<CheckResult>& checks, Verdict overall);
 nlohmann::ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& jobs);
 
 }  // namespace railvsi::scheduler

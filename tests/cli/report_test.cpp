@@ -29,12 +29,6 @@ nlohmann::json small_study() {
   })");
 }
 
-std::string study_id_of(const std::string& submit_out) {
-  std::smatch m;
-  const std::regex re("study ([0-9a-f]{64})");
-  return std::regex_search(submit_out, m, re) ? m[1].str() : std::string();
-}
-
 std::string strip_date_line(std::string html) {
   return std::regex_replace(html, std::regex("<span class=\"small\" id=\"date\">[^<]*</span>"), "");
 }

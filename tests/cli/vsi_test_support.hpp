@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -18,6 +19,13 @@ struct VsiRun {
   int exit_code = -1;
   std::string out, err;
 };
+
+// The study id a `vsi submit` or `vsi run` printed ("study <64 hex>").
+inline std::string study_id_of(const std::string& output) {
+  std::smatch m;
+  const std::regex re("study ([0-9a-f]{64})");
+  return std::regex_search(output, m, re) ? m[1].str() : std::string();
+}
 
 inline std::string read_text(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
