@@ -81,7 +81,7 @@ std::vector<TrainEnvelope> study_envelope_over_speeds(const std::vector<JobResul
   std::vector<CaseValue> cases;
   std::map<std::string, std::size_t> train_order;
   for (const JobResult& j : jobs) {
-    cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(quantity), j.id, "", j.variant});
+    cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(quantity), j.variant});
     train_order.try_emplace(j.train, train_order.size());
   }
   std::vector<TrainEnvelope> out = envelope_over_speeds(cases, extreme_of(quantity).value_or(Extreme::kMax));
