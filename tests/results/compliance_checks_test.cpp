@@ -88,6 +88,26 @@ TEST(CheckVerdict, FailWhenAnyCaseExceedsEvenWithMissingCases) {
   EXPECT_EQ(r.governing->value, 3.6);
 }
 
+TEST(CheckVerdict, PerTrainVerdictsFollowTheSameRules) {
+  const auto r = evaluate_upper_limit(limit(3.5), {{"A", 100, "none", 3.6, "a1"},
+                                                   {"B", 100, "none", 1.0, "b1"},
+                                                   {"A", 200, "none", std::nullopt, "a2"},
+                                                   {"B", 200, "none", std::nullopt, "b2"},
+                                                   {"C", 100, "none", 2.0, "c1"}});
+  EXPECT_EQ(r.verdict, Verdict::kFail);
+  const auto t = per_train(r);
+  ASSERT_EQ(t.size(), 3u);
+  EXPECT_EQ(t[0].all_cases.front().train, "A");
+  EXPECT_EQ(t[0].verdict, Verdict::kFail);  // an exceedance wins over the missing case
+  EXPECT_EQ(t[0].governing->job_id, "a1");
+  EXPECT_EQ(t[1].verdict, Verdict::kIncomplete);
+  EXPECT_EQ(t[1].cases, 2);
+  EXPECT_EQ(t[1].missing, 1);
+  EXPECT_EQ(t[1].governing->value, 1.0);
+  EXPECT_EQ(t[2].verdict, Verdict::kPass);
+  EXPECT_TRUE(per_train(CheckResult{}).empty());
+}
+
 TEST(CheckVerdict, OverallVerdict) {
   CheckResult pass, fail, incomplete, skipped;
   pass.verdict = Verdict::kPass;
