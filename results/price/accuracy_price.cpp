@@ -11,7 +11,7 @@
 #include <mutex>
 #include <thread>
 
-#include "analysis/modal_basis.hpp"
+#include "solver/modal_basis.hpp"
 #include "core/input_error.hpp"
 #include "envelopes/code_filter.hpp"
 #include "envelopes/job_envelopes.hpp"

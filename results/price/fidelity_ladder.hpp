@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/modal_basis.hpp"
+#include "solver/modal_basis.hpp"
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 #include "solver/structure_operator.hpp"
