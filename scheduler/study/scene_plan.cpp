@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "solver/modal_analysis.hpp"
 #include "solver/modal_basis.hpp"
 #include "envelopes/code_filter.hpp"
 
@@ -36,10 +37,20 @@ PlannerInput planner_input(const Scene& scene, const StudyAsks& asks, const Deck
 
 int count_modes(const std::shared_ptr<const StructureModel>& structure, double cutoff_hz, int max_dofs) {
   if (structure->num_dofs() > max_dofs || !(cutoff_hz > 0.0)) return -1;
-  ModalBasisOptions o;
-  o.max_frequency_hz = cutoff_hz;
-  o.min_modes = 0;
-  return ModalBasis(structure, o).num_modes();
+  // In growing batches, and no further than the planner needs: beyond
+  // kMaxModalModes the answer is FE however many there are (a track on
+  // embankments has hundreds of modes below the cut-off).
+  const int dofs = structure->num_dofs();
+  for (int asked = 8;; asked *= 2) {
+    ModalOptions o;
+    o.modes = std::min(asked, dofs - 1);
+    const ModalResult r = modal_analysis(*structure, o);
+    if (!r.status.ok()) return -1;
+    const auto below = static_cast<int>(
+        std::count_if(r.frequencies_hz.begin(), r.frequencies_hz.end(), [&](double f) { return f <= cutoff_hz; }));
+    if (below < static_cast<int>(r.frequencies_hz.size()) || o.modes >= dofs - 1) return below;
+    if (below > kMaxModalModes) return below;  // at least this many
+  }
 }
 
 namespace {
@@ -61,7 +72,10 @@ ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f) {
   ScenePlan p;
   if (req.mode == FidelityRequest::Mode::kAuto) {
     const double cutoff = kModalCutoffMargin * code_cutoff_hz(f.f0_hz, f.f3_hz);
-    const int modes = f.f0_hz > 0.0 && f.f3_hz > 0.0 ? count_modes(scene.structure, cutoff) : -1;
+    // Counted only where the modal rung could run (moving forces, until the
+    // modal interaction rung is built in).
+    const bool modal_possible = scene.train.is_moving_forces();
+    const int modes = modal_possible && f.f0_hz > 0.0 && f.f3_hz > 0.0 ? count_modes(scene.structure, cutoff) : -1;
     const EffectsPlan e = plan_effects(planner_input(scene, scene_asks(scene), f, modes));
     p.rung = e.rung;
     p.chosen_by = "planner";

@@ -31,8 +31,10 @@ StudyAsks scene_asks(const Scene& scene);
 // modes_below_cutoff as counted by count_modes (-1: not counted).
 PlannerInput planner_input(const Scene& scene, const StudyAsks& asks, const DeckFrequencies& f, int modes_below_cutoff);
 
-// Modes of the structure up to cutoff_hz; -1 when the structure is larger
-// than max_dofs (its Lanczos would cost more than planning is worth).
+// Modes of the structure up to cutoff_hz, counted no further than just past
+// kMaxModalModes; -1 when the structure is larger than max_dofs (its
+// Lanczos would cost more than planning is worth) or its modes cannot be
+// computed.
 int count_modes(const std::shared_ptr<const StructureModel>& structure, double cutoff_hz, int max_dofs = 20000);
 
 // For "auto" the frequencies are needed (and the modes counted); a pinned

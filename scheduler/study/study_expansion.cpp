@@ -278,11 +278,16 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     f.cutoff_hz = code_cutoff_hz(f.frequencies.f0_hz, f.frequencies.f3_hz);
     if (auto_fidelity) {
       const double modal_cutoff_hz = kModalCutoffMargin * f.cutoff_hz;
-      auto [m, counted] = modes_of_structure.try_emplace(f.structure_hash, -1);
-      if (counted && f.frequencies.f0_hz > 0.0 && f.frequencies.f3_hz > 0.0)
-        m->second = count_modes(f.structure, modal_cutoff_hz);
+      // Counted once per structure, and only where the modal rung could run
+      // (moving forces, until the modal interaction rung is built in).
+      int modes = -1;
+      if (f.first_scene.train.is_moving_forces() && f.frequencies.f0_hz > 0.0 && f.frequencies.f3_hz > 0.0) {
+        auto [m, fresh] = modes_of_structure.try_emplace(f.structure_hash, -1);
+        if (fresh) m->second = count_modes(f.structure, modal_cutoff_hz);
+        modes = m->second;
+      }
       f.plan = plan_effects(planner_input(f.first_scene, study_asks(doc, f.first_scene.train.is_moving_forces()),
-                                          f.frequencies, m->second));
+                                          f.frequencies, modes));
       f.fidelity = pinned_fidelity_json(f.plan);
     } else {
       const ScenePlan pinned = plan_scene(f.first_scene, f.frequencies);
