@@ -96,9 +96,6 @@ FidelityRequest fidelity_request(const json& doc, const Train& train, ContactOpt
                                         "{\"library\": name, \"as\": \"moving_forces\"} for its static axle loads)");
   if (f.model == "interaction" && train.is_moving_forces())
     throw InputError("/fidelity/model", "interaction needs multibody vehicles; this train is axle loads");
-  if (f.model == "interaction" && f.structure == "modal")
-    throw InputError("/fidelity/structure", "the modal interaction rung is not available in this build: give "
-                                            "\"fe\" (or fidelity \"auto\")");
   if (r.contains("contact_law")) contact.law = r.at("contact_law").get<std::string>();
   if (r.contains("unilateral")) contact.unilateral = r.at("unilateral").get<bool>();
   if (r.contains("contact_law") || r.contains("unilateral"))

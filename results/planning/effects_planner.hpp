@@ -45,6 +45,9 @@ struct Rung {
   std::string contact_law = "none";     // "none" (moving forces), "linear-hertz", "hertz", "rigid"
   bool unilateral = false;
   std::string name() const { return model + "/" + structure; }
+  // Moving forces on the modes, each stepped by the exact recurrence (the
+  // batched sweep path); interaction on the modes is stepped by HHT.
+  bool exact_modal() const { return model == "moving_forces" && structure == "modal"; }
 };
 
 struct StudyAsks {

@@ -58,7 +58,11 @@ namespace {
 Rung rung_of_analysis(const Scene& scene) {
   Rung r;
   r.structure = "fe";
+  // Moving forces on the modal backend of the analysis are stepped by HHT,
+  // not by the exact recurrence of the "moving_forces/modal" rung: the rung
+  // stays "fe" and run.fidelity.structure_backend names the modes.
   if (scene.train.is_moving_forces()) return r;
+  if (scene.analysis.structure_backend == StructureBackend::kModal) r.structure = "modal";
   r.model = "interaction";
   r.contact_law = scene.analysis.contact.law;
   r.unilateral = scene.analysis.contact.unilateral.value_or(scene.analysis.contact.law != "rigid");
@@ -98,6 +102,13 @@ ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f) {
   if (p.rung.structure == "modal")
     p.modal_cutoff_hz = req.modal_cutoff_hz.value_or(kModalCutoffMargin * code_cutoff_hz(f.f0_hz, f.f3_hz));
   return p;
+}
+
+void apply_rung_structure(const ScenePlan& plan, AnalysisOptions& analysis) {
+  if (plan.rung.model != "interaction" || plan.rung.structure != "modal") return;
+  if (analysis.structure_backend == StructureBackend::kModal && analysis.modal_modes > 0) return;
+  analysis.structure_backend = StructureBackend::kModal;
+  if (plan.modal_cutoff_hz > 0.0) analysis.modal_cutoff_hz = plan.modal_cutoff_hz;
 }
 
 nlohmann::json pinned_fidelity_json(const EffectsPlan& plan) {

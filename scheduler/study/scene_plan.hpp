@@ -24,6 +24,11 @@ struct ScenePlan {
   std::vector<std::string> reasons;
 };
 
+// The analysis options on the plan's structure: interaction on the modes
+// runs the condensed direct method on the modal backend (HHT per mode) with
+// the plan's cut-off, unless the analysis already names its modes.
+void apply_rung_structure(const ScenePlan& plan, AnalysisOptions& analysis);
+
 // What a scene asks: its "asks", else what the train can give.
 StudyAsks scene_asks(const Scene& scene);
 

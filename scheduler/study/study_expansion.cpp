@@ -167,7 +167,7 @@ struct JobTimeStep {
 // structure and speed.
 JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequencies& f, const EffectsPlan& plan) {
   if (dt_given) return {scene.analysis.dt_s, "given in the study (analysis.dt_s)"};
-  if (plan.rung.structure == "modal") {
+  if (plan.rung.exact_modal()) {
     const double dt = modal_time_step_s(plan.code_frequency_hz, scene.fidelity.tolerance);
     return {dt, fmt::format("modal rung (exact recurrence: dt samples the load and output only): the peak at the code "
                             "frequency {:.1f} Hz sampled within the tolerance {:g} needs {:.3e} s",
@@ -316,7 +316,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     const JobTimeStep first_dt = job_time_step(dt_given, dry, f.frequencies, f.plan);
     dry.analysis.dt_s = first_dt.dt_s;
     try {
-      if (f.plan.rung.structure == "modal") {
+      if (f.plan.rung.exact_modal()) {
         // The modal rung's setup: its modes and the train on its rails.
         ModalBasisOptions mo;
         mo.max_frequency_hz = f.plan.modal_cutoff_hz;
@@ -324,6 +324,10 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
         const ModalSweep sweep(basis, dry.train, dry.analysis.contact.rail_lines, dry.analysis.dt_s);
         (void)modal_run_steps(dry);
       } else {
+        ScenePlan on_rung;
+        on_rung.rung = f.plan.rung;
+        on_rung.modal_cutoff_hz = f.plan.modal_cutoff_hz;
+        apply_rung_structure(on_rung, dry.analysis);
         auto& op = operators[operator_key(f.structure_hash, dry.analysis, f.rail_flexibility)];
         if (!op) op = make_structure_operator(dry);
         const Simulation setup(dry, op);
@@ -352,8 +356,12 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
       const JobTimeStep dt = job_time_step(dt_given, at_speed, f.frequencies, f.plan);
       at_speed.analysis.dt_s = dt.dt_s;
       const bool modal = f.plan.rung.structure == "modal";
+      ScenePlan on_rung;
+      on_rung.rung = f.plan.rung;
+      on_rung.modal_cutoff_hz = f.plan.modal_cutoff_hz;
+      apply_rung_structure(on_rung, at_speed.analysis);
       const std::string key =
-          modal ? modal_operator_key(f.structure_hash, *f.structure, f.plan.modal_cutoff_hz, dt.dt_s)
+          f.plan.rung.exact_modal() ? modal_operator_key(f.structure_hash, *f.structure, f.plan.modal_cutoff_hz, dt.dt_s)
                 : operator_key(f.structure_hash, at_speed.analysis, f.rail_flexibility);
       for (const Profile& p : profiles) {
         JobSpec job;

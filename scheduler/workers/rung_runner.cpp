@@ -16,9 +16,7 @@ void record_rung(const Scene& scene, const ScenePlan& plan, const Rung& rung, Ru
 }
 
 Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& models) {
-  if (plan.rung.structure == "modal") {
-    if (plan.rung.model != "moving_forces")
-      throw InputError("/fidelity/structure", "the modal interaction rung is not available in this build");
+  if (plan.rung.exact_modal()) {
     const std::shared_ptr<const ModalBasis> basis = models.modal_basis(plan.modal_cutoff_hz);
     Result r = run_modal_moving_forces(scene, *basis);
     record_rung(scene, plan, plan.rung, r.summary);
@@ -31,6 +29,7 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
     on_rung.analysis.contact.law = plan.rung.contact_law;
     on_rung.analysis.contact.unilateral = plan.rung.unilateral;
   }
+  apply_rung_structure(plan, on_rung.analysis);
   const std::shared_ptr<const StructureOperator> op = models.fe_operator(on_rung);
   Result r = Simulation(on_rung, op).run();
   record_rung(on_rung, plan, plan.rung, r.summary);
