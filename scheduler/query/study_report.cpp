@@ -325,7 +325,8 @@ std::string format_csv(const std::vector<JobResult>& jobs) {
                              : "train,irregularity,speed_kmh,quantity,location,value,state\n";
   for (const JobResult& j : jobs) {
     const std::string job = fmt::format("{},{},{}", csv_field(j.train), csv_field(j.irregularity), j.speed_kmh);
-    const std::string variant = variants ? "," + csv_field(j.variant) : std::string();
+    std::string variant;
+    if (variants) variant.append(",").append(csv_field(j.variant));
     if (j.envelopes.empty()) out += fmt::format("{},,,,{}{}\n", job, csv_field(j.state), variant);
     for (const auto& [quantity, locations] : j.envelopes)
       for (const auto& [location, value] : locations)
