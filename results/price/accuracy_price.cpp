@@ -100,7 +100,7 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
   PriceReport report;
   report.threads = std::max(1, options.threads);
   report.cutoff_hz = code_cutoff_hz(options.f0_hz, options.f3_hz);
-  const std::vector<Rung>& ladder = fidelity_ladder();
+  const std::vector<LadderRung>& ladder = fidelity_ladder();
 
   std::vector<std::size_t> rungs;
   for (std::size_t r = 0; r < ladder.size(); ++r)
@@ -139,7 +139,7 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
 
   const auto run_task = [&](std::size_t i) {
     const Task& task = tasks[i];
-    const Rung& rung = ladder[task.rung];
+    const LadderRung& rung = ladder[task.rung];
     PriceRow& row = rows[i];
     row.model = rung.model;
     row.structure = rung.structure_name();

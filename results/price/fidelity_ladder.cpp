@@ -19,7 +19,7 @@ Result run_modal_moving_forces_rung(const Scene& scene, const RungResources& res
 // Cheapest first; the last rung that applies to a scene is its reference.
 // The modal interaction rung belongs between the moving-force rungs and
 // the FE interaction rungs, one line per contact law.
-const std::vector<Rung> kLadder = {
+const std::vector<LadderRung> kLadder = {
     {"moving-forces", RungStructure::kModal, "none", run_modal_moving_forces_rung},
     {"moving-forces", RungStructure::kFe, "none", run_fe},
     {"interaction", RungStructure::kFe, "rigid", run_fe},
@@ -29,15 +29,15 @@ const std::vector<Rung> kLadder = {
 
 }  // namespace
 
-std::string Rung::label() const { return model + " / " + structure_name() + " / " + contact_law; }
+std::string LadderRung::label() const { return model + " / " + structure_name() + " / " + contact_law; }
 
-const std::vector<Rung>& fidelity_ladder() { return kLadder; }
+const std::vector<LadderRung>& fidelity_ladder() { return kLadder; }
 
-bool rung_applies(const Rung& rung, const Scene& scene) {
+bool rung_applies(const LadderRung& rung, const Scene& scene) {
   return rung.model == "moving-forces" || !scene.train.is_moving_forces();
 }
 
-Scene rung_scene(const Rung& rung, const Scene& scene, double dt_s) {
+Scene rung_scene(const LadderRung& rung, const Scene& scene, double dt_s) {
   Scene s = scene;
   s.analysis.dt_s = dt_s;
   if (rung.model == "moving-forces") {

@@ -27,7 +27,7 @@ struct RungResources {
 
 enum class RungStructure { kFe, kModal };
 
-struct Rung {
+struct LadderRung {
   std::string model;        // "moving-forces" or "interaction" (FidelityRecord::model)
   RungStructure structure;  // full FE (HHT on K_bar) or the structure's modes
   std::string contact_law;  // "none" for moving forces, else a contact law name
@@ -41,18 +41,18 @@ struct Rung {
 };
 
 // Every rung, cheapest first; the last applicable one is the reference.
-const std::vector<Rung>& fidelity_ladder();
+const std::vector<LadderRung>& fidelity_ladder();
 
 // Whether a rung can describe the scene's train: moving-force rungs always
 // (a multibody train becomes its static wheel loads), interaction rungs only
 // for a multibody train.
-bool rung_applies(const Rung& rung, const Scene& scene);
+bool rung_applies(const LadderRung& rung, const Scene& scene);
 
 // The scene as the rung runs it, at time step dt_s: a multibody train as
 // moving forces for a moving-force rung (axle_loads: what "as":
 // "moving_forces" gives in a scene document), the rung's contact law
 // (linear Hertz unilateral, hertz and rigid with their own default; G, wheels
 // per contact and rail lines kept from the scene).
-Scene rung_scene(const Rung& rung, const Scene& scene, double dt_s);
+Scene rung_scene(const LadderRung& rung, const Scene& scene, double dt_s);
 
 }  // namespace railvsi
