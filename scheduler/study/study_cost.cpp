@@ -1,5 +1,6 @@
 #include "study/study_cost.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -8,12 +9,14 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "planning/cost_model.hpp"
+#include "study/scene_plan.hpp"
 
 namespace railvsi::scheduler {
 
 StudyCostEstimate estimate_study_cost(const StudyPlan& plan) {
   StudyCostEstimate e;
   std::map<std::string, Scene> by_train;  // the first job's scene of each train
+  std::map<std::string, int> modes_of_train;  // on the exact modal rung
   std::set<std::string> operators;
   for (const JobSpec& job : plan.jobs) {
     auto it = by_train.find(job.train);
@@ -25,7 +28,15 @@ StudyCostEstimate estimate_study_cost(const StudyPlan& plan) {
     Scene scene = it->second;
     scene.speed_mps = job.speed_kmh / 3.6;
     scene.analysis.dt_s = job.dt_s;
-    const CostPrediction p = predict_cost(cost_inputs(scene, false));
+    // Jobs on the exact modal rung cost their modes, not the FE operator.
+    const bool modal = job.rung == "moving_forces/modal" && scene.fidelity.modal_cutoff_hz;
+    int modes = 0;
+    if (modal) {
+      auto [m, fresh] = modes_of_train.try_emplace(job.train, 0);
+      if (fresh) m->second = std::max(1, count_modes(scene.structure, *scene.fidelity.modal_cutoff_hz));
+      modes = m->second;
+    }
+    const CostPrediction p = predict_cost(cost_inputs(scene, modal, modes));
     e.cpu_s += p.loop_cpu_s;
     if (operators.insert(job.operator_key).second) {
       e.cpu_s += p.setup_cpu_s;
