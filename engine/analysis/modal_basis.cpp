@@ -59,6 +59,17 @@ ModalBasis::ModalBasis(std::shared_ptr<const StructureModel> structure, const Mo
   at_outputs_.resize(static_cast<Eigen::Index>(s.outputs().size()), n);
   for (std::size_t i = 0; i < s.outputs().size(); ++i)
     at_outputs_.row(static_cast<Eigen::Index>(i)) = Phi.row(s.outputs()[i].dof);
+  if (!s.info().deck_beam) return;  // no section forces
+  statics_ = std::make_shared<const StaticInfluence>(s);
+  const auto& forms = statics_->section_forms().forms;
+  const auto nf = static_cast<Eigen::Index>(forms.size());
+  forms_u_ = forms_v_ = forms_a_ = DenseMatrix::Zero(nf, n);
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    const LinearForm& form = forms[static_cast<std::size_t>(f)];
+    for (const auto& [d, c] : form.u) forms_u_.row(f) += c * Phi.row(d);
+    for (const auto& [d, c] : form.v) forms_v_.row(f) += c * Phi.row(d);
+    for (const auto& [d, c] : form.a) forms_a_.row(f) += c * Phi.row(d);
+  }
 }
 
 const double* ModalBasis::row(int dof) const {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "analysis/static_influence.hpp"
 #include "core/types.hpp"
 #include "model/structure_model.hpp"
 
@@ -35,6 +36,14 @@ class ModalBasis {
   const double* row(int dof) const;
   // Shapes at the output points, one row per point.
   const DenseMatrix& at_outputs() const { return at_outputs_; }
+  // Section forces of a beam deck (null otherwise): the exact static
+  // influence lines, and each form applied to the modes (rows = forms of
+  // statics->section_forms(), columns = modes; on u, v and a), for the
+  // mode-acceleration evaluation of the modal rung.
+  const StaticInfluence* statics() const { return statics_.get(); }
+  const DenseMatrix& forms_on_u() const { return forms_u_; }
+  const DenseMatrix& forms_on_v() const { return forms_v_; }
+  const DenseMatrix& forms_on_a() const { return forms_a_; }
 
  private:
   std::shared_ptr<const StructureModel> structure_;
@@ -45,6 +54,8 @@ class ModalBasis {
   DenseMatrix rail_shapes_;    // row-major in effect: one row per rail DOF (stored transposed)
   std::vector<double> zero_row_;
   DenseMatrix at_outputs_;
+  std::shared_ptr<const StaticInfluence> statics_;
+  DenseMatrix forms_u_, forms_v_, forms_a_;
 };
 
 }  // namespace railvsi

@@ -10,6 +10,7 @@
 #include "simulation/rigid_wheels.hpp"
 #include "simulation/run_monitor.hpp"
 #include "simulation/scene.hpp"
+#include "simulation/section_forms.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "simulation/step_solver.hpp"
 
@@ -17,7 +18,8 @@ namespace railvsi {
 
 class RunState {
  public:
-  RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics, double start_x_m);
+  RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics, double start_x_m,
+           const SectionForms& section_forms);
 
   // Advance from t_n to t_new = t_n + dt.
   Status step(const HhtCoefficients& h, double t_new, StepSolver& solver, int& iterations);
@@ -30,6 +32,7 @@ class RunState {
  private:
   double front_x(double t_s) const { return start_x_m_ + scene_.speed_mps * t_s; }
   bool in_window(double front_x_m, const ContactSpec& c) const;
+  void record_sections(double front_x_m);
 
   const Scene& scene_;
   const TrainLayout& layout_;
@@ -55,6 +58,11 @@ class RunState {
   double max_abs_body_a_ = 0.0;
   std::vector<bool> vehicle_in_window_;
   double window_start_m_ = 0.0, window_end_m_ = 0.0;
+  // Section forces of a beam deck (empty forms otherwise).
+  const SectionForms& sections_;
+  SectionEnvelope section_envelope_;
+  std::vector<DeckLoad> deck_loads_;
+  std::vector<double> section_values_;
 };
 
 }  // namespace railvsi

@@ -3,6 +3,7 @@
 #include "cli/commands.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/service_store.hpp"
+#include "query/static_effects.hpp"
 #include "query/study_report.hpp"
 #include "queue/job_queue.hpp"
 #include "store/store_check.hpp"
@@ -23,8 +24,17 @@ int query_command(const ServiceArgs& args) {
   const auto jobs = scheduler::study_results(*db, filter);
   if (args.format == "csv")
     std::cout << scheduler::format_csv(jobs);
-  else if (args.format == "json")
-    std::cout << scheduler::format_json(info, jobs).dump(2) << '\n';
+  else if (args.format == "json") {
+    auto out = scheduler::format_json(info, jobs);
+    std::vector<std::string> notes;
+    try {
+      const auto increments = scheduler::dynamic_increments(*db, jobs, notes);
+      out["dynamic_increment"] = scheduler::dynamic_increments_json(increments, notes);
+    } catch (const std::exception& e) {
+      out["dynamic_increment"] = {{"error", std::string("static response not computed: ") + e.what()}};
+    }
+    std::cout << out.dump(2) << '\n';
+  }
   else
     std::cout << scheduler::format_table(info, jobs);
   return kExitOk;

@@ -15,6 +15,7 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
+#include "query/static_effects.hpp"
 #include "query/study_results.hpp"
 #include "simulation/simulation.hpp"
 #include "simulation/static_equilibrium.hpp"
@@ -27,27 +28,6 @@ using nlohmann::json;
 
 std::string case_label(const JobResult& j) {
   return fmt::format("{} at {:g} km/h, {}", j.train, j.speed_kmh, j.irregularity);
-}
-
-// A stored job's scene, loaded as the worker loaded it.
-Scene load_job_scene(Database& db, const std::string& job_id) {
-  Statement s = db.prepare("SELECT scene FROM jobs WHERE id = ?");
-  if (!s.bind(1, job_id).step()) throw std::runtime_error("job " + job_id + " is not in the database");
-  const std::string name = "job " + job_id.substr(0, 12);
-  return parse_scene(parse_json_text(s.text(0), name), "/", name);
-}
-
-// Axle loads of a train: its moving forces, or each wheel's static load on
-// a rigid, level track (what "as": "moving_forces" gives).
-std::vector<MovingForce> axle_loads(const Train& train) {
-  if (train.is_moving_forces()) return train.moving_forces;
-  std::vector<MovingForce> out;
-  for (const TrainVehicle& v : train.vehicles) {
-    const Vector loads = static_wheel_loads_on_rigid_track(*v.model);
-    for (std::size_t w = 0; w < v.model->wheels().size(); ++w)
-      out.push_back({v.offset_m + v.model->wheels()[w].offset_m, loads[static_cast<Eigen::Index>(w)]});
-  }
-  return out;
 }
 
 // Largest value per speed over the profiles of one train (the envelope a
@@ -510,6 +490,19 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     report.checks.push_back(r);
   }
   if (!static_note.empty()) report.notes.push_back(static_note);
+  // phi'dyn of the bending moment of a beam deck per train and output point,
+  // beside the deflection's in the check above.
+  try {
+    std::vector<std::string> unused;
+    for (const DynamicIncrement& d : dynamic_increments(db, jobs, unused))
+      if (d.quantity == "bending_moment_Nm" && d.phi_dyn())
+        report.notes.push_back(fmt::format("phi'dyn of the bending moment (EN 1991-2 6.4.6.5), {} at {}: static "
+                                           "{:.4g} kNm, dynamic {:.4g} kNm at {:g} km/h, phi'dyn = {:.4g}.",
+                                           d.train, d.location, d.static_value * 1e-3, *d.dynamic_value * 1e-3,
+                                           d.governing_speed_kmh, *d.phi_dyn()));
+  } catch (const std::exception& e) {
+    report.notes.push_back(std::string("phi'dyn of the bending moment not computed: ") + e.what());
+  }
   {
     CheckResult c;
     c.id = "deck_twist";
