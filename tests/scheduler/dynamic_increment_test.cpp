@@ -24,9 +24,11 @@ TEST_F(DynamicIncrement, QueryJsonGivesStaticDynamicAndPhiPerLoadEffect) {
   doc["speeds_kmh"] = json::array({100, 200});
   const auto study = write_json("s.json", doc);
   const std::string db = (dir_ / "d.sqlite").string();
-  const VsiResult run = vsi({"run", study.string(), "--db", db});
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  const std::string id = run.out.substr(run.out.find("study ") + 6, 64);
+  const VsiResult submitted = vsi({"submit", study.string(), "--db", db});
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.err;
+  const std::string id = submitted.out.substr(6, 64);
+  const VsiResult worked = vsi({"work", "--db", db, "--threads", "2"});
+  ASSERT_EQ(worked.exit_code, 0) << worked.err;
   const VsiResult q = vsi({"query", "--db", db, "--study", id, "--format", "json"});
   ASSERT_EQ(q.exit_code, 0) << q.err;
   const json out = json::parse(q.out);
