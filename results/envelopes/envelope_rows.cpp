@@ -57,8 +57,19 @@ std::vector<EnvelopeRow> envelope_rows(const JobEnvelopes& e) {
   };
   per_point("bending_moment_Nm", &PointEnvelope::max_abs_bending_moment_Nm);
   per_point("shear_force_N", &PointEnvelope::max_abs_shear_force_N);
-  for (const SupportEnvelope& s : e.supports) add("support_reaction_N", s.name, s.max_reaction_N);
-  for (const SupportEnvelope& s : e.supports) add("support_rotation_rad", s.name, s.max_abs_rotation_rad);
+  const auto per_support = [&](std::string_view quantity, std::optional<double> SupportEnvelope::*field) {
+    if (e.supports.empty()) return;
+    std::optional<double> overall;
+    bool hole = false;
+    for (const SupportEnvelope& s : e.supports) {
+      add(quantity, s.name, s.*field);
+      if (!(s.*field)) hole = true;
+      else overall = std::max(overall.value_or(*(s.*field)), *(s.*field));
+    }
+    add(quantity, "", hole ? std::nullopt : overall);  // a maximum with a missing member is not the maximum
+  };
+  per_support("support_reaction_N", &SupportEnvelope::max_reaction_N);
+  per_support("support_rotation_rad", &SupportEnvelope::max_abs_rotation_rad);
   if (!e.wheels.empty()) {
     // Per wheel only for wheels inside the evaluation window: the others have no values.
     const auto per_wheel = [&](std::string_view quantity, std::optional<double> WheelEnvelope::*field) {
