@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -58,10 +59,19 @@ void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSu
   f.dt_s = sweep.dt_s();
   f.modes = sweep.num_modes();
   f.modal_cutoff_hz = sweep.basis().max_frequency_hz();
+  // The exact modal sweep records the deck's displacement and acceleration
+  // only; section forces come from the FE rungs.
+  sum.supports.clear();
+  sum.section_forces_note = "section forces are not computed on the exact modal rung (moving_forces/modal): pin "
+                            "{\"model\": \"moving_forces\", \"structure\": \"fe\"} for them";
   sum.points.clear();
   for (std::size_t i = 0; i < s.outputs().size(); ++i) {
-    sum.points.push_back({s.outputs()[i].name, s.outputs()[i].x_m, run.max_abs_displacement_m[i],
-                          run.max_abs_acceleration_mps2[i]});
+    PointSummary point;
+    point.name = s.outputs()[i].name;
+    point.x_m = s.outputs()[i].x_m;
+    point.max_abs_displacement_m = run.max_abs_displacement_m[i];
+    point.max_abs_acceleration_mps2 = run.max_abs_acceleration_mps2[i];
+    sum.points.push_back(std::move(point));
     sum.max_abs_displacement_m = std::max(sum.max_abs_displacement_m, run.max_abs_displacement_m[i]);
     sum.max_abs_acceleration_mps2 = std::max(sum.max_abs_acceleration_mps2, run.max_abs_acceleration_mps2[i]);
   }

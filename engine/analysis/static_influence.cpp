@@ -72,6 +72,15 @@ StaticInfluence::StaticInfluence(const StructureModel& structure, std::vector<in
     if (!st.ok()) throw InputError("/structure", "static influence line: " + st.message());
     influence_.push_back(std::move(g));
   }
+  forms_ = make_section_forms(structure_);
+  for (const LinearForm& f : forms_.forms) {
+    Vector c = Vector::Zero(structure_.num_dofs());
+    for (const auto& [d, v] : f.u) c[d] += v;
+    Vector g = Vector::Zero(structure_.num_dofs());
+    const Status st = op.solve(c, g, *ws);
+    if (!st.ok()) throw InputError("/structure", "static influence line of a section force: " + st.message());
+    form_influence_.push_back(std::move(g));
+  }
 
   // Grid for the cumulative positive area: each element of the first rail
   // line cut in kGridPerElement pieces.
@@ -100,6 +109,121 @@ double StaticInfluence::unit_deflection(int k, double x_m) const {
       if (row->dof[i] >= 0) w += share * row->weight[i] * g[row->dof[i]];
   }
   return w;
+}
+
+// c.u with K u = -N^T for a unit load located by `row`, plus the load's own
+// term when it stands on the deck line itself (`on_deck`, element -1 if not).
+double StaticInfluence::form_value_at(std::size_t form, const RailContactRow& row, const DeckPoint& on_deck) const {
+  const Vector& g = form_influence_[form];
+  double value = 0.0;
+  for (int i = 0; i < 4; ++i)
+    if (row.dof[i] >= 0) value -= row.weight[i] * g[row.dof[i]];
+  if (on_deck.element >= 0) value += forms_.forms[form].unit_load_value(on_deck);
+  return value;
+}
+
+double StaticInfluence::unit_form_value(int form, int rail, double x_m) const {
+  const auto row = structure_.rails()[static_cast<std::size_t>(rail)].locate(x_m);
+  if (!row) return 0.0;
+  const DeckPoint at = forms_.rail_is_deck[static_cast<std::size_t>(rail)]
+                           ? deck_point(structure_.info().deck_line, x_m)
+                           : DeckPoint{};
+  return form_value_at(static_cast<std::size_t>(form), *row, at);
+}
+
+void StaticInfluence::add_form_values(int rail, double x_m, double scale, std::vector<double>& values) const {
+  const auto row = structure_.rails()[static_cast<std::size_t>(rail)].locate(x_m);
+  if (!row) return;
+  const DeckPoint at = forms_.rail_is_deck[static_cast<std::size_t>(rail)]
+                           ? deck_point(structure_.info().deck_line, x_m)
+                           : DeckPoint{};
+  for (std::size_t f = 0; f < forms_.forms.size(); ++f) values[f] += scale * form_value_at(f, *row, at);
+}
+
+double StaticInfluence::unit_form_value(int form, double x_m) const {
+  double value = 0.0;
+  for (int r : rail_lines_) value += unit_form_value(form, r, x_m);
+  return value / static_cast<double>(rail_lines_.size());
+}
+
+StaticSectionEnvelope StaticInfluence::section_envelope(const std::vector<MovingForce>& axles) const {
+  StaticSectionEnvelope out;
+  if (!forms_.available()) {
+    out.unavailable = forms_.unavailable;
+    return out;
+  }
+  double length = 0.0;
+  for (const MovingForce& a : axles) length = std::max(length, a.offset_m);
+  // Every form at once for the train with its first axle at x.
+  std::vector<double> values(forms_.forms.size());
+  const auto all_forms = [&](double front_x) -> const std::vector<double>& {
+    std::fill(values.begin(), values.end(), 0.0);
+    const double share = 1.0 / static_cast<double>(rail_lines_.size());
+    for (int r : rail_lines_)
+      for (const MovingForce& a : axles) add_form_values(r, front_x - a.offset_m, share * a.load_N, values);
+    return values;
+  };
+  // The quantities: the larger magnitude of the two sides of a section,
+  // the (signed) reaction, the larger end rotation at a support.
+  struct Quantity {
+    std::vector<int> forms;
+    bool magnitude = true;
+    double x_m = 0.0;
+    double best = -std::numeric_limits<double>::infinity();
+    double best_front_x = 0.0;
+  };
+  std::vector<Quantity> qs;
+  for (std::size_t p = 0; p < forms_.points.size(); ++p) {
+    const SectionForms::Point& f = forms_.points[p];
+    if (f.moment_left < 0) continue;
+    const double x = structure_.outputs()[p].x_m;
+    qs.push_back({{f.moment_left, f.moment_right}, true, x});
+    qs.push_back({{f.shear_left, f.shear_right}, true, x});
+  }
+  for (const SectionForms::Support& s : forms_.supports) {
+    qs.push_back({{s.reaction}, false, s.x_m});
+    qs.push_back({s.rotations, true, s.x_m});
+  }
+  const auto measure = [](const Quantity& q, const std::vector<double>& v) {
+    double m = -std::numeric_limits<double>::infinity();
+    for (int f : q.forms) m = std::max(m, q.magnitude ? std::abs(v[static_cast<std::size_t>(f)]) : v[static_cast<std::size_t>(f)]);
+    return m;
+  };
+  const auto consider = [&](double front_x) {
+    const auto& v = all_forms(front_x);
+    for (Quantity& q : qs) {
+      const double m = measure(q, v);
+      if (m > q.best) q.best = m, q.best_front_x = front_x;
+    }
+  };
+  // Grid over every first-axle position (as train_envelope), then each
+  // axle exactly on each section, then a golden-section polish per quantity.
+  const double step = (grid_x_m_[1] - grid_x_m_[0]);
+  const double a = rails_start_m(), b = rails_end_m() + length;
+  const long n = static_cast<long>(std::ceil((b - a) / step));
+  for (long i = 0; i <= n; ++i) consider(std::min(b, a + static_cast<double>(i) * step));
+  for (const Quantity& q : std::vector<Quantity>(qs))
+    for (const MovingForce& m : axles) consider(q.x_m + m.offset_m);
+  for (Quantity& q : qs) {
+    const auto f = [&](double front_x) { return measure(q, all_forms(front_x)); };
+    const auto refined = refine_maximum(f, std::max(a, q.best_front_x - step), std::min(b, q.best_front_x + step));
+    q.best = std::max(q.best, refined.second);
+  }
+  std::size_t k = 0;
+  for (const SectionForms::Point& f : forms_.points) {
+    if (f.moment_left < 0) {
+      out.max_abs_bending_moment_Nm.emplace_back();
+      out.max_abs_shear_force_N.emplace_back();
+      continue;
+    }
+    out.max_abs_bending_moment_Nm.push_back(qs[k++].best);
+    out.max_abs_shear_force_N.push_back(qs[k++].best);
+  }
+  for (std::size_t s = 0; s < forms_.supports.size(); ++s) {
+    out.max_reaction_N.push_back(qs[k++].best);
+    out.max_abs_rotation_rad.push_back(std::max(0.0, qs[k++].best));
+  }
+  return out;
 }
 
 double StaticInfluence::rails_start_m() const { return grid_x_m_.front(); }

@@ -8,11 +8,13 @@
 //
 // Sign convention: loads act downward, deflections are reported downward
 // positive (the magnitude a designer compares with a limit).
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "model/structure_model.hpp"
 #include "model/train.hpp"
+#include "simulation/section_forms.hpp"
 
 namespace railvsi {
 
@@ -39,6 +41,18 @@ struct LoadModel71Result {
   double first_point_load_x_m = 0.0;
 };
 
+// The quasi-static envelope of a train for the section quantities of a beam
+// deck (simulation/section_forms.hpp): per output point the largest
+// |bending moment| and |shear| (both sides of the section), per support the
+// largest reaction and |end rotation|. `unavailable` says why there is none.
+struct StaticSectionEnvelope {
+  std::string unavailable;
+  std::vector<std::optional<double>> max_abs_bending_moment_Nm;  // per output point
+  std::vector<std::optional<double>> max_abs_shear_force_N;
+  std::vector<double> max_reaction_N;  // per support
+  std::vector<double> max_abs_rotation_rad;
+};
+
 class StaticInfluence {
  public:
   // Factorizes K once. Throws InputError if K is singular (a mechanism).
@@ -60,6 +74,21 @@ class StaticInfluence {
   // best sample.
   StaticEnvelope train_envelope(int k, const std::vector<MovingForce>& axles) const;
 
+  // Section forces (beam decks): the forms, and the value of form f under a
+  // downward unit load at x standing on rail line r alone, or shared between
+  // the rail lines as unit_deflection. Influence lines by reciprocity:
+  // one solve K g_f = c_f per form, plus the load's own term in the element
+  // it stands on.
+  const SectionForms& section_forms() const { return forms_; }
+  double unit_form_value(int form, int rail, double x_m) const;
+  double unit_form_value(int form, double x_m) const;
+  // Adds scale x unit_form_value(f, rail, x) to values[f] for every form.
+  void add_form_values(int rail, double x_m, double scale, std::vector<double>& values) const;
+  // Every first-axle position as train_envelope, plus each axle standing
+  // exactly on each section and support (where point-load maxima of moment,
+  // shear and reaction occur).
+  StaticSectionEnvelope section_envelope(const std::vector<MovingForce>& axles) const;
+
   // LM71 placed where it is most unfavourable for the deflection of point k:
   // the point-load group anywhere on the rails, q_vk wherever the influence
   // line is downward except within the clear distance of the group.
@@ -68,12 +97,15 @@ class StaticInfluence {
  private:
   // Integral of max(unit_deflection, 0) from the start of the rails to x.
   double positive_area_to(int k, double x_m) const;
+  double form_value_at(std::size_t form, const RailContactRow& row, const DeckPoint& on_deck) const;
   double rails_start_m() const;
   double rails_end_m() const;
 
   const StructureModel& structure_;
   std::vector<int> rail_lines_;
   std::vector<Vector> influence_;  // K^-1 e_k per output point
+  SectionForms forms_;
+  std::vector<Vector> form_influence_;  // K^-1 c_f per form
   // Cumulative positive area at the grid x (per output point).
   std::vector<double> grid_x_m_;
   std::vector<std::vector<double>> grid_area_;

@@ -206,9 +206,12 @@ std::shared_ptr<const StructureModel> make_bridge_2d(const Bridge2dOptions& opti
   const double f_first = simply_supported_frequency_hz(longest, o.deck_EI_Nm2, o.deck_mass_kg_per_m);
   if (f1 <= 0.0) f1 = f_first;
   if (f2 <= 0.0) f2 = std::max(30.0, 9.0 * f_first);  // f3 of a simply supported span
+  DeckBeam deck_beam{o.deck_EI_Nm2, o.deck_mass_kg_per_m, 0.0, 0.0, {}};
   if (o.damping_ratio > 0.0) {
     if (!(f2 > f1)) throw InputError("/structure/damping", "f2_hz must be greater than f1_hz");
     const RayleighCoefficients r = rayleigh_coefficients(o.damping_ratio, f1, f2);
+    deck_beam.rayleigh_a0_per_s = r.a0_per_s;
+    deck_beam.rayleigh_a1_s = r.a1_s;
     for (const auto& t : as.M_deck) as.C.emplace_back(t.row(), t.col(), r.a0_per_s * t.value());
     for (const auto& t : as.K_deck) as.C.emplace_back(t.row(), t.col(), r.a1_s * t.value());
   }
@@ -244,6 +247,7 @@ std::shared_ptr<const StructureModel> make_bridge_2d(const Bridge2dOptions& opti
       Assembly::add_pair(as.C, rv[k], sleeper, t.pad_c_Ns_per_m);
       const auto on_deck = (rx[k] >= 0.0 && rx[k] <= total_m) ? deck_line.locate(rx[k]) : std::nullopt;
       if (on_deck) {
+        deck_beam.links.push_back({sleeper, rx[k], t.ballast_k_N_per_m, t.ballast_c_Ns_per_m});
         Assembly::add_link(as.K, sleeper, *on_deck, t.ballast_k_N_per_m);
         Assembly::add_link(as.C, sleeper, *on_deck, t.ballast_c_Ns_per_m);
       } else {
@@ -270,6 +274,7 @@ std::shared_ptr<const StructureModel> make_bridge_2d(const Bridge2dOptions& opti
   info.damping_ratio = o.damping_ratio;
   info.damping_source = damping_source;
   info.deck_line = deck_line;
+  info.deck_beam = std::move(deck_beam);
   info.support_x_m.push_back(0.0);
   for (const double L : o.spans_m) info.support_x_m.push_back(info.support_x_m.back() + L);
   return std::make_shared<const StructureModel>(to_sparse(as.n, as.K), to_sparse(as.n, as.M),

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "model/deck_beam.hpp"
 #include "model/rail_line.hpp"
 
 namespace railvsi {
@@ -38,6 +39,9 @@ struct StructureInfo {
   // (bridge-2d). Empty when unknown (imported models).
   RailLine deck_line;
   std::vector<double> support_x_m;
+  // The deck's beam properties (bridge-2d): section forces are defined only
+  // when this is present with a deck_line.
+  std::optional<DeckBeam> deck_beam;
   // The track's DOFs (sorted) when they are not the range above: an imported
   // model whose map names its track nodes or DOFs. Then track_dofs is their
   // count and deck_dofs the rest.

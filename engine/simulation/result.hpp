@@ -27,6 +27,17 @@ struct PointSummary {
   double x_m = 0.0;
   double max_abs_displacement_m = 0.0;
   double max_abs_acceleration_mps2 = 0.0;
+  // Beam decks only (simulation/section_forms.hpp); absent otherwise.
+  std::optional<double> max_abs_bending_moment_Nm;
+  std::optional<double> max_abs_shear_force_N;  // the larger of the two sides
+};
+
+// Per support of a beam deck: traffic reaction (upward) and deck end rotation.
+struct SupportSummary {
+  std::string name;
+  double x_m = 0.0;
+  double max_reaction_N = 0.0;
+  double max_abs_rotation_rad = 0.0;
 };
 
 // Per wheel, over the evaluation window (see AnalysisOptions).
@@ -88,6 +99,10 @@ struct RunSummary {
   std::vector<double> static_wheel_load_N;
   std::vector<WheelSummary> wheels;
   double max_abs_carbody_acceleration_mps2 = 0.0;
+  // Supports of a beam deck; empty with section_forces_note saying why
+  // when the structure has no section forces (3D solid deck, import).
+  std::vector<SupportSummary> supports;
+  std::string section_forces_note;
   // Run
   long steps = 0;
   double dt_s = 0.0;

@@ -7,9 +7,10 @@
 namespace railvsi {
 
 RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics,
-                   double start_x_m, const StructureCoordinates& coords)
+                   double start_x_m, const StructureCoordinates& coords, const SectionForms& section_forms)
     : scene_(scene), layout_(layout), coords_(coords), start_x_m_(start_x_m),
-      history_(coords.M(), coords.C(), coords.K()), rigid_(scene, layout, coords) {
+      history_(coords.M(), coords.C(), coords.K()), rigid_(scene, layout, coords),
+      sections_(section_forms), section_envelope_(section_forms) {
   const int ns = coords.size();
   s_.resize(ns);
   s_.u = statics.u_s;
@@ -110,6 +111,7 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
     max_abs_a_[p] = std::max(max_abs_a_[p], std::abs(coords_.at(outputs[p].dof, s_.a)));
   }
   const double x = front_x(t_s);
+  if (sections_.available()) record_sections(x);
   std::vector<bool>& vehicle_in = vehicle_in_window_;
   vehicle_in.assign(layout_.vehicles.size(), false);
   for (Eigen::Index c = 0; c < P_.size(); ++c) {
@@ -152,11 +154,36 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
       hist.carbody_acceleration_mps2[b++].push_back(vehicles_[v].a[d]);
 }
 
+// The loads standing on the deck line itself (a deck without track): the
+// moving forces or the contact forces of the wheels on it.
+void RunState::record_sections(double front_x_m) {
+  const RailLine& deck = scene_.structure->info().deck_line;
+  deck_loads_.clear();
+  const auto add_load = [&](double x_m, double down_N) {
+    if (deck.covers(x_m)) deck_loads_.push_back({x_m, down_N});
+  };
+  const auto& rails = scene_.analysis.contact.rail_lines;
+  const double share = 1.0 / static_cast<double>(rails.size());
+  for (int r : rails)
+    if (sections_.rail_is_deck[static_cast<std::size_t>(r)])
+      for (const MovingForce& m : scene_.train.moving_forces)
+        add_load(TrainLayout::position_m(front_x_m, m.offset_m), share * m.load_N);
+  for (Eigen::Index c = 0; c < P_.size(); ++c) {
+    const ContactSpec& cs = layout_.contacts[c];
+    if (sections_.rail_is_deck[static_cast<std::size_t>(cs.rail_line)])
+      add_load(TrainLayout::position_m(front_x_m, cs.offset_m), P_[c]);
+  }
+  section_values_.resize(sections_.forms.size());
+  for (std::size_t f = 0; f < sections_.forms.size(); ++f)
+    section_values_[f] = sections_.forms[f].state_value(s_.u, s_.v, s_.a) + sections_.forms[f].load_value(deck, deck_loads_);
+  section_envelope_.update(section_values_);
+}
+
 void RunState::summarize(RunSummary& sum) const {
   const auto& outputs = scene_.structure->outputs();
   sum.points.clear();
   for (std::size_t p = 0; p < outputs.size(); ++p) {
-    sum.points.push_back({outputs[p].name, outputs[p].x_m, max_abs_u_[p], max_abs_a_[p]});
+    sum.points.push_back({outputs[p].name, outputs[p].x_m, max_abs_u_[p], max_abs_a_[p], std::nullopt, std::nullopt});
     sum.max_abs_displacement_m = std::max(sum.max_abs_displacement_m, max_abs_u_[p]);
     sum.max_abs_acceleration_mps2 = std::max(sum.max_abs_acceleration_mps2, max_abs_a_[p]);
   }
@@ -189,6 +216,7 @@ void RunState::summarize(RunSummary& sum) const {
       sum.contact_loss_s = std::max(sum.contact_loss_s, no_contact_s_[c]);
     }
   }
+  section_envelope_.summarize(sum);
   monitor_->summarize(sum);
   sum.max_abs_carbody_acceleration_mps2 = max_abs_body_a_;
   rigid_.add_warnings(sum.warnings);

@@ -10,6 +10,7 @@
 #include "simulation/rigid_wheels.hpp"
 #include "simulation/run_monitor.hpp"
 #include "simulation/scene.hpp"
+#include "simulation/section_forms.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "simulation/step_solver.hpp"
 
@@ -18,9 +19,10 @@ namespace railvsi {
 class RunState {
  public:
   // `coords`: the structure coordinates of the step solver (and of
-  // statics.u_s); referenced, not copied.
+  // statics.u_s), `section_forms` (of the FE DOFs; none on the modal
+  // structure): referenced, not copied.
   RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics, double start_x_m,
-           const StructureCoordinates& coords);
+           const StructureCoordinates& coords, const SectionForms& section_forms);
 
   // Advance from t_n to t_new = t_n + dt.
   Status step(const HhtCoefficients& h, double t_new, StepSolver& solver, int& iterations);
@@ -33,6 +35,7 @@ class RunState {
  private:
   double front_x(double t_s) const { return start_x_m_ + scene_.speed_mps * t_s; }
   bool in_window(double front_x_m, const ContactSpec& c) const;
+  void record_sections(double front_x_m);
 
   const Scene& scene_;
   const TrainLayout& layout_;
@@ -63,6 +66,11 @@ class RunState {
   double max_abs_body_a_ = 0.0;
   std::vector<bool> vehicle_in_window_;
   double window_start_m_ = 0.0, window_end_m_ = 0.0;
+  // Section forces of a beam deck (empty forms otherwise).
+  const SectionForms& sections_;
+  SectionEnvelope section_envelope_;
+  std::vector<DeckLoad> deck_loads_;
+  std::vector<double> section_values_;
 };
 
 }  // namespace railvsi

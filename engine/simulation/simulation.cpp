@@ -124,6 +124,7 @@ struct SimulationSetup {
   std::vector<VehicleOperator> vehicle_ops;  // factorized once, copied per run
   StaticState statics;
   double setup_s = 0.0;
+  SectionForms section_forms;
 };
 
 Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
@@ -160,7 +161,7 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
                      "a rigid wheelset on several rails has an indeterminate load split where it runs "
                      "on the rigid path: use a compliant law (hertz or linear-hertz)");
   auto setup = std::make_unique<SimulationSetup>(
-      SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, {}, 0.0});
+      SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, {}, 0.0, {}});
   check_rigid_contact_alpha(setup->layout, an.hht.alpha);
   if (an.solver == SolverPath::kReference && an.structure_backend != StructureBackend::kFiniteElements)
     throw InputError("/analysis/solver", "the reference path assembles the finite-element structure: use "
@@ -175,6 +176,12 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
                               ? op_->static_operator(*scene_.structure)
                               : make_structure_operator(scene_.structure, {0.0, 0.0, 1.0}, fe_statics);
   setup->statics = static_equilibrium(scene_, setup->layout, x0, *statics_op);
+  // Section forces read the FE DOFs: none on the modal structure.
+  if (an.structure_backend == StructureBackend::kModal)
+    setup->section_forms.unavailable = "section forces are not computed on the modal structure (its state is the "
+                                       "modal coordinates): use \"structure\": \"fe\"";
+  else
+    setup->section_forms = make_section_forms(*scene_.structure);
   for (std::size_t c = 0; c < setup->layout.contacts.size(); ++c)
     setup->layout.contacts[c].law =
         setup->layout.contacts[c].law->at_static_load(setup->statics.P[static_cast<Eigen::Index>(c)]);
@@ -226,7 +233,7 @@ Result Simulation::run() const {
   sum.dt_s = an.dt_s;
   sum.static_wheel_load_N.assign(statics.P.data(), statics.P.data() + statics.P.size());
 
-  RunState state(sc, layout, statics, x0, coords);
+  RunState state(sc, layout, statics, x0, coords, setup.section_forms);
   sum.setup_s = setup.setup_s + std::chrono::duration<double>(Clock::now() - t_start).count();
   const long steps = step_count(setup.duration_s, an.dt_s);
   state.record(0, 0.0, result.histories, /*store=*/true);

@@ -10,6 +10,10 @@ const std::vector<EnvelopeQuantity>& envelope_quantities() {
       {"deck_acceleration_mps2", Extreme::kMax,
        "max |vertical deck acceleration| after the EN 1990 A2.4.4.2 low-pass filter"},
       {"deck_acceleration_unfiltered_mps2", Extreme::kMax, "max |vertical deck acceleration|, all frequencies"},
+      {"bending_moment_Nm", Extreme::kMax, "max |bending moment| at the output point's section (beam decks)"},
+      {"shear_force_N", Extreme::kMax, "max |shear force| on either side of the output point's section (beam decks)"},
+      {"support_reaction_N", Extreme::kMax, "largest support reaction from traffic, upward (beam decks)"},
+      {"support_rotation_rad", Extreme::kMax, "max |deck end rotation| at the support (beam decks)"},
       {"min_contact_force_N", Extreme::kMin, "smallest wheel contact force in the evaluation window"},
       {"unloading_ratio", Extreme::kMax, "wheel unloading (Q0 - Qmin)/Q0 in the evaluation window, 1 = contact lost"},
       {"contact_loss_s", Extreme::kMax, "time a wheel spent without contact in the evaluation window"},
@@ -39,6 +43,33 @@ std::vector<EnvelopeRow> envelope_rows(const JobEnvelopes& e) {
   for (const PointEnvelope& p : e.points)
     add("deck_acceleration_unfiltered_mps2", p.name, p.max_abs_acceleration_unfiltered_mps2);
   add("deck_acceleration_unfiltered_mps2", "", e.max_abs_acceleration_unfiltered_mps2);
+  // Section forces: only for a beam deck (values at some point or support).
+  const auto per_point = [&](std::string_view quantity, std::optional<double> PointEnvelope::*field) {
+    std::optional<double> overall;
+    bool any = false;
+    for (const PointEnvelope& p : e.points)
+      if (p.*field) {
+        any = true;
+        add(quantity, p.name, p.*field);
+        overall = std::max(overall.value_or(*(p.*field)), *(p.*field));
+      }
+    if (any) add(quantity, "", overall);
+  };
+  per_point("bending_moment_Nm", &PointEnvelope::max_abs_bending_moment_Nm);
+  per_point("shear_force_N", &PointEnvelope::max_abs_shear_force_N);
+  const auto per_support = [&](std::string_view quantity, std::optional<double> SupportEnvelope::*field) {
+    if (e.supports.empty()) return;
+    std::optional<double> overall;
+    bool hole = false;
+    for (const SupportEnvelope& s : e.supports) {
+      add(quantity, s.name, s.*field);
+      if (!(s.*field)) hole = true;
+      else overall = std::max(overall.value_or(*(s.*field)), *(s.*field));
+    }
+    add(quantity, "", hole ? std::nullopt : overall);  // a maximum with a missing member is not the maximum
+  };
+  per_support("support_reaction_N", &SupportEnvelope::max_reaction_N);
+  per_support("support_rotation_rad", &SupportEnvelope::max_abs_rotation_rad);
   if (!e.wheels.empty()) {
     // Per wheel only for wheels inside the evaluation window: the others have no values.
     const auto per_wheel = [&](std::string_view quantity, std::optional<double> WheelEnvelope::*field) {

@@ -92,8 +92,16 @@ JobEnvelopes envelopes_of(const Status& status, const RunSummary& s, double dt_s
     pe.max_abs_displacement_m = finite(ps.max_abs_displacement_m, "deck displacement at " + ps.name);
     pe.max_abs_acceleration_unfiltered_mps2 = finite(ps.max_abs_acceleration_mps2, "deck acceleration at " + ps.name);
     if (filtered) pe.max_abs_acceleration_mps2 = finite((*filtered)[p], "filtered deck acceleration at " + ps.name);
+    if (ps.max_abs_bending_moment_Nm)
+      pe.max_abs_bending_moment_Nm = finite(*ps.max_abs_bending_moment_Nm, "bending moment at " + ps.name);
+    if (ps.max_abs_shear_force_N)
+      pe.max_abs_shear_force_N = finite(*ps.max_abs_shear_force_N, "shear force at " + ps.name);
     e.points.push_back(std::move(pe));
   }
+  for (const SupportSummary& ss : s.supports)
+    e.supports.push_back({ss.name, ss.x_m, finite(ss.max_reaction_N, "reaction at " + ss.name),
+                          finite(ss.max_abs_rotation_rad, "end rotation at " + ss.name)});
+  if (!s.section_forces_note.empty()) e.notes.push_back("section forces left out: " + s.section_forces_note);
   e.max_abs_displacement_m = extreme(e.points, &PointEnvelope::max_abs_displacement_m, greater, every);
   e.max_abs_acceleration_mps2 = extreme(e.points, &PointEnvelope::max_abs_acceleration_mps2, greater, every);
   e.max_abs_acceleration_unfiltered_mps2 =

@@ -26,6 +26,17 @@ struct PointEnvelope {
   // not sampled at every step.
   std::optional<double> max_abs_acceleration_mps2;
   std::optional<double> max_abs_acceleration_unfiltered_mps2;
+  // Beam decks only (PointSummary); absent otherwise.
+  std::optional<double> max_abs_bending_moment_Nm;
+  std::optional<double> max_abs_shear_force_N;
+};
+
+// Per support of a beam deck (SupportSummary).
+struct SupportEnvelope {
+  std::string name;
+  double x_m = 0.0;
+  std::optional<double> max_reaction_N;
+  std::optional<double> max_abs_rotation_rad;
 };
 
 // Wheels inside the evaluation window only (WheelSummary::evaluated); the
@@ -53,6 +64,9 @@ struct JobEnvelopes {
   std::optional<double> max_abs_acceleration_unfiltered_mps2;
   double cutoff_hz = 0.0;  // code frequency max(30 Hz, 1.5 f0, f3) used
   std::string filter;      // code_filter_description()
+
+  // Supports of a beam deck (empty otherwise; notes say why).
+  std::vector<SupportEnvelope> supports;
 
   // Wheels (empty for moving forces) and over the evaluated wheels.
   std::vector<WheelEnvelope> wheels;

@@ -9,6 +9,7 @@ using nlohmann::ordered_json;
 
 // A NaN printed as a number would be silent garbage: null says "no value".
 ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
+ordered_json optional_number(const std::optional<double>& v) { return v ? number(*v) : ordered_json(nullptr); }
 
 ordered_json deck(const RunSummary& s) {
   ordered_json points = ordered_json::array();
@@ -16,10 +17,26 @@ ordered_json deck(const RunSummary& s) {
     points.push_back({{"name", p.name},
                       {"x_m", number(p.x_m)},
                       {"max_abs_displacement_m", number(p.max_abs_displacement_m)},
-                      {"max_abs_acceleration_mps2", number(p.max_abs_acceleration_mps2)}});
-  return {{"max_abs_displacement_m", number(s.max_abs_displacement_m)},
-          {"max_abs_acceleration_mps2", number(s.max_abs_acceleration_mps2)},
-          {"points", points}};
+                      {"max_abs_acceleration_mps2", number(p.max_abs_acceleration_mps2)},
+                      {"max_abs_bending_moment_Nm", optional_number(p.max_abs_bending_moment_Nm)},
+                      {"max_abs_shear_force_N", optional_number(p.max_abs_shear_force_N)}});
+  ordered_json out = {{"max_abs_displacement_m", number(s.max_abs_displacement_m)},
+                      {"max_abs_acceleration_mps2", number(s.max_abs_acceleration_mps2)},
+                      {"points", points}};
+  if (!s.section_forces_note.empty()) out["section_forces_note"] = s.section_forces_note;
+  return out;
+}
+
+// Beam decks: reaction and end rotation per support (empty otherwise, the
+// deck's section_forces_note says why).
+ordered_json supports(const RunSummary& s) {
+  ordered_json out = ordered_json::array();
+  for (const SupportSummary& p : s.supports)
+    out.push_back({{"name", p.name},
+                   {"x_m", number(p.x_m)},
+                   {"max_reaction_N", number(p.max_reaction_N)},
+                   {"max_abs_rotation_rad", number(p.max_abs_rotation_rad)}});
+  return out;
 }
 
 ordered_json wheels(const RunSummary& s, bool moving_forces) {
@@ -81,6 +98,7 @@ ordered_json summary_json(const Result& result, bool moving_forces) {
   out["status"] = std::string(result.status.name());
   if (!result.status.ok()) out["message"] = result.status.message();
   out["deck"] = deck(s);
+  out["supports"] = supports(s);
   out["wheels"] = wheels(s, moving_forces);
   out["vehicles"] = {{"max_abs_carbody_acceleration_mps2",
                       moving_forces ? ordered_json(nullptr) : number(s.max_abs_carbody_acceleration_mps2)}};

@@ -6,6 +6,7 @@
 #include "cli/service_store.hpp"
 #include "cli/verdict_exit.hpp"
 #include "core/terminal_text.hpp"
+#include "query/static_effects.hpp"
 #include "query/study_report.hpp"
 #include "queue/job_queue.hpp"
 #include "store/store_check.hpp"
@@ -46,6 +47,13 @@ int query_command(const ServiceArgs& args) {
     out["verdict"] = verdict_name(judged ? judged->overall : Verdict::kNotEvaluated);
     out["checks"] = judged ? scheduler::format_checks_json(judged->checks, jobs) : nlohmann::ordered_json::array();
     if (!judged) out["checks_error"] = not_judged;
+    std::vector<std::string> notes;
+    try {
+      const auto increments = scheduler::dynamic_increments(*db, jobs, notes);
+      out["dynamic_increment"] = scheduler::dynamic_increments_json(increments, notes);
+    } catch (const std::exception& e) {
+      out["dynamic_increment"] = {{"error", std::string("static response not computed: ") + e.what()}};
+    }
     std::cout << out.dump(2) << '\n';
   } else {
     std::cout << scheduler::format_table(info, jobs);

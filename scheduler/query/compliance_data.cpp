@@ -15,6 +15,7 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
+#include "query/static_effects.hpp"
 #include "query/study_results.hpp"
 #include "simulation/simulation.hpp"
 #include "simulation/static_equilibrium.hpp"
@@ -518,6 +519,19 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     report.checks.push_back(r);
   }
   if (!static_note.empty()) report.notes.push_back(static_note);
+  // phi'dyn of the bending moment of a beam deck per train and output point,
+  // beside the deflection's in the check above.
+  try {
+    std::vector<std::string> unused;
+    for (const DynamicIncrement& d : dynamic_increments(db, jobs, unused))
+      if (d.quantity == "bending_moment_Nm" && d.phi_dyn())
+        report.notes.push_back(fmt::format("phi'dyn of the bending moment (EN 1991-2 6.4.6.5), {} at {}: static "
+                                           "{:.4g} kNm, dynamic {:.4g} kNm at {:g} km/h, phi'dyn = {:.4g}.",
+                                           d.train, d.location, d.static_value * 1e-3, *d.dynamic_value * 1e-3,
+                                           d.governing_speed_kmh, *d.phi_dyn()));
+  } catch (const std::exception& e) {
+    report.notes.push_back(std::string("phi'dyn of the bending moment not computed: ") + e.what());
+  }
   {
     CheckResult c;
     c.id = "deck_twist";

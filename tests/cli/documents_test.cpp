@@ -44,6 +44,12 @@ TEST_F(Documents, SimulatePrintsTheSummaryOfTheContractWithNullWheelsForMovingFo
   EXPECT_EQ(summary["deck"]["points"].size(), 2u);
   EXPECT_EQ(summary["deck"]["points"][1]["name"], "midspan");
   EXPECT_GT(summary["deck"]["max_abs_displacement_m"].get<double>(), 0.0);
+  // A beam deck: section forces per point, reaction and end rotation per support.
+  EXPECT_GT(summary["deck"]["points"][1]["max_abs_bending_moment_Nm"].get<double>(), 0.0);
+  EXPECT_GT(summary["deck"]["points"][1]["max_abs_shear_force_N"].get<double>(), 0.0);
+  ASSERT_EQ(summary["supports"].size(), 2u);
+  EXPECT_GT(summary["supports"][0]["max_reaction_N"].get<double>(), 0.0);
+  EXPECT_GT(summary["supports"][1]["max_abs_rotation_rad"].get<double>(), 0.0);
   for (const char* key : {"min_contact_force_N", "max_unloading_ratio", "contact_loss_s"})
     EXPECT_TRUE(summary["wheels"][key].is_null()) << key;
   EXPECT_TRUE(summary["vehicles"]["max_abs_carbody_acceleration_mps2"].is_null());

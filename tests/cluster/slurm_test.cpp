@@ -117,7 +117,7 @@ TEST_F(Slurm, ArrayOfFourShardsWithAKilledWorkerMergesToTheSingleRun) {
   // second attempt only for the job the killed worker held.
   const auto results = out / "results.sqlite";
   EXPECT_EQ(count_in(results, "SELECT count(*) FROM jobs WHERE state = 'done'"), 20);
-  EXPECT_EQ(count_in(results, "SELECT count(*) FROM envelopes"), 20 * 11);
+  EXPECT_EQ(count_in(results, "SELECT count(*) FROM envelopes"), 20 * 23);
   EXPECT_LE(count_in(results, "SELECT count(*) FROM jobs WHERE attempts > 1"), 1);
   EXPECT_EQ(count_in(shard1, "SELECT count(*) FROM jobs WHERE attempts > 1"),
             count_in(results, "SELECT count(*) FROM jobs WHERE attempts > 1"));
@@ -127,7 +127,7 @@ TEST_F(Slurm, ArrayOfFourShardsWithAKilledWorkerMergesToTheSingleRun) {
   const VsiResult a = vsi({"query", "--db", results.string(), "--study", id, "--format", "csv"}, "qa");
   const VsiResult b = vsi({"query", "--db", reference.string(), "--study", id, "--format", "csv"}, "qb");
   ASSERT_EQ(a.exit_code, 0) << a.err;
-  EXPECT_EQ(std::count(a.out.begin(), a.out.end(), '\n'), 1 + 20 * 11);
+  EXPECT_EQ(std::count(a.out.begin(), a.out.end(), '\n'), 1 + 20 * 23);
   EXPECT_EQ(a.out, b.out) << "the merged Slurm run differs from a single-process run";
 }
 

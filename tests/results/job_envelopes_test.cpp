@@ -8,6 +8,7 @@
 
 #include "engine/test_scenes.hpp"
 #include "envelopes/code_filter.hpp"
+#include "envelopes/envelope_rows.hpp"
 #include "envelopes/job_envelopes.hpp"
 #include "generators/bridge_2d.hpp"
 #include "simulation/simulation.hpp"
@@ -23,7 +24,7 @@ constexpr double kDt = 2.5e-4;
 Result synthetic_run() {
   Result r;
   RunSummary& s = r.summary;
-  s.points = {{"p1", 5.0, 0.003, 1.39}, {"p2", 10.0, 0.004, 0.5}};
+  s.points = {{"p1", 5.0, 0.003, 1.39, std::nullopt, std::nullopt}, {"p2", 10.0, 0.004, 0.5, std::nullopt, std::nullopt}};
   s.wheels = {{"v1_w1", 80e3, 20e3, 0.75, 0.0, true},
               {"v1_w2", 80e3, 0.0, 1.0, 0.012, true},
               {"v1_w3", 80e3, 0.0, 0.0, 0.0, false}};
@@ -226,6 +227,47 @@ TEST(JobEnvelopes, CoachLosingContactGivesTheSameEnvelopesTwice) {
   EXPECT_GT(*e1.max_contact_loss_s, 0.0);
   EXPECT_DOUBLE_EQ(*e1.max_unloading_ratio, 1.0);
   expect_identical(e1, compute_envelopes(r2, scene.analysis.dt_s, 1, 30.0));
+}
+
+}  // namespace
+}  // namespace railvsi
+
+namespace railvsi {
+namespace {
+
+// Section forces of a beam deck become rows per point and per support, with
+// the overall maximum; a structure without them writes no such row and a
+// note says why (never a 0).
+TEST(JobEnvelopes, SectionForcesBecomeRowsOnlyWhereDefined) {
+  Result r = synthetic_run();
+  r.summary.points[0].max_abs_bending_moment_Nm = 2.0e6;
+  r.summary.points[1].max_abs_bending_moment_Nm = 3.0e6;
+  r.summary.points[0].max_abs_shear_force_N = 4.0e5;
+  r.summary.points[1].max_abs_shear_force_N = 1.0e5;
+  r.summary.supports = {{"support1", 0.0, 2.5e5, 1.5e-3}, {"support2", 20.0, 2.4e5, 1.4e-3}};
+  const JobEnvelopes e = compute_envelopes(r, kDt, 1, 30.0);
+  const auto value = [&](const std::vector<EnvelopeRow>& rows, const std::string& q, const std::string& loc) {
+    for (const EnvelopeRow& row : rows)
+      if (row.quantity == q && row.location == loc) return row.value;
+    return std::optional<double>{-1.0};  // no such row
+  };
+  const auto rows = envelope_rows(e);
+  EXPECT_EQ(value(rows, "bending_moment_Nm", "p1"), 2.0e6);
+  EXPECT_EQ(value(rows, "bending_moment_Nm", ""), 3.0e6);
+  EXPECT_EQ(value(rows, "shear_force_N", ""), 4.0e5);
+  EXPECT_EQ(value(rows, "support_reaction_N", "support2"), 2.4e5);
+  EXPECT_EQ(value(rows, "support_rotation_rad", "support1"), 1.5e-3);
+  EXPECT_EQ(extreme_of("support_reaction_N"), Extreme::kMax);
+
+  Result none = synthetic_run();
+  none.summary.section_forces_note = "no beam deck";
+  const JobEnvelopes n = compute_envelopes(none, kDt, 1, 30.0);
+  ASSERT_EQ(n.notes.size(), 1u);
+  EXPECT_NE(n.notes[0].find("no beam deck"), std::string::npos);
+  for (const EnvelopeRow& row : envelope_rows(n))
+    EXPECT_TRUE(row.quantity.find("moment") == std::string::npos && row.quantity.find("shear") == std::string::npos &&
+                row.quantity.find("support") == std::string::npos)
+        << row.quantity;
 }
 
 }  // namespace

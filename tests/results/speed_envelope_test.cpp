@@ -64,7 +64,7 @@ TEST(EnvelopeOverSpeeds, MinimumGovernsForContactForceTiesByIrregularityAtEqualS
 
 TEST(EnvelopeRows, DeckRowsPerPointAndOverallWheelRowsOnlyForWheels) {
   JobEnvelopes e;
-  e.points = {{"mid", 12.5, 0.004, 2.5, 3.0}};
+  e.points = {{"mid", 12.5, 0.004, 2.5, 3.0, std::nullopt, std::nullopt}};
   e.max_abs_displacement_m = 0.004;
   e.max_abs_acceleration_mps2 = 2.5;
   e.max_abs_acceleration_unfiltered_mps2 = 3.0;

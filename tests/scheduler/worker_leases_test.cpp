@@ -148,7 +148,7 @@ TEST_F(WorkerLeases, JobThatCannotBePutBackIsLeftToExpireAndRunsAgain) {
   EXPECT_EQ(code, 0) << "vsi work kept renewing the job it could not put back\n" << read_text(dir_ / "w.err");
   Database db(db_file_);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done' AND attempts = 2"), 1);
-  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 11);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 23);
 }
 
 // Defect: with the disk full, `vsi work` logged "claim failed, retrying"
@@ -192,7 +192,7 @@ TEST_F(WorkerLeases, FullDiskEndsWorkWithExitOneAfterTheRetryTimeAndLosesNothing
   EXPECT_EQ(read_text(dir_ / "rc2"), "0\n") << read_text(dir_ / "w2.err");
   Database db((dir_ / "final.sqlite").string());
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done'"), 42);
-  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 42 * 11);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 42 * 23);
 }
 
 }  // namespace

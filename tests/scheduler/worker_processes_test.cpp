@@ -54,9 +54,10 @@ TEST_F(WorkerProcesses, TwoProcessesWithTwoThreadsRunEveryJobExactlyOnce) {
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done'"), 42);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE attempts != 1"), 0) << "a job was claimed twice";
   // Per job: displacement, filtered and unfiltered acceleration at 2 points
-  // and overall (3 x 3), Newton iterations and the most in a step.
-  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 42 * 11);
-  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM (SELECT job_id FROM envelopes GROUP BY job_id HAVING count(*) != 11)"),
+  // and overall (3 x 3), Newton iterations and the most in a step; moment and
+  // shear (2 points and overall), reaction and rotation (2 supports and overall).
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 42 * 23);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM (SELECT job_id FROM envelopes GROUP BY job_id HAVING count(*) != 23)"),
             0);
   // Each process says how many jobs it finished: together, every job once.
   std::int64_t reported = 0;
@@ -95,14 +96,14 @@ TEST_F(WorkerProcesses, KilledWorkerIsReplacedAndTheEnvelopesEqualAnUninterrupte
   const VsiResult b = vsi({"query", "--db", reference.string(), "--study", id, "--format", "csv"}, "qb");
   ASSERT_EQ(a.exit_code, 0) << a.err;
   ASSERT_EQ(b.exit_code, 0) << b.err;
-  EXPECT_EQ(std::count(a.out.begin(), a.out.end(), '\n'), 1 + 42 * 11);
+  EXPECT_EQ(std::count(a.out.begin(), a.out.end(), '\n'), 1 + 42 * 23);
   EXPECT_EQ(a.out, b.out) << "envelopes of the resumed study differ from an uninterrupted run";
 
   Database db(interrupted.string());
   scheduler::Statement check = db.prepare("PRAGMA integrity_check");
   ASSERT_TRUE(check.step());
   EXPECT_EQ(check.text(0), "ok");
-  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM (SELECT job_id FROM envelopes GROUP BY job_id HAVING count(*) != 11)"),
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM (SELECT job_id FROM envelopes GROUP BY job_id HAVING count(*) != 23)"),
             0);
 }
 

@@ -1,0 +1,48 @@
+#pragma once
+// The static response of each train of a study on the study's structure and
+// the dynamic increment phi'dyn = max dyn / max static - 1 of every load
+// effect (EN 1991-2 6.4.6.5): deck deflection at each output point, and on
+// beam decks bending moment and shear there, support reactions and deck end
+// rotations.
+//
+// The static envelope is computed on demand, not stored: it depends only on
+// the structure and the train, both in the stored scenes, and the static
+// influence-line pass (analysis/static_influence) is exact and costs one
+// factorization of K plus one solve per load effect, far less than a run.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "model/train.hpp"
+#include "query/study_results.hpp"
+#include "simulation/scene.hpp"
+#include "store/sqlite.hpp"
+
+namespace railvsi::scheduler {
+
+struct DynamicIncrement {
+  std::string train;
+  std::string quantity;  // an envelope quantity (envelope_rows)
+  std::string location;  // output point or support
+  double static_value = 0.0;
+  std::optional<double> dynamic_value;  // the largest over the train's jobs with a value
+  double governing_speed_kmh = 0.0;
+  int jobs_without_value = 0;
+  // dynamic / static - 1; absent without a dynamic value or a static value > 0
+  std::optional<double> phi_dyn() const;
+};
+
+// One entry per train x load effect x location, trains in the order of the
+// jobs. `notes` gets why a load effect has no static value (e.g. section
+// forces of a structure without a beam deck). Throws what loading a stored
+// scene throws.
+std::vector<DynamicIncrement> dynamic_increments(Database& db, const std::vector<JobResult>& jobs,
+                                                 std::vector<std::string>& notes);
+
+nlohmann::ordered_json dynamic_increments_json(const std::vector<DynamicIncrement>& increments,
+                                               const std::vector<std::string>& notes);
+
+}  // namespace railvsi::scheduler
