@@ -44,14 +44,15 @@ StudyCostEstimate estimate_study_cost(const StudyPlan& plan) {
     }
     ++e.jobs;
   }
-  e.factorizations = operators.size();
+  e.setups = operators.size();
   return e;
 }
 
 std::string describe(const StudyCostEstimate& e) {
-  return fmt::format("estimated CPU time {:.3g} s for {} jobs ({:.3g} s of it for {} factorizations; cost model: "
+  return fmt::format("estimated CPU time {:.3g} s for {} jobs ({:.3g} s of it for {} setups: factorizations or "
+                     "modal bases; cost model: "
                      "README \"What accuracy costs\")",
-                     e.cpu_s, e.jobs, e.setup_cpu_s, e.factorizations);
+                     e.cpu_s, e.jobs, e.setup_cpu_s, e.setups);
 }
 
 }  // namespace railvsi::scheduler

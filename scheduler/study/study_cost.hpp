@@ -12,9 +12,9 @@ namespace railvsi::scheduler {
 
 struct StudyCostEstimate {
   double cpu_s = 0.0;
-  double setup_cpu_s = 0.0;  // part of cpu_s: the factorizations
+  double setup_cpu_s = 0.0;  // part of cpu_s: the setups (FE factorizations or modal bases)
   std::size_t jobs = 0;
-  std::size_t factorizations = 0;
+  std::size_t setups = 0;  // distinct operator keys
 };
 
 StudyCostEstimate estimate_study_cost(const StudyPlan& plan);
