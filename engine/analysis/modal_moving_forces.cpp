@@ -23,7 +23,11 @@ Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis) {
     throw InputError("/train", "the modal moving-force rung needs a train of moving forces");
   if (&basis.structure() != scene.structure.get())
     throw InputError("/structure", "the modal basis was computed for another structure");
-  const ModalSweep sweep(basis, scene.train, scene.analysis.contact.rail_lines, scene.analysis.dt_s);
+  const auto& rails = scene.analysis.contact.rail_lines;
+  const auto& asks = scene.fidelity.asks;
+  const bool sections_asked = !asks || std::find(asks->begin(), asks->end(), "section_forces") != asks->end();
+  const ModalSweep sweep(basis, scene.train, rails, scene.analysis.dt_s,
+                         sections_asked ? modal_section_forces(basis, rails) : nullptr);
   ModalSweepWorkspace ws;
   Result result;
   const long n_steps = modal_run_steps(scene);
@@ -59,11 +63,8 @@ void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSu
   f.dt_s = sweep.dt_s();
   f.modes = sweep.num_modes();
   f.modal_cutoff_hz = sweep.basis().max_frequency_hz();
-  // The exact modal sweep records the deck's displacement and acceleration
-  // only; section forces come from the FE rungs.
   sum.supports.clear();
-  sum.section_forces_note = "section forces are not computed on the exact modal rung (moving_forces/modal): pin "
-                            "{\"model\": \"moving_forces\", \"structure\": \"fe\"} for them";
+  sum.section_forces_note.clear();
   sum.points.clear();
   for (std::size_t i = 0; i < s.outputs().size(); ++i) {
     PointSummary point;
@@ -75,6 +76,17 @@ void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSu
     sum.max_abs_displacement_m = std::max(sum.max_abs_displacement_m, run.max_abs_displacement_m[i]);
     sum.max_abs_acceleration_mps2 = std::max(sum.max_abs_acceleration_mps2, run.max_abs_acceleration_mps2[i]);
   }
+  if (run.sections)
+    run.sections->summarize(sum);
+  else
+    sum.section_forces_note = s.info().deck_beam ? "section forces were not asked (asks without \"section_forces\")"
+                                                 : make_section_forms(s).unavailable;
+}
+
+std::shared_ptr<const ModalSectionForces> modal_section_forces(const ModalBasis& basis,
+                                                               const std::vector<int>& rail_lines) {
+  if (!make_section_forms(basis.structure()).available()) return nullptr;
+  return std::make_shared<const ModalSectionForces>(basis, rail_lines);
 }
 
 Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions& options) {

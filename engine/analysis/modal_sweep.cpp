@@ -1,6 +1,7 @@
 #include "analysis/modal_sweep.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -9,8 +10,11 @@
 
 namespace railvsi {
 
-ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::vector<int>& rail_lines, double dt_s)
-    : basis_(basis), n_modes_(basis.num_modes()), dt_s_(dt_s) {
+ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::vector<int>& rail_lines, double dt_s,
+                       std::shared_ptr<const ModalSectionForces> sections)
+    : basis_(basis), n_modes_(basis.num_modes()), dt_s_(dt_s), sections_(std::move(sections)) {
+  width_ = n_modes_ + (sections_ ? sections_->num_forms() : 0);
+  for (double w : basis.omega_rad_s()) inverse_omega2_.push_back(1.0 / (w * w));
   if (!train.is_moving_forces()) throw InputError("/train", "the modal moving-force rung needs a train of moving forces");
   if (rail_lines.empty()) throw InputError("/analysis/contact/rail_lines", "no rail line to load");
   for (int k = 0; k < n_modes_; ++k)
@@ -26,15 +30,25 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
   }
   const StructureModel& s = basis.structure();
   const auto n = static_cast<std::size_t>(n_modes_);
+  const auto width = static_cast<std::size_t>(width_);
+  // The cubic through the values at four interior points of an element
+  // (xi = 1/8, 3/8, 5/8, 7/8): exact for the cubic a form's unit value is
+  // there, and blind to the node where a shear cut may exclude a load.
+  const std::array<double, 4> xi_fit{0.125, 0.375, 0.625, 0.875};
+  Eigen::Matrix4d vandermonde;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) vandermonde(i, j) = std::pow(xi_fit[static_cast<std::size_t>(i)], j);
+  const Eigen::Matrix4d fit = vandermonde.inverse();
   for (int r : rail_lines) {
     if (r < 0 || r >= static_cast<int>(s.rails().size()))
       throw InputError("/analysis/contact/rail_lines", fmt::format("the structure has no rail line {}", r));
     const RailLine& line = s.rails()[static_cast<std::size_t>(r)];
     Rail rail;
+    rail.line = r;
     rail.x_m = line.x_m;
     rail.start_m = line.start_m();
     rail.end_m = line.end_m();
-    rail.cubic.assign(line.num_elements() * n * 4, 0.0);
+    rail.cubic.assign(line.num_elements() * width * 4, 0.0);
     for (std::size_t e = 0; e < line.num_elements(); ++e) {
       const double h = line.x_m[e + 1] - line.x_m[e];
       for (std::size_t k = 0; k < n; ++k) {
@@ -46,12 +60,20 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
         }
         // Hermite: N1 = 1 - 3xi^2 + 2xi^3, N2 = h(xi - 2xi^2 + xi^3),
         // N3 = 3xi^2 - 2xi^3, N4 = h(xi^3 - xi^2), collected by powers of xi.
-        double* c = rail.cubic.data() + (e * n + k) * 4;
+        double* c = rail.cubic.data() + (e * width + k) * 4;
         const double f = -share_;  // downward force, shared between the rails
         c[0] = f * phi[0];
         c[1] = f * h * phi[1];
         c[2] = f * (-3.0 * phi[0] - 2.0 * h * phi[1] + 3.0 * phi[2] - h * phi[3]);
         c[3] = f * (2.0 * phi[0] + h * phi[1] - 2.0 * phi[2] + h * phi[3]);
+      }
+      for (int form = 0; sections_ && form < sections_->num_forms(); ++form) {
+        Eigen::Vector4d values;
+        for (int i = 0; i < 4; ++i)
+          values[i] = share_ * sections_->statics().unit_form_value(form, r, line.x_m[e] + xi_fit[static_cast<std::size_t>(i)] * h);
+        const Eigen::Vector4d coef = fit * values;
+        double* c = rail.cubic.data() + (e * width + n + static_cast<std::size_t>(form)) * 4;
+        for (int j = 0; j < 4; ++j) c[j] = coef[j];
       }
     }
     rails_.push_back(std::move(rail));
@@ -60,7 +82,8 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
 
 void ModalSweep::modal_load(double x, double* p, ModalSweepWorkspace& ws) const {
   const auto n = static_cast<std::size_t>(n_modes_);
-  std::fill_n(p, n, 0.0);
+  const auto width = static_cast<std::size_t>(width_);
+  std::fill_n(p, width, 0.0);
   const std::size_t axles = offsets_.size();
   for (std::size_t r = 0; r < rails_.size(); ++r) {
     const Rail& rail = rails_[r];
@@ -82,8 +105,17 @@ void ModalSweep::modal_load(double x, double* p, ModalSweepWorkspace& ws) const 
       while (i + 2 < nodes && xa >= rail.x_m[i + 1]) ++i;
       const double xi = (xa - rail.x_m[i]) / (rail.x_m[i + 1] - rail.x_m[i]);
       const double load = loads_N_[a];
-      const double* c = rail.cubic.data() + i * n * 4;
-      for (std::size_t k = 0; k < n; ++k, c += 4) p[k] += load * (((c[3] * xi + c[2]) * xi + c[1]) * xi + c[0]);
+      const double* c = rail.cubic.data() + i * width * 4;
+      // On a node the forms are evaluated exactly (a shear cut there may
+      // exclude the load); inside an element, by their cubics.
+      const std::size_t cubic_columns = (sections_ && xi == 0.0) ? n : width;
+      for (std::size_t k = 0; k < cubic_columns; ++k, c += 4)
+        p[k] += load * (((c[3] * xi + c[2]) * xi + c[1]) * xi + c[0]);
+      if (cubic_columns < width) {
+        std::fill(ws.form_values.begin(), ws.form_values.end(), 0.0);
+        sections_->statics().add_form_values(rail.line, xa, share_ * load, ws.form_values);
+        for (std::size_t f = 0; f < ws.form_values.size(); ++f) p[n + f] += ws.form_values[f];
+      }
     }
   }
 }
@@ -91,7 +123,10 @@ void ModalSweep::modal_load(double x, double* p, ModalSweepWorkspace& ws) const 
 ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws,
                               bool keep_acceleration, Histories* histories, int history_stride) const {
   const auto n = static_cast<std::size_t>(n_modes_);
-  for (auto* v : {&ws.p, &ws.p_next, &ws.q, &ws.qd, &ws.qdd}) v->assign(n, 0.0);
+  for (auto* v : {&ws.p, &ws.p_next}) v->assign(static_cast<std::size_t>(width_), 0.0);
+  for (auto* v : {&ws.q, &ws.qd, &ws.qdd}) v->assign(n, 0.0);
+  ws.form_values.assign(sections_ ? static_cast<std::size_t>(sections_->num_forms()) : 0, 0.0);
+  ws.dynamic_u.assign(sections_ ? n : 0, 0.0);
   ws.element.assign(rails_.size() * offsets_.size(), 0);
   ws.first.assign(rails_.size(), 0);
   ws.last.assign(rails_.size(), 0);
@@ -101,6 +136,7 @@ ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, Modal
   ModalSweepRun out;
   out.max_abs_displacement_m.assign(np, 0.0);
   out.max_abs_acceleration_mps2.assign(np, 0.0);
+  if (sections_) out.sections.emplace(sections_->forms());
   if (keep_acceleration) {
     ws.acceleration.resize(np);
     for (auto& a : ws.acceleration) a.resize(static_cast<std::size_t>(n_steps) + 1);
@@ -143,10 +179,10 @@ ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, Modal
   // FE rung starts from the static equilibrium.
   modal_load(x0_m, ws.p.data(), ws);
   for (std::size_t k = 0; k < n; ++k) {
-    const double w = basis_.omega_rad_s()[k];
-    ws.q[k] = ws.p[k] / (w * w);
+    ws.q[k] = ws.p[k] * inverse_omega2_[k];
   }
   record(0, 0.0, histories != nullptr);
+  if (sections_) record_sections(ws.p.data(), ws, *out.sections);
   double* q = ws.q.data();
   double* qd = ws.qd.data();
   double* qdd = ws.qdd.data();
@@ -168,8 +204,28 @@ ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, Modal
     out.steps = step + 1;
     const bool store = histories != nullptr && ((step + 1) % stride == 0 || step + 1 == n_steps);
     record(step + 1, t_new, store);
+    if (sections_) record_sections(p, ws, *out.sections);
   }
   return out;
+}
+
+void ModalSweep::record_sections(const double* p, ModalSweepWorkspace& ws, SectionEnvelope& envelope) const {
+  const auto n = static_cast<std::size_t>(n_modes_);
+  // The modes' dynamic part on u: q - p / omega^2.
+  double* dynamic_u = ws.dynamic_u.data();
+  for (std::size_t k = 0; k < n; ++k) dynamic_u[k] = ws.q[k] - p[k] * inverse_omega2_[k];
+  const double* on_u = sections_->on_u().data();  // column-major: nf x n
+  const double* on_v = sections_->on_v().data();
+  const double* on_a = sections_->on_a().data();
+  const std::size_t nf = ws.form_values.size();
+  double* values = ws.form_values.data();
+  for (std::size_t f = 0; f < nf; ++f) values[f] = p[n + f];  // exact static value under the loads
+  for (std::size_t k = 0; k < n; ++k) {
+    const double du = dynamic_u[k], v = ws.qd[k], a = ws.qdd[k];
+    const std::size_t col = k * nf;
+    for (std::size_t f = 0; f < nf; ++f) values[f] += on_u[col + f] * du + on_v[col + f] * v + on_a[col + f] * a;
+  }
+  envelope.update(ws.form_values);
 }
 
 }  // namespace railvsi

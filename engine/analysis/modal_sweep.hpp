@@ -11,8 +11,14 @@
 // cubic Hermite interpolation of its end values (as RailLine's weights),
 // stored as the cubic's coefficients in xi and summed by Horner's rule. A
 // run gives the same bits whether it is the first of a sweep or alone.
+// With section forces (a beam deck), the influence line of each section
+// form rides along as one more column of the same cubics, so the exact
+// static part costs what one more mode costs per axle.
+#include <memory>
+#include <optional>
 #include <vector>
 
+#include "analysis/modal_section_forces.hpp"
 #include "solver/modal_basis.hpp"
 #include "core/status.hpp"
 #include "integration/modal_recurrence.hpp"
@@ -23,7 +29,9 @@ namespace railvsi {
 
 // What one run reuses from the previous one (sized on first use).
 struct ModalSweepWorkspace {
-  std::vector<double> p, p_next, q, qd, qdd;
+  // p, p_next: the modal loads, then (with section forces) the static
+  // value of each form under the loads.
+  std::vector<double> p, p_next, q, qd, qdd, form_values, dynamic_u;
   // Deck acceleration at every step (n_steps + 1 samples) per output point,
   // for the code filter; kept only when asked.
   std::vector<std::vector<double>> acceleration;
@@ -35,12 +43,17 @@ struct ModalSweepRun {
   Status status;
   long steps = 0;
   std::vector<double> max_abs_displacement_m, max_abs_acceleration_mps2;  // per output point
+  // The section envelope when the sweep has section forces.
+  std::optional<SectionEnvelope> sections;
 };
 
 class ModalSweep {
  public:
   // rail_lines: the rails the forces bear on (shared equally); dt_s > 0.
-  ModalSweep(const ModalBasis& basis, const Train& train, const std::vector<int>& rail_lines, double dt_s);
+  // sections: the section forces to evaluate every step (null: none); of
+  // the same basis and rail lines.
+  ModalSweep(const ModalBasis& basis, const Train& train, const std::vector<int>& rail_lines, double dt_s,
+             std::shared_ptr<const ModalSectionForces> sections = nullptr);
 
   // First axle at x0_m at t = 0, moving at speed_mps >= 0, for n_steps steps
   // from the static modal response. Keeps the deck acceleration of every
@@ -51,26 +64,37 @@ class ModalSweep {
 
   const ModalBasis& basis() const { return basis_; }
   int num_modes() const { return n_modes_; }
+  const ModalSectionForces* sections() const { return sections_.get(); }
   double dt_s() const { return dt_s_; }
 
  private:
   struct Rail {
+    int line = 0;  // index in the structure's rails
     std::vector<double> x_m;
     double start_m = 0.0, end_m = 0.0;
     // Per element and mode, the modal load of a unit downward axle force as
     // a cubic in xi (the Hermite interpolation of the element's end
     // displacements and rotations, with the share of this rail and the
-    // sign): c0 + c1 xi + c2 xi^2 + c3 xi^3, stored [element][mode][4].
+    // sign): c0 + c1 xi + c2 xi^2 + c3 xi^3, stored [element][column][4];
+    // columns: the modes, then the unit static value of each section form
+    // (a cubic inside an element; at its first node a load may be excluded
+    // from a shear cut, which the exact evaluation handles).
     std::vector<double> cubic;
   };
-  // p = Phi^T f for the first axle at x; x never decreases between calls.
+  // p = Phi^T f for the first axle at x, then the static form values;
+  // x never decreases between calls.
   void modal_load(double x, double* p, ModalSweepWorkspace& ws) const;
+  // Section form values at the step (p: loads and static values at it).
+  void record_sections(const double* p, ModalSweepWorkspace& ws, SectionEnvelope& envelope) const;
 
   const ModalBasis& basis_;
   int n_modes_ = 0;
+  int width_ = 0;  // columns of the cubics: modes, then section forms
   double dt_s_ = 0.0;
+  std::shared_ptr<const ModalSectionForces> sections_;
   double share_ = 1.0;
   std::vector<ModalStep> steps_;
+  std::vector<double> inverse_omega2_;
   std::vector<double> offsets_, loads_N_;  // axles by offset
   std::vector<Rail> rails_;
 };

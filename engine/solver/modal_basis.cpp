@@ -53,6 +53,14 @@ ModalBasis::ModalBasis(std::shared_ptr<const StructureModel> structure, const Mo
   std::vector<int> kept = s.rail_dofs();
   for (const OutputPoint& o : s.outputs())
     if (o.dof >= 0 && std::find(kept.begin(), kept.end(), o.dof) == kept.end()) kept.push_back(o.dof);
+  if (s.info().deck_beam) {
+    // A beam deck's section forces read the end DOFs of its elements and
+    // supports: keep every row (such a model has a few thousand DOFs).
+    std::vector<char> is_kept(static_cast<std::size_t>(s.num_dofs()), 0);
+    for (int d : kept) is_kept[static_cast<std::size_t>(d)] = 1;
+    for (int d = 0; d < s.num_dofs(); ++d)
+      if (!is_kept[static_cast<std::size_t>(d)]) kept.push_back(d);
+  }
   rail_shapes_.resize(n, static_cast<Eigen::Index>(kept.size()));
   for (std::size_t i = 0; i < kept.size(); ++i) {
     rail_row_[static_cast<std::size_t>(kept[i])] = static_cast<int>(i);

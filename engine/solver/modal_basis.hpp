@@ -32,7 +32,8 @@ class ModalBasis {
   // C the coupling terms between modes are left out.
   const std::vector<double>& zeta() const { return zeta_; }
   // Mass-normalised shapes at one DOF (a row of Phi), kept for the rail and
-  // output DOFs; zero for a fixed DOF (-1) and any other DOF.
+  // output DOFs (and every DOF of a beam deck, for its section forces);
+  // zero for a fixed DOF (-1) and any other DOF.
   const double* row(int dof) const;
   // The kept rows (rail DOFs first, then output DOFs not on a rail), one
   // column per DOF.

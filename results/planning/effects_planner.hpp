@@ -54,6 +54,10 @@ struct StudyAsks {
   bool deck = true;              // deck acceleration / displacement
   bool wheel_unloading = false;  // dQ/Q, contact loss
   bool comfort = false;          // car-body acceleration
+  // Section forces, reactions and end rotations of a beam deck: every rung
+  // that has them computes them (on the modal sweep they cost about as
+  // much as the deck response); not asked, the modal sweep skips them.
+  bool section_forces = true;
 };
 
 struct PlannerInput {

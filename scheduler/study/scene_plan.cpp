@@ -19,6 +19,7 @@ StudyAsks scene_asks(const Scene& scene) {
   a.deck = has("deck");
   a.wheel_unloading = has("wheel_unloading");
   a.comfort = has("comfort");
+  a.section_forces = has("section_forces");
   return a;
 }
 

@@ -142,11 +142,21 @@ struct TrainFacts {
   std::vector<double> speeds_kmh;
 };
 
-// What the study asks of its jobs, from its checks: the deck always; wheel
-// unloading and comfort when a check needs them; with no checks at all,
-// what the train can give.
+// What the study asks of its jobs: its asks when given; else from its
+// checks: the deck and the section forces always, wheel unloading and
+// comfort when a check needs them; with no checks at all, what the train
+// can give.
 StudyAsks study_asks(const json& doc, bool load_model) {
   StudyAsks a;
+  if (doc.contains("asks")) {
+    const json& list = doc.at("asks");
+    const auto has = [&](const char* what) { return std::find(list.begin(), list.end(), what) != list.end(); };
+    a.deck = has("deck");
+    a.wheel_unloading = has("wheel_unloading");
+    a.comfort = has("comfort");
+    a.section_forces = has("section_forces");
+    return a;
+  }
   if (!doc.contains("checks") || doc.at("checks").empty()) {
     a.wheel_unloading = a.comfort = !load_model;
     return a;
@@ -231,6 +241,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   base["analysis"] = doc.at("analysis");
   if (doc.contains("outputs")) base["outputs"] = doc.at("outputs");
   if (doc.contains("accuracy")) base["accuracy"] = doc.at("accuracy");
+  if (doc.contains("asks")) base["asks"] = doc.at("asks");
   // Fidelity "auto" (the default): the planner pins each train's rung in its jobs.
   const bool auto_fidelity = !doc.contains("fidelity") || doc.at("fidelity").is_string();
   if (!auto_fidelity) base["fidelity"] = doc.at("fidelity");

@@ -24,14 +24,17 @@ int FactorizationCache::evict_to_fit(std::size_t incoming_bytes) {
 
 CacheLookup FactorizationCache::get(const std::string& key,
                                     const std::function<std::shared_ptr<const StructureOperator>()>& build) {
-  const Lookup l = lookup(key, [&] { return Model{build(), nullptr}; });
+  const Lookup l = lookup(key, [&] { return Model{build(), ModalModel{}}; });
   return {l.model.op, l.built, l.build_s, l.evictions};
 }
 
-BasisLookup FactorizationCache::get_basis(const std::string& key,
-                                          const std::function<std::shared_ptr<const ModalBasis>()>& build) {
+std::size_t ModalModel::memory_bytes() const {
+  return (basis ? basis->memory_bytes() : 0) + (sections ? sections->memory_bytes() : 0);
+}
+
+BasisLookup FactorizationCache::get_basis(const std::string& key, const std::function<ModalModel()>& build) {
   const Lookup l = lookup(key, [&] { return Model{nullptr, build()}; });
-  return {l.model.basis, l.built, l.build_s, l.evictions};
+  return {l.model.modal.basis, l.model.modal.sections, l.built, l.build_s, l.evictions};
 }
 
 FactorizationCache::Lookup FactorizationCache::lookup(const std::string& key, const std::function<Model()>& build) {
@@ -60,7 +63,7 @@ FactorizationCache::Lookup FactorizationCache::lookup(const std::string& key, co
   result.built = true;
   result.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::size_t bytes =
-      result.model.op ? estimated_bytes(*result.model.op) : (result.model.basis ? result.model.basis->memory_bytes() : 0);
+      result.model.op ? estimated_bytes(*result.model.op) : result.model.modal.memory_bytes();
   lock.lock();
   building_.erase(key);
   ++stats_.factorizations;

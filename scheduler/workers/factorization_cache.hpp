@@ -16,6 +16,7 @@
 #include <set>
 #include <string>
 
+#include "analysis/modal_section_forces.hpp"
 #include "solver/modal_basis.hpp"
 #include "solver/structure_operator.hpp"
 
@@ -36,9 +37,17 @@ struct CacheLookup {
 };
 
 // The modal rung's counterpart of an operator: the structure's modes up to
-// a cut-off, shared by every job on that structure (keyed like an operator).
+// a cut-off and, for a beam deck, its section forces on them; shared by
+// every job on that structure (keyed like an operator).
+struct ModalModel {
+  std::shared_ptr<const ModalBasis> basis;
+  std::shared_ptr<const ModalSectionForces> sections;  // null: none
+  std::size_t memory_bytes() const;
+};
+
 struct BasisLookup {
   std::shared_ptr<const ModalBasis> basis;
+  std::shared_ptr<const ModalSectionForces> sections;
   bool built = false;  // this call computed the modes
   double build_s = 0.0;
   int evictions = 0;
@@ -51,9 +60,9 @@ class FactorizationCache {
   // The operator of `key`, built by `build` when absent (exceptions of
   // build propagate to this caller; a waiting caller then builds itself).
   CacheLookup get(const std::string& key, const std::function<std::shared_ptr<const StructureOperator>()>& build);
-  // The same for a modal basis, sized by ModalBasis::memory_bytes(); bases
+  // The same for a modal basis, sized by ModalModel::memory_bytes(); bases
   // and operators share the budget and the LRU order.
-  BasisLookup get_basis(const std::string& key, const std::function<std::shared_ptr<const ModalBasis>()>& build);
+  BasisLookup get_basis(const std::string& key, const std::function<ModalModel()>& build);
   CacheStats stats() const;
 
   // Estimated memory of an operator (StructureOperator::memory_bytes: the
@@ -64,7 +73,7 @@ class FactorizationCache {
   // One of the two is set.
   struct Model {
     std::shared_ptr<const StructureOperator> op;
-    std::shared_ptr<const ModalBasis> basis;
+    ModalModel modal;
   };
   struct Entry {
     Model model;

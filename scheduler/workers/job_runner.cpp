@@ -114,10 +114,14 @@ std::unique_ptr<ModalPass> make_modal_pass(const ClaimedJob& job, Scene scene, S
   pass->split = split_at_speed(pass->scene_text);
   pass->scene = std::move(scene);
   pass->plan = std::move(plan);
+  const auto& rails = pass->scene.analysis.contact.rail_lines;
   const BasisLookup lookup = cache.get_basis(job.operator_key, [&] {
     ModalBasisOptions o;
     o.max_frequency_hz = pass->plan.modal_cutoff_hz;
-    return std::make_shared<const ModalBasis>(pass->scene.structure, o);
+    ModalModel m;
+    m.basis = std::make_shared<const ModalBasis>(pass->scene.structure, o);
+    m.sections = modal_section_forces(*m.basis, rails);
+    return m;
   });
   out.factorized = lookup.built;
   out.factorization_s = lookup.build_s;
@@ -127,7 +131,8 @@ std::unique_ptr<ModalPass> make_modal_pass(const ClaimedJob& job, Scene scene, S
   // reads of it (matrices, rail lines, output points), so it is this one's.
   pass->basis = lookup.basis;
   const Scene& s = pass->scene;
-  pass->sweep = std::make_unique<ModalSweep>(*pass->basis, s.train, s.analysis.contact.rail_lines, s.analysis.dt_s);
+  pass->sweep = std::make_unique<ModalSweep>(*pass->basis, s.train, rails, s.analysis.dt_s,
+                                             scene_asks(s).section_forces ? lookup.sections : nullptr);
   if (0.5 / s.analysis.dt_s < job.cutoff_hz)
     pass->obstacle = fmt::format("the Nyquist frequency 1/(2 dt) = {:.3g} Hz is below the code cut-off {:.3g} Hz",
                                  0.5 / s.analysis.dt_s, job.cutoff_hz);

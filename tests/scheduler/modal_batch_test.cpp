@@ -68,6 +68,32 @@ class ModalBatches : public ServiceTest {
   }
 };
 
+// A study that asks the deck alone skips the section forces on the modal
+// sweep (11 rows per job instead of 23), and its deck values are the same
+// bits as those of the study that asks everything: the section forces only
+// read the sweep's state.
+TEST_F(ModalBatches, AskingTheDeckAloneSkipsSectionForcesAndLeavesTheDeckBitsAlone) {
+  json deck_only = modal_study();
+  deck_only["asks"] = {"deck"};
+  const std::string a = run_study(deck_only, "deck.sqlite", 256);
+  const std::string b = run_study(modal_study(), "all.sqlite", 256);
+  const auto deck_rows = [](const std::string& file) {
+    Database db(file);
+    std::string out;
+    Statement e = db.prepare(
+        "SELECT j.train, j.speed_kmh, e.quantity, e.location, e.value FROM envelopes e JOIN jobs j ON j.id = e.job_id "
+        "WHERE e.quantity LIKE 'deck_%' ORDER BY 1, 2, 3, 4");
+    while (e.step()) out += fmt::format("{}|{}|{}|{}|{:a}\n", e.text(0), e.real(1), e.text(2), e.text(3), e.real(4));
+    return out;
+  };
+  Database db(a);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 26 * 11);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE quantity LIKE 'bending%' OR quantity LIKE 'support%'"), 0);
+  const std::string da = deck_rows(a);
+  EXPECT_FALSE(da.empty());
+  EXPECT_EQ(da, deck_rows(b));
+}
+
 TEST_F(ModalBatches, PlannerPutsMovingForceStudiesOnTheModalRungAndRecordsWhy) {
   const std::string db_file = run_study(modal_study(), "modal.sqlite", 256);
   Database db(db_file);
@@ -89,9 +115,11 @@ TEST_F(ModalBatches, PlannerPutsMovingForceStudiesOnTheModalRungAndRecordsWhy) {
   EXPECT_NE(f["ignores"][0]["what"].get<std::string>().find("modes above"), std::string::npos);
   EXPECT_FALSE(f["ignores"][0]["why"].get<std::string>().empty());
   EXPECT_NE(f["reasons"][0].get<std::string>().find("load model"), std::string::npos);
-  // 11 rows per job, as on the FE rung: displacement, filtered and unfiltered
-  // acceleration at 2 points and overall, Newton iterations (0) and the most in a step.
-  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 26 * 11);
+  // 23 rows per job, as on the FE rung: displacement, filtered and unfiltered
+  // acceleration at 2 points and overall, Newton iterations (0) and the most
+  // in a step; moment and shear (2 points and overall) and reaction and end
+  // rotation (2 supports and overall) by mode acceleration.
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 26 * 23);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE quantity = 'deck_acceleration_mps2' AND value IS NULL"), 0);
 }
 
@@ -207,7 +235,7 @@ TEST_F(ModalBatches, KilledWorkerInABatchedSweepLosesNothing) {
     return out;
   };
   const std::string ea = envelopes(a);
-  EXPECT_EQ(std::count(ea.begin(), ea.end(), '\n'), total * 11);
+  EXPECT_EQ(std::count(ea.begin(), ea.end(), '\n'), total * 23);
   EXPECT_EQ(ea, envelopes(b)) << "the resumed sweep differs from an uninterrupted unbatched run";
   // Only the killed batch ran twice.
   EXPECT_EQ(count_rows(a, "SELECT count(*) FROM jobs WHERE attempts > 1"), held_at_kill);
