@@ -1,6 +1,7 @@
 #include "simulation/simulation.hpp"
 
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -94,9 +95,12 @@ StructureOperatorOptions structure_operator_options(const Scene& scene) {
   return options;
 }
 
-std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& scene) {
+std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& scene,
+                                                                 std::shared_ptr<const ModalBasis> modal_basis) {
   const HhtCoefficients h(scene.analysis.hht, scene.analysis.dt_s);
-  return make_structure_operator(scene.structure, structure_factors(h), structure_operator_options(scene));
+  StructureOperatorOptions options = structure_operator_options(scene);
+  options.modal_basis = std::move(modal_basis);
+  return make_structure_operator(scene.structure, structure_factors(h), options);
 }
 
 RunEstimate estimate_run(const Scene& scene, double duration_s) {
@@ -225,6 +229,14 @@ Result Simulation::run() const {
   sum.fidelity.unilateral = !mf && !layout.contacts.empty() && layout.contacts.front().law->unilateral();
   sum.fidelity.solver_path = an.solver == SolverPath::kReference ? "reference" : "condensed";
   sum.fidelity.structure_dofs = sc.structure->num_dofs();
+  if (an.structure_backend == StructureBackend::kModal && op_) {
+    // The modal operator's unknowns are the modes; their cut-off is the
+    // scene's (null when the scene gives a mode count instead).
+    sum.fidelity.modes = op_->num_dofs();
+    sum.fidelity.modal_cutoff_hz = an.modal_modes > 0 ? std::numeric_limits<double>::quiet_NaN()
+                                   : an.modal_cutoff_hz > 0.0 ? an.modal_cutoff_hz
+                                                              : kDefaultModalCutoffHz;
+  }
   sum.fidelity.vehicle_dofs = layout.num_vehicle_dofs;
   sum.fidelity.contacts = static_cast<int>(layout.contacts.size());
   sum.fidelity.hht_alpha = h.alpha;

@@ -17,11 +17,14 @@ Result run_modal_moving_forces_rung(const Scene& scene, const RungResources& res
 }
 
 // Cheapest first; the last rung that applies to a scene is its reference.
-// The modal interaction rung belongs between the moving-force rungs and
-// the FE interaction rungs, one line per contact law.
+// The modal interaction rungs (the structure's modes, the condensed direct
+// method on them) run on the operator of resources.structure_operator too:
+// the caller builds the modal one for them.
 const std::vector<LadderRung> kLadder = {
     {"moving-forces", RungStructure::kModal, "none", run_modal_moving_forces_rung},
     {"moving-forces", RungStructure::kFe, "none", run_fe},
+    {"interaction", RungStructure::kModal, "linear-hertz", run_fe},
+    {"interaction", RungStructure::kModal, "hertz", run_fe},
     {"interaction", RungStructure::kFe, "rigid", run_fe},
     {"interaction", RungStructure::kFe, "linear-hertz", run_fe},
     {"interaction", RungStructure::kFe, "hertz", run_fe},
@@ -47,6 +50,8 @@ Scene rung_scene(const LadderRung& rung, const Scene& scene, double dt_s) {
     }
     return s;
   }
+  s.analysis.structure_backend =
+      rung.structure == RungStructure::kModal ? StructureBackend::kModal : StructureBackend::kFiniteElements;
   s.analysis.contact.law = rung.contact_law;
   s.analysis.contact.unilateral =
       rung.contact_law == "linear-hertz" ? std::optional<bool>(true) : std::optional<bool>();

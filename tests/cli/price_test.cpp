@@ -36,8 +36,9 @@ json coach_scene() {
 }
 
 // A price row's rung as a scene document: dt, contact law (linear Hertz
-// unilateral), a train of moving forces ("as": "moving_forces").
-json rung_document(json doc, const json& row) {
+// unilateral), a train of moving forces ("as": "moving_forces"), the modal
+// structure with modes up to modal_cutoff_hz for interaction on the modes.
+json rung_document(json doc, const json& row, double modal_cutoff_hz = 0.0) {
   doc["analysis"]["dt_s"] = row.at("dt_s");
   if (row.at("model") == "moving-forces") {
     doc["train"]["as"] = "moving_forces";
@@ -45,6 +46,10 @@ json rung_document(json doc, const json& row) {
     json contact = {{"law", row.at("contact_law")}};
     if (row.at("contact_law") == "linear-hertz") contact["unilateral"] = true;
     doc["analysis"]["contact"] = contact;
+    if (row.at("structure") == "modal") {
+      doc["analysis"]["structure"] = "modal";
+      doc["analysis"]["cutoff_hz"] = modal_cutoff_hz;
+    }
   }
   return doc;
 }
@@ -75,8 +80,9 @@ TEST_F(Price, ErrorsAgreeWithIndependentSimulateRuns) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const json p = json::parse(run.out);
   const json& rows = p.at("rows");
-  // Five rungs (modal and FE moving forces, rigid, linear Hertz, Hertz) x five steps.
-  ASSERT_EQ(rows.size(), 25u);
+  // Seven rungs (modal and FE moving forces, modal linear Hertz and Hertz,
+  // FE rigid, linear Hertz, Hertz) x five steps.
+  ASSERT_EQ(rows.size(), 35u);
   EXPECT_NEAR(p.at("policy").at("dt_s").get<double>(), 2.5e-4, 1e-15);
   const json& ref = p.at("reference");
   EXPECT_EQ(ref.at("contact_law"), "hertz");
@@ -134,7 +140,7 @@ TEST_F(Price, ErrorsAgreeWithIndependentSimulateRuns) {
   ASSERT_EQ(mf_run.exit_code, 0) << mf_run.err;
   const double cutoff_hz = json::parse(mf_run.out).at("deck").at("cutoff_hz").get<double>();
   for (const json& row : rows) {
-    if (row.at("structure") != "modal") continue;
+    if (row.at("structure") != "modal" || row.at("model") != "moving-forces") continue;
     Scene s = load_scene(write_json("modal.json", rung_document(doc, row)));
     ModalMovingForceOptions o;
     o.max_frequency_hz = 1.2 * cutoff_hz;
@@ -147,6 +153,30 @@ TEST_F(Price, ErrorsAgreeWithIndependentSimulateRuns) {
                 r.summary.max_abs_acceleration_mps2, 1e-12 * r.summary.max_abs_acceleration_mps2);
     EXPECT_EQ(row.at("modes").get<int>(), basis.num_modes());
   }
+  // The modal interaction rows: vsi simulate on the modal structure with
+  // the same modes; values to round-off (the same operations in another
+  // process).
+  int modal_interaction = 0;
+  for (const json& row : rows) {
+    if (row.at("structure") != "modal" || row.at("model") != "interaction") continue;
+    ASSERT_EQ(row.at("status"), "ok") << row.dump();
+    const auto file = write_json("modal-interaction.json", rung_document(doc, row, 1.2 * cutoff_hz));
+    const VsiRun sim = vsi("simulate " + file.string());
+    ASSERT_EQ(sim.exit_code, 0) << sim.err;
+    const json out = json::parse(sim.out);
+    EXPECT_EQ(out.at("run").at("fidelity").at("modes").get<int>(), row.at("modes").get<int>());
+    for (const auto& [q, v] : simulate_values(out)) {
+      const json& reported = row.at("values").at(q);
+      if (!v) {
+        EXPECT_TRUE(reported.is_null()) << q;
+        continue;
+      }
+      EXPECT_NEAR(reported.get<double>(), *v, 1e-12 * std::max(1e-12, std::abs(*v)))
+          << q << " (" << row.at("contact_law") << ", dt " << row.at("dt_s") << ")";
+    }
+    ++modal_interaction;
+  }
+  EXPECT_EQ(modal_interaction, 10);
 
   // The cheapest rung within 1 % of every quantity is on its Pareto front.
   for (const auto& [q, pick] : p.at("cheapest").items()) {
