@@ -22,6 +22,8 @@ struct CheckCase {
   std::string job_id{};    // the job that gives the value; empty when the case is not one job
   std::string location{};  // output point of the value, when the check names one
   std::string variant{};   // bound of the structure (EN 1991-2 6.4.6.3); empty when the study has none
+  // (value - verified) / verified from the study's accuracy.verify; absent when not verified.
+  std::optional<double> error_estimate{};
 };
 
 struct CheckResult {

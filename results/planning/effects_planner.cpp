@@ -109,6 +109,16 @@ Rung escalated(const Rung& rung) {
   return r;
 }
 
+std::optional<Rung> next_rung(const Rung& rung) {
+  if (rung.structure == "modal") {
+    Rung r = rung;
+    r.structure = "fe";
+    return r;
+  }
+  if (rung.model != "interaction" || (rung.contact_law == "hertz" && rung.unilateral)) return std::nullopt;
+  return escalated(rung);
+}
+
 double modal_time_step_s(double code_frequency_hz, double tolerance) {
   const double n = std::ceil(std::numbers::pi / std::acos(1.0 - tolerance));
   const double dt = 1.0 / (n * code_frequency_hz);

@@ -97,6 +97,14 @@ std::optional<std::string> escalation_reason(const RunSummary& summary, double f
 // Interaction with nonlinear unilateral Hertz on the same structure.
 Rung escalated(const Rung& rung);
 
+// One rung up the ladder toward the full model (FE, nonlinear unilateral
+// Hertz), for an error estimate (a study's accuracy.verify): the exact modal
+// moving forces -> moving forces on FE; interaction on the modes -> the same
+// contact law on FE; interaction on FE with linear Hertz or rigid contact ->
+// nonlinear unilateral Hertz (escalated()). nullopt for the full model and
+// for moving forces on FE (a load model has no vehicle to couple).
+std::optional<Rung> next_rung(const Rung& rung);
+
 // Time step of the modal rung, where dt only samples the load and the
 // output (the recurrence is exact): the peak of a harmonic at the code
 // frequency sampled n times a period is low by at most 1 - cos(pi / n);

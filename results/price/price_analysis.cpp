@@ -35,6 +35,13 @@ RichardsonEstimate richardson_estimate(std::optional<double> v1, std::optional<d
   return e;
 }
 
+std::optional<double> relative_error(std::optional<double> v, std::optional<double> v_ref) {
+  if (!v || !v_ref) return std::nullopt;
+  if (*v_ref != 0.0) return (*v - *v_ref) / *v_ref;
+  if (*v == 0.0) return 0.0;
+  return std::nullopt;
+}
+
 PriceReference price_errors(std::vector<PriceRow>& rows) {
   PriceReference ref;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -54,12 +61,8 @@ PriceReference price_errors(std::vector<PriceRow>& rows) {
       std::optional<double>& err = r.errors[std::string(q)];
       const auto v = r.values.find(std::string(q));
       const auto v_ref = reference.values.find(std::string(q));
-      if (!r.ok() || v == r.values.end() || v_ref == reference.values.end() || !v->second || !v_ref->second) continue;
-      if (*v_ref->second != 0.0) {
-        err = (*v->second - *v_ref->second) / *v_ref->second;
-      } else if (*v->second == 0.0) {
-        err = 0.0;
-      }
+      if (!r.ok() || v == r.values.end() || v_ref == reference.values.end()) continue;
+      err = relative_error(v->second, v_ref->second);
     }
   }
   // The reference rung's runs at 2h and 4h.

@@ -57,6 +57,10 @@ struct PriceReference {
   std::map<std::string, RichardsonEstimate> richardson;  // by quantity
 };
 
+// (v - v_ref) / v_ref, signed, as a fraction; absent when either value is
+// absent, and when v_ref = 0 unless v = 0 too (then 0).
+std::optional<double> relative_error(std::optional<double> v, std::optional<double> v_ref);
+
 // The reference: the finest ok run of the most complete rung (the highest
 // rung index with an ok run). Fills every row's errors against it:
 // (v - v_ref) / v_ref; absent when either value is absent or the row is not

@@ -1,5 +1,6 @@
 #include "report/compliance_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -25,6 +26,7 @@ td.num { text-align: right; font-variant-numeric: tabular-nums; }
 .NOT-EVALUATED { background: #e8e8e8; color: #444; }
 .overall { font-size: 13pt; margin: 8pt 0; }
 .unverified { color: #8a5a00; font-style: italic; }
+.estimate-warning { color: #a00000; font-weight: bold; }
 figure { margin: 8pt 0; page-break-inside: avoid; break-inside: avoid; }
 figcaption { font-size: 9pt; color: #333; }
 svg.plot { font-family: inherit; }
@@ -47,9 +49,25 @@ std::string verdict_span(Verdict v) {
 
 std::string value_text(double v) { return fmt::format("{:.4g}", v); }
 
+// The error estimate of a governing value (a study's accuracy.verify),
+// flagged when beyond the study's tolerance.
+std::string estimate_cell(const CheckResult& c, double tolerance) {
+  if (!c.governing || !c.governing->value || !c.governing->error_estimate) return "-";
+  const double e = *c.governing->error_estimate;
+  std::string text = fmt::format("{:+.2f} %", 100.0 * e);
+  if (std::abs(e) > tolerance)
+    text += fmt::format(" <span class=\"estimate-warning\">&#9888; above the tolerance {:g} %</span>", 100.0 * tolerance);
+  return text;
+}
+
 std::string checks_table(const ComplianceReport& r) {
+  // The error-estimate column only for a study that verified its governing cases.
+  const bool estimates = std::any_of(r.checks.begin(), r.checks.end(), [](const CheckResult& c) {
+    return c.governing && c.governing->error_estimate.has_value();
+  });
   std::string out =
-      "<table class=\"checks\"><tr><th>check</th><th>clause</th><th>limit</th><th>governing value</th>"
+      "<table class=\"checks\"><tr><th>check</th><th>clause</th><th>limit</th><th>governing value</th>" +
+      std::string(estimates ? "<th>error estimate</th>" : "") +
       "<th>train</th><th>km/h</th><th>profile</th><th>cases (missing)</th><th>verdict</th></tr>\n";
   for (const CheckResult& c : r.checks) {
     const std::string limit =
@@ -68,13 +86,15 @@ std::string checks_table(const ComplianceReport& r) {
       if (!c.governing->variant.empty())
         profile += fmt::format(", <span class=\"bound\">bound: {}</span>", esc(c.governing->variant));
     }
+    if (estimates) gov += "</td><td class=\"num estimate\">" + estimate_cell(c, r.accuracy_tolerance);
     out += fmt::format(
         "<tr data-check=\"{}\"><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
         "<td>{}</td><td class=\"num\">{}</td><td>{}</td><td class=\"num\">{} ({})</td><td>{}</td></tr>\n",
         esc(c.id), esc(c.title), esc(c.clause), limit, gov, train, speed, profile, c.cases, c.missing,
         verdict_span(c.verdict));
     if (!c.note.empty())
-      out += fmt::format("<tr><td></td><td colspan=\"8\" class=\"small\">{}</td></tr>\n", esc(c.note));
+      out += fmt::format("<tr><td></td><td colspan=\"{}\" class=\"small\">{}</td></tr>\n", estimates ? 9 : 8,
+                         esc(c.note));
   }
   return out + "</table>\n";
 }

@@ -50,6 +50,7 @@ struct ComplianceReport {
   std::string study_name, study_id, study_file;
   std::string version, date;  // vsi version; the date line is the only non-deterministic text
   std::vector<CheckResult> checks;
+  double accuracy_tolerance = 0.01;  // the study's accuracy.tolerance: a larger error estimate is flagged
   Verdict overall = Verdict::kNotEvaluated;
   std::vector<ReportFigure> check_figures;
   std::vector<GoverningCase> governing_cases;

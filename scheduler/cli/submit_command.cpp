@@ -12,6 +12,7 @@
 #include "core/terminal_text.hpp"
 #include "query/study_refinement.hpp"
 #include "query/study_report.hpp"
+#include "query/study_verification.hpp"
 #include "queue/job_queue.hpp"
 #include "study/study_cost.hpp"
 #include "study/study_plan.hpp"
@@ -67,6 +68,35 @@ int submit_command(const ServiceArgs& args) {
 
 namespace {
 
+// Studies that ask accuracy.verify, once complete: their verification jobs
+// queued (once) and worked like any job, then the error estimates written
+// (again at every call: idempotent, and a run killed before this point is
+// finished by the next vsi work or vsi run).
+void verify(const ServiceArgs& args, scheduler::Database& db, const std::vector<std::string>& studies,
+            scheduler::WorkSummary& total) {
+  std::size_t added = 0;
+  for (const std::string& id : studies) {
+    const std::size_t n = scheduler::enqueue_verification(db, id, args.max_attempts);
+    if (n > 0) spdlog::info("study {}: {} verification runs queued (accuracy.verify)", id.substr(0, 12), n);
+    added += n;
+  }
+  if (added > 0 || scheduler::state_counts(db).unfinished() > 0) {
+    const scheduler::WorkSummary s = work(args);
+    // A verification run that fails is not a failed job of the study: its
+    // job keeps no estimate (the report shows none), and the log says why.
+    total.jobs_done += s.jobs_done;
+    if (s.jobs_failed > 0) spdlog::warn("{} verification runs failed: their jobs get no error estimate", s.jobs_failed);
+    if (!s.error.empty()) {
+      total.error = s.error;
+      return;
+    }
+  }
+  for (const std::string& id : studies) {
+    const std::size_t n = scheduler::store_error_estimates(db, id);
+    if (n > 0) spdlog::info("study {}: error estimates of {} verified jobs stored", id.substr(0, 12), n);
+  }
+}
+
 // Work until the queue is empty; then studies that ask for refinement
 // ("refine": true) get their next pass of speeds, which are worked in turn,
 // until every peak is resolved (a bounded number of passes). Failed jobs are
@@ -91,6 +121,7 @@ scheduler::WorkSummary work_and_refine(const ServiceArgs& args, scheduler::Datab
     }
     if (added == 0) break;
   }
+  if (total.error.empty()) verify(args, db, studies, total);
   return total;
 }
 

@@ -98,8 +98,8 @@ CheckResult quantity_check(CheckResult check, const std::vector<JobResult>& jobs
       std::any_of(jobs.begin(), jobs.end(), [](const JobResult& j) { return j.variant != "nominal"; });
   std::vector<CheckCase> cases;
   for (const JobResult& j : jobs)
-    cases.push_back(
-        {j.train, j.speed_kmh, j.irregularity, j.overall(check.quantity), j.id, "", variants ? j.variant : ""});
+    cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(check.quantity), j.id, "",
+                     variants ? j.variant : "", j.error_estimate(check.quantity)});
   return evaluate_upper_limit(std::move(check), cases);
 }
 
@@ -218,6 +218,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   report.version = options.version;
   report.date = options.date;
   report.study_document = study.dump(2);
+  report.accuracy_tolerance = info.tolerance;
 
   const std::vector<JobResult> jobs = options.jobs ? *options.jobs : study_results(db, {study_id, {}, {}, {}, {}});
   std::vector<std::string> train_order;

@@ -9,7 +9,7 @@
 
 namespace railvsi::scheduler {
 
-std::vector<SampledJob> price_sample(Database& db, const std::string& study_id, int jobs) {
+std::vector<SampledJob> price_sample(Database& db, const std::string& study_id, int jobs, bool every_train) {
   (void)study_info(db, study_id);  // throws for a study not in the database
   std::vector<JobResult> ok;
   for (JobResult& j : study_results(db, {study_id, {}, {}, {}, {}}))
@@ -29,18 +29,20 @@ std::vector<SampledJob> price_sample(Database& db, const std::string& study_id, 
     const std::string q(qv);
     const Extreme extreme = extreme_of(q).value_or(Extreme::kMax);
     const TrainEnvelope* best = nullptr;
+    const auto add_case = [&](const TrainEnvelope& e, const std::string& reason) {
+      const auto it = std::find_if(ok.begin(), ok.end(), [&](const JobResult& j) {
+        return j.train == e.train && j.speed_kmh == e.governing_speed_kmh && j.irregularity == e.governing_irregularity;
+      });
+      if (it != ok.end()) add(*it, reason);
+    };
     // The governing case over trains of the per-train governing cases.
     const std::vector<TrainEnvelope> per_train = study_envelope_over_speeds(ok, q);
     for (const TrainEnvelope& e : per_train) {
       if (!e.value) continue;
+      if (every_train) add_case(e, "governing " + q + " of " + e.train);
       if (best == nullptr || (extreme == Extreme::kMax ? *e.value > *best->value : *e.value < *best->value)) best = &e;
     }
-    if (best == nullptr) continue;
-    const auto it = std::find_if(ok.begin(), ok.end(), [&](const JobResult& j) {
-      return j.train == best->train && j.speed_kmh == best->governing_speed_kmh &&
-             j.irregularity == best->governing_irregularity;
-    });
-    if (it != ok.end()) add(*it, "governing " + q);
+    if (best != nullptr && !every_train) add_case(*best, "governing " + q);
   }
   // Then evenly over the study: the k-th of n extra picks at (k + 1/2) n_ok / n.
   const int extra = jobs - static_cast<int>(out.size());

@@ -16,8 +16,10 @@ struct SampledJob {
 };
 
 // Only jobs done with status ok. jobs <= 0 or fewer than the governing
-// cases: the governing cases alone. Throws std::runtime_error when the
-// study is not in the database or has no ok job.
-std::vector<SampledJob> price_sample(Database& db, const std::string& study_id, int jobs);
+// cases: the governing cases alone. every_train: the governing case of
+// each train (each line of query's envelope over speeds), not only the
+// one over trains. Throws std::runtime_error when the study is not in the
+// database or has no ok job.
+std::vector<SampledJob> price_sample(Database& db, const std::string& study_id, int jobs, bool every_train = false);
 
 }  // namespace railvsi::scheduler

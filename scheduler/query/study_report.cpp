@@ -53,6 +53,19 @@ constexpr const char* kWarningMark = "*";
 
 std::string marked(const std::string& text, bool warned) { return warned ? text + kWarningMark : text; }
 
+// An error estimate beyond the study's accuracy tolerance never passes silently.
+constexpr const char* kEstimateMark = "!";
+
+bool above_tolerance(std::optional<double> estimate, double tolerance) {
+  return estimate && std::abs(*estimate) > tolerance;
+}
+
+// "±0.40 %" beside a governing value (the estimate's sign in json and csv).
+std::string estimate_note(double estimate, double tolerance) {
+  return fmt::format("\u00b1{:.2f} %{}", 100.0 * std::abs(estimate),
+                     above_tolerance(estimate, tolerance) ? kEstimateMark : "");
+}
+
 const JobResult* governing_job(const std::vector<JobResult>& jobs, const TrainEnvelope& e) {
   for (const JobResult& j : jobs)
     if (j.train == e.train && j.speed_kmh == e.governing_speed_kmh && j.irregularity == e.governing_irregularity &&
@@ -249,7 +262,7 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
   out += "\nenvelope over speeds (the governing value, and the case that gives it):\n";
   out += table_line(fmt::format("{:<{}}  {:<8}  {:>10}  {:>5}  {:<{}}  {}", "train", etrain_w, "quantity", "value",
                                 "km/h", "irregularity", eirr_w, "check"));
-  bool any_edge = false;
+  bool any_edge = false, any_estimate = false, any_above = false;
   for (const Column* c : columns)
     for (const TrainEnvelope& e : study_envelope_over_speeds(jobs, c->quantity)) {
       std::vector<std::string> notes;
@@ -272,6 +285,11 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
       if (e.cases_without_value > 0)
         notes.push_back(fmt::format("{} of {} cases without a value", e.cases_without_value, e.cases));
       const JobResult* g = e.value ? governing_job(jobs, e) : nullptr;
+      if (const auto estimate = g ? g->error_estimate(c->quantity) : std::nullopt) {
+        notes.insert(notes.begin(), estimate_note(*estimate, study.tolerance));
+        any_estimate = true;
+        any_above = any_above || above_tolerance(estimate, study.tolerance);
+      }
       std::string line = fmt::format("{:<{}}  {:<8}  {:>10}  {:>5}  {:<{}}", fit(e.train, etrain_w), etrain_w,
                                      c->heading, marked(shown(e.value, c->scale), g && g->has_warnings()),
                                      e.value ? speed_text(e.governing_speed_kmh) : "-",
@@ -288,6 +306,11 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
   if (std::any_of(jobs.begin(), jobs.end(), [](const JobResult& j) { return j.has_warnings(); }))
     out += fmt::format("{} the run that gave this value has warnings (vsi query --format json lists them)\n",
                        kWarningMark);
+  if (any_estimate)
+    out += fmt::format("\u00b1: error estimate of the value, from its re-run one rung up (accuracy.verify){}\n",
+                       any_above ? fmt::format("; {} above the study's tolerance {:g} %", kEstimateMark,
+                                               100.0 * study.tolerance)
+                                 : "");
 
   // Several seeds of one random profile: mean, standard deviation and extreme.
   const auto labels = family_labels(jobs);
@@ -321,18 +344,21 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
 std::string format_csv(const std::vector<JobResult>& jobs) {
   // A study with bounds of the structure gets a last column naming each row's.
   const bool variants = has_variants(jobs);
-  std::string out = variants ? "train,irregularity,speed_kmh,quantity,location,value,state,variant\n"
-                             : "train,irregularity,speed_kmh,quantity,location,value,state\n";
+  std::string out = variants ? "train,irregularity,speed_kmh,quantity,location,value,state,variant,error_estimate\n"
+                             : "train,irregularity,speed_kmh,quantity,location,value,state,error_estimate\n";
   for (const JobResult& j : jobs) {
     const std::string job = fmt::format("{},{},{}", csv_field(j.train), csv_field(j.irregularity), j.speed_kmh);
     std::string variant;
     if (variants) variant.append(",").append(csv_field(j.variant));
-    if (j.envelopes.empty()) out += fmt::format("{},,,,{}{}\n", job, csv_field(j.state), variant);
+    if (j.envelopes.empty()) out += fmt::format("{},,,,{}{},\n", job, csv_field(j.state), variant);
     for (const auto& [quantity, locations] : j.envelopes)
-      for (const auto& [location, value] : locations)
+      for (const auto& [location, value] : locations) {
+        const auto estimate = j.error_estimate(quantity, location);
         // {} writes the shortest text that reads back to the same double.
-        out += fmt::format("{},{},{},{},{}{}\n", job, quantity, csv_field(location),
-                           value ? fmt::format("{}", *value) : std::string(), csv_field(j.state), variant);
+        out += fmt::format("{},{},{},{},{}{},{}\n", job, quantity, csv_field(location),
+                           value ? fmt::format("{}", *value) : std::string(), csv_field(j.state), variant,
+                           estimate ? fmt::format("{}", *estimate) : std::string());
+      }
   }
   return out;
 }
@@ -375,7 +401,8 @@ ordered_json case_json(const CheckCase& c) {
           {"speed_kmh", number(c.speed_kmh)},
           {"irregularity", text(c.irregularity)},
           {"location", text(c.location)},
-          {"job_id", text(c.job_id)}};
+          {"job_id", text(c.job_id)},
+          {"error_estimate", number(c.error_estimate)}};
 }
 
 // Verdict, governing case and missing cases of a check (or of one train's
@@ -387,6 +414,7 @@ ordered_json verdict_json(const CheckResult& c, const std::map<std::string, std:
   ordered_json out = {{"verdict", verdict_name(c.verdict)},
                       {"value", has_value ? number(c.governing->value) : ordered_json(nullptr)},
                       {"governing", has_value ? case_json(*c.governing) : ordered_json(nullptr)},
+                      {"error_estimate", has_value ? number(c.governing->error_estimate) : ordered_json(nullptr)},
                       {"cases", c.cases},
                       {"missing", c.missing}};
   if (extreme_of(c.quantity)) {
@@ -456,7 +484,9 @@ std::string format_verdict_lines(const std::vector<CheckResult>& checks, Verdict
 
 ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& jobs) {
   ordered_json out;
-  out["study"] = {{"id", study.id}, {"name", study.name}, {"file", study.file}, {"checks", study.checks}};
+  out["study"] = {{"id", study.id},         {"name", study.name},
+                  {"file", study.file},     {"checks", study.checks},
+                  {"accuracy_tolerance", study.tolerance}};
   ordered_json list = ordered_json::array();
   for (const JobResult& j : jobs) {
     ordered_json envelopes = ordered_json::object();
@@ -478,13 +508,20 @@ ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& j
                         {"warnings", j.warnings.empty() ? ordered_json::array() : ordered_json::parse(j.warnings)},
                         {"envelopes", envelopes}};
     if (!j.error.empty()) job["error"] = j.error;
+    // Beside envelopes, the same shape: only the values that were verified.
+    ordered_json estimates = ordered_json::object();
+    for (const auto& [quantity, locations] : j.error_estimates)
+      for (const auto& [location, e] : locations) estimates[quantity][location.empty() ? "all" : location] = e;
+    job["error_estimates"] = std::move(estimates);
     list.push_back(std::move(job));
   }
   out["jobs"] = std::move(list);
   ordered_json over = ordered_json::array();
   for (const EnvelopeQuantity& q : envelope_quantities())
     for (const TrainEnvelope& e : study_envelope_over_speeds(jobs, std::string(q.name)))
-      if (e.value)
+      if (e.value) {
+        const JobResult* g = governing_job(jobs, e);
+        const auto estimate = g ? g->error_estimate(std::string(q.name)) : std::nullopt;
         over.push_back({{"train", e.train},
                         {"quantity", std::string(q.name)},
                         {"value", number(e.value)},
@@ -493,7 +530,10 @@ ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& j
                         {"governing_variant", e.governing_variant},
                         {"cases", e.cases},
                         {"cases_without_value", e.cases_without_value},
-                        {"at_edge_of_speed_range", at_edge_of_speed_range(jobs, e)}});
+                        {"at_edge_of_speed_range", at_edge_of_speed_range(jobs, e)},
+                        {"error_estimate", number(estimate)},
+                        {"error_estimate_above_tolerance", above_tolerance(estimate, study.tolerance)}});
+      }
   out["envelope_over_speeds"] = std::move(over);
   // Over the seeds of each random profile, per train x speed (only when a
   // profile has several seeds).

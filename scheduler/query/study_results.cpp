@@ -36,10 +36,18 @@ std::optional<double> JobResult::overall(const std::string& quantity) const {
   return v == q->second.end() ? std::nullopt : v->second;
 }
 
+std::optional<double> JobResult::error_estimate(const std::string& quantity, const std::string& location) const {
+  const auto q = error_estimates.find(quantity);
+  if (q == error_estimates.end()) return std::nullopt;
+  const auto v = q->second.find(location);
+  return v == q->second.end() ? std::nullopt : std::optional(v->second);
+}
+
 StudyInfo study_info(Database& db, const std::string& study_id) {
-  Statement s = db.prepare("SELECT id, name, file, checks, job_count FROM studies WHERE id = ?");
+  Statement s = db.prepare("SELECT id, name, file, checks, job_count, "
+                           "coalesce(json_extract(document, '$.accuracy.tolerance'), 0.01) FROM studies WHERE id = ?");
   if (!s.bind(1, study_id).step()) throw std::runtime_error(fmt::format("no study {} in {}", study_id, db.file()));
-  return {s.text(0), s.text(1), s.text(2), nlohmann::json::parse(s.text(3)), s.int64(4)};
+  return {s.text(0), s.text(1), s.text(2), nlohmann::json::parse(s.text(3)), s.int64(4), s.real(5)};
 }
 
 std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
@@ -78,7 +86,7 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     jobs.push_back(std::move(r));
   }
   Statement e = db.prepare(fmt::format(
-      "SELECT e.job_id, e.quantity, e.location, e.value FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+      "SELECT e.job_id, e.quantity, e.location, e.value, e.error_estimate FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
       "JOIN envelopes e ON e.job_id = j.id WHERE {}",
       kFilter));
   bind_filter(e, filter);
@@ -86,6 +94,7 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     const auto it = index.find(e.text(0));
     if (it == index.end()) continue;
     jobs[it->second].envelopes[e.text(1)][e.text(2)] = e.optional_real(3);
+    if (const auto estimate = e.optional_real(4)) jobs[it->second].error_estimates[e.text(1)][e.text(2)] = *estimate;
   }
   return jobs;
 }

@@ -44,12 +44,17 @@ struct JobResult {
   // quantity -> location ("" for the whole job) -> value (nullopt: not produced)
   std::map<std::string, std::map<std::string, std::optional<double>>> envelopes;
   std::optional<double> overall(const std::string& quantity) const;
+  // quantity -> location -> error estimate of the value (study_verification);
+  // only values that have one.
+  std::map<std::string, std::map<std::string, double>> error_estimates;
+  std::optional<double> error_estimate(const std::string& quantity, const std::string& location = "") const;
 };
 
 struct StudyInfo {
   std::string id, name, file;
   nlohmann::json checks = nlohmann::json::object();
   std::int64_t job_count = 0;
+  double tolerance = 0.01;  // accuracy.tolerance: an error estimate beyond it is flagged
 };
 
 // Throws std::runtime_error when the study is not in the database.

@@ -32,14 +32,11 @@ SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts)
   return result;
 }
 
-std::size_t insert_study_jobs(Database& db, const std::string& study_id, const std::vector<JobSpec>& jobs,
-                              std::int64_t first_position, int max_attempts, double now) {
+std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_attempts, double now) {
   std::size_t new_jobs = 0;
   Statement insert_job = db.prepare(
       "INSERT OR IGNORE INTO jobs (id, scene, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
       "cutoff_hz, max_attempts, enqueued_at, rung) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  Statement link = db.prepare("INSERT OR IGNORE INTO study_jobs (study_id, job_id, position) VALUES (?, ?, ?)");
-  std::int64_t position = first_position;
   for (const JobSpec& j : jobs) {
     insert_job.bind(1, j.id)
         .bind(2, j.scene)
@@ -55,8 +52,16 @@ std::size_t insert_study_jobs(Database& db, const std::string& study_id, const s
         .bind(12, j.rung.empty() ? SqlValue(Null{}) : SqlValue(j.rung))
         .run();
     new_jobs += static_cast<std::size_t>(db.changes());
-    link.bind(1, study_id).bind(2, j.id).bind(3, position++).run();
   }
+  return new_jobs;
+}
+
+std::size_t insert_study_jobs(Database& db, const std::string& study_id, const std::vector<JobSpec>& jobs,
+                              std::int64_t first_position, int max_attempts, double now) {
+  const std::size_t new_jobs = insert_jobs(db, jobs, max_attempts, now);
+  Statement link = db.prepare("INSERT OR IGNORE INTO study_jobs (study_id, job_id, position) VALUES (?, ?, ?)");
+  std::int64_t position = first_position;
+  for (const JobSpec& j : jobs) link.bind(1, study_id).bind(2, j.id).bind(3, position++).run();
   return new_jobs;
 }
 

@@ -31,6 +31,9 @@ struct SubmitResult {
 // stays as it is (re-submitting adds nothing).
 SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts = 3);
 
+// Inserts jobs (INSERT OR IGNORE: a job already stored stays as it is) in
+// no study; returns the number of new jobs. Inside the caller's transaction.
+std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_attempts, double now);
 // Inserts jobs (INSERT OR IGNORE: a job already stored stays as it is) and
 // links them to the study at positions first_position, +1, ...; returns the
 // number of new jobs. Inside the caller's transaction.

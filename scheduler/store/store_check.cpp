@@ -33,8 +33,9 @@ const Invariant kInvariants[] = {
     {"SELECT count(*) FROM (SELECT DISTINCT e.job_id FROM envelopes e JOIN jobs j ON j.id = e.job_id "
      "WHERE j.state != 'done')",
      "jobs with envelopes that are not done"},
-    {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM study_jobs sj WHERE sj.job_id = j.id)",
-     "jobs of no study"},
+    {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM study_jobs sj WHERE sj.job_id = j.id) "
+     "AND NOT EXISTS (SELECT 1 FROM verification_jobs v WHERE v.verify_job_id = j.id)",
+     "jobs of no study (nor verifying one)"},
     // A shard store links part of its study's jobs: fewer is not a problem.
     {"SELECT count(*) FROM studies s WHERE job_count < (SELECT count(*) FROM study_jobs sj WHERE sj.study_id = s.id)",
      "studies with more jobs linked than they have"},

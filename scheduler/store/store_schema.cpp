@@ -123,6 +123,20 @@ CREATE TABLE merged_shards (          -- in a store written by vsi merge: the sh
        R"sql(
 ALTER TABLE jobs ADD COLUMN rung TEXT;  -- NULL for jobs submitted before the planner: FE as their analysis says
 )sql"},
+      {"envelopes.error_estimate and verification_jobs: a study's accuracy.verify re-runs its governing cases "
+       "(and a sample) one rung up; each verified envelope value gets the relative difference",
+       R"sql(
+ALTER TABLE envelopes ADD COLUMN error_estimate REAL;  -- (value - verified) / verified; NULL: not verified
+CREATE TABLE verification_jobs (
+  study_id      TEXT NOT NULL REFERENCES studies (id),
+  job_id        TEXT NOT NULL REFERENCES jobs (id),  -- the study's job verified
+  verify_job_id TEXT NOT NULL REFERENCES jobs (id),  -- its re-run, a job of no study
+  refinement    INTEGER NOT NULL,                    -- 1: dt/2 on the job's rung; 2: dt/2 on the next rung
+  why           TEXT NOT NULL,                       -- e.g. "governing deck_acceleration_mps2", "sample"
+  PRIMARY KEY (study_id, job_id, verify_job_id)
+) WITHOUT ROWID;
+CREATE INDEX verification_jobs_verify ON verification_jobs (verify_job_id);
+)sql"},
   };
   return all;
 }

@@ -240,7 +240,13 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   absolute_file_names(base["structure"], profiles, base_dir);
   base["analysis"] = doc.at("analysis");
   if (doc.contains("outputs")) base["outputs"] = doc.at("outputs");
-  if (doc.contains("accuracy")) base["accuracy"] = doc.at("accuracy");
+  if (doc.contains("accuracy")) {
+    // "verify" is the study's (study_verification), not the run's: asking it
+    // leaves the jobs, their ids and their envelopes as they are.
+    base["accuracy"] = doc.at("accuracy");
+    base["accuracy"].erase("verify");
+    if (base["accuracy"].empty()) base.erase("accuracy");
+  }
   if (doc.contains("asks")) base["asks"] = doc.at("asks");
   // Fidelity "auto" (the default): the planner pins each train's rung in its jobs.
   const bool auto_fidelity = !doc.contains("fidelity") || doc.at("fidelity").is_string();

@@ -159,5 +159,30 @@ TEST(EffectsPlanner, ModalTimeStepSamplesTheCodeFrequencyWithinTheTolerance) {
   EXPECT_LT(modal_time_step_s(45.0, 0.001), dt / 3.0);
 }
 
+TEST(EffectsPlanner, NextRungClimbsTowardFiniteElementsAndUnilateralHertz) {
+  // Exact modal moving forces -> moving forces on FE; then the top for a load model.
+  const Rung modal_forces;
+  const auto fe_forces = next_rung(modal_forces);
+  ASSERT_TRUE(fe_forces);
+  EXPECT_EQ(fe_forces->name(), "moving_forces/fe");
+  EXPECT_EQ(fe_forces->contact_law, "none");
+  EXPECT_FALSE(next_rung(*fe_forces));
+  // Interaction on the modes keeps its contact law on FE.
+  const Rung modal_interaction{"interaction", "modal", "linear-hertz", false};
+  const auto fe_interaction = next_rung(modal_interaction);
+  ASSERT_TRUE(fe_interaction);
+  EXPECT_EQ(fe_interaction->name(), "interaction/fe");
+  EXPECT_EQ(fe_interaction->contact_law, "linear-hertz");
+  // Linear Hertz (either way) and rigid on FE -> unilateral Hertz, the top.
+  for (const Rung& cheaper : {Rung{"interaction", "fe", "linear-hertz", false}, Rung{"interaction", "fe", "linear-hertz", true},
+                              Rung{"interaction", "fe", "rigid", false}}) {
+    const auto up = next_rung(cheaper);
+    ASSERT_TRUE(up) << cheaper.contact_law;
+    EXPECT_EQ(up->contact_law, "hertz");
+    EXPECT_TRUE(up->unilateral);
+    EXPECT_FALSE(next_rung(*up));
+  }
+}
+
 }  // namespace
 }  // namespace railvsi
