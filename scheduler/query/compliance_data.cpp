@@ -15,6 +15,7 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
+#include "query/price_figures.hpp"
 #include "query/static_effects.hpp"
 #include "query/study_results.hpp"
 #include "simulation/simulation.hpp"
@@ -325,6 +326,8 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       if (!clean) report.issues.push_back({case_label(j), j.state + (j.status.empty() ? "" : " (" + j.status + ")"), detail});
     }
   }
+
+  add_price_figures(db, study_id, report);
 
   // Checks on stored quantities.
   const bool ballasted = checks.value("track_type", std::string("ballasted")) != "direct_fastening";
