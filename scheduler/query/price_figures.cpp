@@ -23,10 +23,11 @@ std::string rung_label(const StoredPriceRow& r) { return r.model + " / " + r.str
 void add_price_figures(Database& db, const std::string& study_id, ComplianceReport& report) {
   const std::vector<StoredPriceRow> rows = read_price_rows(db, study_id);
   if (rows.empty()) {
-    report.price_note = fmt::format("No accuracy-price chart: vsi price --db {} --study {} stores one in this "
-                                    "database (it re-runs the governing cases on every rung and time step), then "
-                                    "run vsi report again.",
-                                    db.file(), study_id.substr(0, 12));
+    // The store's path is left out: a merged store reports as one run would.
+    report.price_note = fmt::format("No accuracy-price chart: run vsi price --db F --study {} on this database (it "
+                                    "re-runs the governing cases on every rung and time step and stores the runs), "
+                                    "then vsi report again.",
+                                    study_id.substr(0, 12));
     return;
   }
   report.price_note =

@@ -216,8 +216,7 @@ TEST_F(ReportTest, AccuracyPriceChartHasOnePointPerStoredRunAtItsLogCoordinates)
   // Before vsi price: one line saying how to get the chart.
   ASSERT_EQ(report(id, "before.html", "--no-histories").exit_code, 0);
   const std::string before = read_text(dir_ / "before.html");
-  EXPECT_NE(before.find("No accuracy-price chart: vsi price --db " + db().string() + " --study " + id.substr(0, 12)),
-            std::string::npos);
+  EXPECT_NE(before.find("No accuracy-price chart: run vsi price --db F --study " + id.substr(0, 12)), std::string::npos);
   EXPECT_EQ(before.find("price-chart"), std::string::npos);
 
   const VsiRun price = vsi("price --db '" + db().string() + "' --study " + id + " --format json --threads 2");
