@@ -103,6 +103,12 @@ struct RunSummary {
   // when the structure has no section forces (3D solid deck, import).
   std::vector<SupportSummary> supports;
   std::string section_forces_note;
+  // Deck twist over 3 m between the track's two rail lines, max over time
+  // and position (simulation/deck_twist.hpp); absent with deck_twist_note
+  // saying why (a plane model: not applicable).
+  std::optional<double> max_abs_deck_twist_m;
+  double deck_twist_x_m = 0.0;  // start of the 3 m base where it occurs
+  std::string deck_twist_note;
   // Run
   long steps = 0;
   double dt_s = 0.0;

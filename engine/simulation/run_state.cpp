@@ -7,10 +7,11 @@
 namespace railvsi {
 
 RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics,
-                   double start_x_m, const StructureCoordinates& coords, const SectionForms& section_forms)
+                   double start_x_m, const StructureCoordinates& coords, const SectionForms& section_forms,
+                   const DeckTwistGauge& twist)
     : scene_(scene), layout_(layout), coords_(coords), start_x_m_(start_x_m),
       history_(coords.M(), coords.C(), coords.K()), rigid_(scene, layout, coords),
-      sections_(section_forms), section_envelope_(section_forms) {
+      sections_(section_forms), section_envelope_(section_forms), twist_(twist) {
   const int ns = coords.size();
   s_.resize(ns);
   s_.u = statics.u_s;
@@ -112,6 +113,14 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
   }
   const double x = front_x(t_s);
   if (sections_.available()) record_sections(x);
+  if (twist_.available()) {
+    double at = 0.0;
+    const double t = max_abs_twist_m(twist_, s_.u, coords_, twist_scratch_, &at);
+    if (t > max_abs_twist_m_ || step_index == 0) {
+      max_abs_twist_m_ = t;
+      twist_x_m_ = at;
+    }
+  }
   std::vector<bool>& vehicle_in = vehicle_in_window_;
   vehicle_in.assign(layout_.vehicles.size(), false);
   for (Eigen::Index c = 0; c < P_.size(); ++c) {
@@ -217,6 +226,12 @@ void RunState::summarize(RunSummary& sum) const {
     }
   }
   section_envelope_.summarize(sum);
+  if (twist_.available()) {
+    sum.max_abs_deck_twist_m = max_abs_twist_m_;
+    sum.deck_twist_x_m = twist_x_m_;
+  } else {
+    sum.deck_twist_note = twist_.unavailable;
+  }
   monitor_->summarize(sum);
   sum.max_abs_carbody_acceleration_mps2 = max_abs_body_a_;
   rigid_.add_warnings(sum.warnings);

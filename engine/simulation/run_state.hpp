@@ -10,6 +10,7 @@
 #include "simulation/rigid_wheels.hpp"
 #include "simulation/run_monitor.hpp"
 #include "simulation/scene.hpp"
+#include "simulation/deck_twist.hpp"
 #include "simulation/section_forms.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "simulation/step_solver.hpp"
@@ -20,9 +21,9 @@ class RunState {
  public:
   // `coords`: the structure coordinates of the step solver (and of
   // statics.u_s), `section_forms` (of the FE DOFs; none on the modal
-  // structure): referenced, not copied.
+  // structure) and `twist` (the deck twist gauge): referenced, not copied.
   RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics, double start_x_m,
-           const StructureCoordinates& coords, const SectionForms& section_forms);
+           const StructureCoordinates& coords, const SectionForms& section_forms, const DeckTwistGauge& twist);
 
   // Advance from t_n to t_new = t_n + dt.
   Status step(const HhtCoefficients& h, double t_new, StepSolver& solver, int& iterations);
@@ -71,6 +72,10 @@ class RunState {
   SectionEnvelope section_envelope_;
   std::vector<DeckLoad> deck_loads_;
   std::vector<double> section_values_;
+  // Deck twist (no gauge on a plane model).
+  const DeckTwistGauge& twist_;
+  std::vector<double> twist_scratch_;
+  double max_abs_twist_m_ = 0.0, twist_x_m_ = 0.0;
 };
 
 }  // namespace railvsi

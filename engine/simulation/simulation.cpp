@@ -129,6 +129,7 @@ struct SimulationSetup {
   StaticState statics;
   double setup_s = 0.0;
   SectionForms section_forms;
+  DeckTwistGauge twist;
 };
 
 Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
@@ -165,7 +166,8 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
                      "a rigid wheelset on several rails has an indeterminate load split where it runs "
                      "on the rigid path: use a compliant law (hertz or linear-hertz)");
   auto setup = std::make_unique<SimulationSetup>(
-      SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, {}, 0.0, {}});
+      SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, {}, 0.0, {},
+                      make_deck_twist_gauge(*scene_.structure, an.contact.rail_lines)});
   check_rigid_contact_alpha(setup->layout, an.hht.alpha);
   if (an.solver == SolverPath::kReference && an.structure_backend != StructureBackend::kFiniteElements)
     throw InputError("/analysis/solver", "the reference path assembles the finite-element structure: use "
@@ -245,7 +247,7 @@ Result Simulation::run() const {
   sum.dt_s = an.dt_s;
   sum.static_wheel_load_N.assign(statics.P.data(), statics.P.data() + statics.P.size());
 
-  RunState state(sc, layout, statics, x0, coords, setup.section_forms);
+  RunState state(sc, layout, statics, x0, coords, setup.section_forms, setup.twist);
   sum.setup_s = setup.setup_s + std::chrono::duration<double>(Clock::now() - t_start).count();
   const long steps = step_count(setup.duration_s, an.dt_s);
   state.record(0, 0.0, result.histories, /*store=*/true);

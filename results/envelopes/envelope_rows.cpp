@@ -14,6 +14,8 @@ const std::vector<EnvelopeQuantity>& envelope_quantities() {
       {"shear_force_N", Extreme::kMax, "max |shear force| on either side of the output point's section (beam decks)"},
       {"support_reaction_N", Extreme::kMax, "largest support reaction from traffic, upward (beam decks)"},
       {"support_rotation_rad", Extreme::kMax, "max |deck end rotation| at the support (beam decks)"},
+      {"deck_twist_mm_per_3m", Extreme::kMax,
+       "max |deck twist| over 3 m between the track's two rail lines (EN 1990 A2.4.4.2.2), mm"},
       {"min_contact_force_N", Extreme::kMin, "smallest wheel contact force in the evaluation window"},
       {"unloading_ratio", Extreme::kMax, "wheel unloading (Q0 - Qmin)/Q0 in the evaluation window, 1 = contact lost"},
       {"contact_loss_s", Extreme::kMax, "time a wheel spent without contact in the evaluation window"},
@@ -70,6 +72,8 @@ std::vector<EnvelopeRow> envelope_rows(const JobEnvelopes& e) {
   };
   per_support("support_reaction_N", &SupportEnvelope::max_reaction_N);
   per_support("support_rotation_rad", &SupportEnvelope::max_abs_rotation_rad);
+  // Only a structure with two rail lines has a twist (a plane model: no row).
+  if (e.deck_twist_applicable) add("deck_twist_mm_per_3m", "", e.max_abs_deck_twist_mm_per_3m);
   if (!e.wheels.empty()) {
     // Per wheel only for wheels inside the evaluation window: the others have no values.
     const auto per_wheel = [&](std::string_view quantity, std::optional<double> WheelEnvelope::*field) {

@@ -102,6 +102,10 @@ JobEnvelopes envelopes_of(const Status& status, const RunSummary& s, double dt_s
     e.supports.push_back({ss.name, ss.x_m, finite(ss.max_reaction_N, "reaction at " + ss.name),
                           finite(ss.max_abs_rotation_rad, "end rotation at " + ss.name)});
   if (!s.section_forces_note.empty()) e.notes.push_back("section forces left out: " + s.section_forces_note);
+  if (s.max_abs_deck_twist_m) {
+    e.deck_twist_applicable = true;
+    e.max_abs_deck_twist_mm_per_3m = finite(1e3 * *s.max_abs_deck_twist_m, "deck twist");
+  }
   e.max_abs_displacement_m = extreme(e.points, &PointEnvelope::max_abs_displacement_m, greater, every);
   e.max_abs_acceleration_mps2 = extreme(e.points, &PointEnvelope::max_abs_acceleration_mps2, greater, every);
   e.max_abs_acceleration_unfiltered_mps2 =

@@ -65,6 +65,11 @@ struct JobEnvelopes {
   double cutoff_hz = 0.0;  // code frequency max(30 Hz, 1.5 f0, f3) used
   std::string filter;      // code_filter_description()
 
+  // Deck twist over 3 m between the track's two rail lines, in mm (the
+  // unit of EN 1990 A2.4.4.2.2); applicable only with two rail lines.
+  bool deck_twist_applicable = false;
+  std::optional<double> max_abs_deck_twist_mm_per_3m;
+
   // Supports of a beam deck (empty otherwise; notes say why).
   std::vector<SupportEnvelope> supports;
 

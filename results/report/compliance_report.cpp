@@ -151,6 +151,10 @@ std::string render_html(const ComplianceReport& r) {
     out += "</table>\n";
   }
 
+  out += "<h3 id=\"accuracy-price\">Accuracy price</h3>\n<p class=\"small\">" + esc(r.price_note) + "</p>\n";
+  for (const PriceFigure& f : r.price_charts)
+    out += "<figure>\n" + render_price_chart(f.chart) + "<figcaption>" + esc(f.caption) + "</figcaption>\n</figure>\n";
+
   out += "<h2 id=\"inputs\">5. Inputs</h2>\n<h3>Trains</h3>\n<table class=\"trains\"><tr><th>train</th>"
          "<th>source</th></tr>\n";
   for (const LibraryTrain& t : r.trains)

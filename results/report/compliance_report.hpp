@@ -8,6 +8,7 @@
 
 #include "compliance/check_verdict.hpp"
 #include "report/line_plot.hpp"
+#include "report/price_chart.hpp"
 
 namespace railvsi {
 
@@ -46,6 +47,11 @@ struct LibraryTrain {
   std::string source;   // the train file's source/description text
 };
 
+struct PriceFigure {
+  PriceChart chart;
+  std::string caption;
+};
+
 struct ComplianceReport {
   std::string study_name, study_id, study_file;
   std::string version, date;  // vsi version; the date line is the only non-deterministic text
@@ -57,6 +63,8 @@ struct ComplianceReport {
   std::vector<ReportRow> model;          // structure, f0, f3, cut-off, damping ...
   std::vector<RungGroup> rungs;
   std::vector<JobIssue> issues;           // failed, cancelled, unfinished jobs; warnings
+  std::vector<PriceFigure> price_charts;  // vsi price --db of the study, when it was run
+  std::string price_note;                 // what the charts show, or how to get them
   std::vector<std::string> notes;         // e.g. checks not evaluated and why
   std::string study_document;             // canonical JSON, pretty-printed
   std::vector<LibraryTrain> trains;

@@ -59,6 +59,8 @@ std::string tick_text(double v) {
 
 }  // namespace
 
+const char* plot_colour(std::size_t k) { return kPalette[k % std::size(kPalette)]; }
+
 std::string html_escape(const std::string& text) {
   std::string out;
   out.reserve(text.size());
@@ -160,7 +162,7 @@ std::string render_svg(const LinePlot& plot, int width_px, int height_px) {
   // Series.
   std::size_t k = 0;
   for (const PlotSeries& s : plot.series) {
-    const char* colour = kPalette[k++ % std::size(kPalette)];
+    const char* colour = plot_colour(k++);
     std::string path;
     bool pen_down = false;
     for (const auto& [x, y] : decimated(s.points, x0, x1, w)) {
@@ -184,7 +186,7 @@ std::string render_svg(const LinePlot& plot, int width_px, int height_px) {
   double ly = top + 10;
   k = 0;
   for (const PlotSeries& s : plot.series) {
-    const char* colour = kPalette[k++ % std::size(kPalette)];
+    const char* colour = plot_colour(k++);
     svg += fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"{3}\" stroke-width=\"2\"/>"
                        "<text x=\"{4}\" y=\"{5}\" class=\"legend\">{6}</text>\n",
                        num(left + w + 10), num(left + w + 30), num(ly), colour, num(left + w + 35), num(ly + 4),

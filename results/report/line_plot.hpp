@@ -35,6 +35,9 @@ std::string render_svg(const LinePlot& plot, int width_px = 680, int height_px =
 // Round tick values covering [lo, hi]: steps of 1, 2 or 5 times a power of ten.
 std::vector<double> nice_ticks(double lo, double hi, int target_count = 6);
 
+// The k-th series colour (colour-blind-safe palette, then greys; cycles).
+const char* plot_colour(std::size_t k);
+
 // Text safe inside HTML/SVG: & < > " ' escaped, control characters dropped.
 std::string html_escape(const std::string& text);
 

@@ -24,6 +24,12 @@ ordered_json deck(const RunSummary& s) {
                       {"max_abs_acceleration_mps2", number(s.max_abs_acceleration_mps2)},
                       {"points", points}};
   if (!s.section_forces_note.empty()) out["section_forces_note"] = s.section_forces_note;
+  // EN 1990 A2.4.4.2.2, between the track's two rail lines; null with the
+  // reason on a plane model.
+  out["twist"] = s.max_abs_deck_twist_m
+                     ? ordered_json{{"max_abs_mm_per_3m", number(1e3 * *s.max_abs_deck_twist_m)},
+                                    {"x_m", number(s.deck_twist_x_m)}}
+                     : ordered_json{{"max_abs_mm_per_3m", nullptr}, {"note", s.deck_twist_note}};
   return out;
 }
 

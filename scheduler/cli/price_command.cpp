@@ -13,6 +13,7 @@
 #include "io/scene_loader.hpp"
 #include "planning/cost_model.hpp"
 #include "price/accuracy_price.hpp"
+#include "query/price_rows.hpp"
 #include "query/price_sample.hpp"
 #include "study/deck_frequencies.hpp"
 #include "workers/worker_pool.hpp"
@@ -280,7 +281,8 @@ int price_scene_file(const PriceArgs& args) {
 }
 
 int price_study(const PriceArgs& args) {
-  const auto opened = open_study(args.db, args.study_id);
+  // Writable: the rows are stored for the report's accuracy-price chart.
+  const auto opened = open_study(args.db, args.study_id, scheduler::OpenMode::kExisting);
   if (!opened) return kExitInvalidInput;
   scheduler::Database* const db = opened->db.get();
   const std::string* const id = &opened->id;
@@ -290,6 +292,7 @@ int price_study(const PriceArgs& args) {
   if (args.format == "csv") std::cout << csv_header(true);
   for (const scheduler::SampledJob& s : sample) {
     const PriceReport p = price_of(scheduler::load_job_scene(*db, s.job.id), args.threads);
+    scheduler::store_price_rows(*db, *id, s.job.id, p);
     all_ok = all_ok && reference_ok(p);
     if (args.format == "json") {
       ordered_json j;
@@ -324,7 +327,8 @@ PriceCommand::PriceCommand(CLI::App& app) {
                "timed, with the error of each key quantity against the most accurate run");
   price_->add_option("scene", args_.scene_file, "Scene file (JSON)");
   price_->add_option("--db", args_.db, "Study database (SQLite file), with --study");
-  price_->add_option("--study", args_.study_id, "Study id (a unique prefix): price its governing cases");
+  price_->add_option("--study", args_.study_id, "Study id (a unique prefix): price its governing cases and store the rows in the "
+                                                    "database for the accuracy-price chart of vsi report");
   price_->add_option("--jobs", args_.jobs, "With --study: price this many jobs (governing cases first, then spread)")
       ->check(CLI::Range(0, 1000));
   price_->add_option("--format", args_.format, "Output: table (default), json or csv")

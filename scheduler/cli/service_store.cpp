@@ -32,12 +32,13 @@ std::optional<std::string> find_study(scheduler::Database& db, const std::string
   return id;
 }
 
-std::optional<OpenedStudy> open_study(const std::string& file, const std::string& id_or_prefix) {
+std::optional<OpenedStudy> open_study(const std::string& file, const std::string& id_or_prefix,
+                                      scheduler::OpenMode mode) {
   if (!std::filesystem::is_regular_file(file)) {
     std::cerr << "error: no such database: " << file << '\n';
     return std::nullopt;
   }
-  OpenedStudy s{open_store(file), {}};
+  OpenedStudy s{open_store(file, mode), {}};
   const auto id = find_study(*s.db, id_or_prefix);
   if (!id) return std::nullopt;
   s.id = *id;

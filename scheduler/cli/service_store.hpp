@@ -20,13 +20,14 @@ std::unique_ptr<scheduler::Database> open_store(const std::string& file,
 // returns nullopt when there is no such study.
 std::optional<std::string> find_study(scheduler::Database& db, const std::string& id_or_prefix);
 
-// A read command's database and study: the file must exist (never
-// created), the study be in it. Prints the error and returns nullopt
-// (exit 2) otherwise.
+// A command's database and study: the file must exist (never created),
+// the study be in it. Prints the error and returns nullopt (exit 2)
+// otherwise. Read-only unless a writing mode is given (kExisting).
 struct OpenedStudy {
   std::unique_ptr<scheduler::Database> db;
   std::string id;
 };
-std::optional<OpenedStudy> open_study(const std::string& file, const std::string& id_or_prefix);
+std::optional<OpenedStudy> open_study(const std::string& file, const std::string& id_or_prefix,
+                                      scheduler::OpenMode mode = scheduler::OpenMode::kReadOnly);
 
 }  // namespace railvsi::cli

@@ -539,7 +539,10 @@ ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& j
   // profile has several seeds).
   const auto labels = family_labels(jobs);
   ordered_json stats = ordered_json::array();
-  for (const EnvelopeQuantity& q : envelope_quantities())
+  for (const EnvelopeQuantity& q : envelope_quantities()) {
+    // A quantity no job stores (the twist of a plane model) has no statistics.
+    if (std::none_of(jobs.begin(), jobs.end(), [&](const JobResult& j) { return j.envelopes.count(std::string(q.name)); }))
+      continue;
     for (const SampleStatistics& g : study_profile_statistics(jobs, std::string(q.name)))
       stats.push_back({{"train", g.train},
                        {"speed_kmh", g.speed_kmh},
@@ -550,6 +553,7 @@ ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& j
                        {"mean", number(g.mean)},
                        {"std_dev", number(g.std_dev)},
                        {q.extreme == Extreme::kMax ? "max" : "min", number(g.extreme)}});
+  }
   out["profile_statistics"] = std::move(stats);
   return out;
 }

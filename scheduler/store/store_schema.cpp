@@ -137,6 +137,30 @@ CREATE TABLE verification_jobs (
 ) WITHOUT ROWID;
 CREATE INDEX verification_jobs_verify ON verification_jobs (verify_job_id);
 )sql"},
+      {"price_rows: what vsi price --db F --study ID measured for a study's sampled jobs (one row per run of the "
+       "ladder and priced quantity), for the report's accuracy-price chart",
+       R"sql(
+CREATE TABLE price_rows (
+  study_id    TEXT NOT NULL REFERENCES studies (id),
+  job_id      TEXT NOT NULL REFERENCES jobs (id),  -- the priced job (its stored scene)
+  run         INTEGER NOT NULL,     -- index of the run in the job's ladder (rung, then decreasing dt)
+  model       TEXT NOT NULL,        -- moving-forces, interaction
+  structure   TEXT NOT NULL,        -- fe, modal
+  contact_law TEXT NOT NULL,        -- none, rigid, linear-hertz, hertz
+  modes       INTEGER,              -- modal rungs: modes kept; NULL for fe
+  dt_s        REAL NOT NULL,
+  status      TEXT NOT NULL,        -- the run's status, 'refused' when the rung cannot run the scene
+  cpu_s       REAL NOT NULL,        -- thread CPU time of the run alone (setup it shares included)
+  wall_s      REAL NOT NULL,
+  reference   INTEGER NOT NULL,     -- 1 for the run the errors are relative to
+  quantity    TEXT NOT NULL,        -- envelope quantity name (overall value)
+  value       REAL,                 -- NULL when the run has none
+  error       REAL,                 -- signed relative difference to the reference, fraction; NULL when none
+  pareto      INTEGER NOT NULL,     -- 1 on the Pareto front of |error| against cpu_s for this quantity
+  priced_at   REAL NOT NULL,        -- Unix time, s
+  PRIMARY KEY (study_id, job_id, run, quantity)
+) WITHOUT ROWID;
+)sql"},
   };
   return all;
 }

@@ -72,6 +72,52 @@ TEST_F(Generate, Deck3dScenesRunWithEachAxleOnBothRails) {
   EXPECT_GT(summary["wheels"]["min_contact_force_N"].get<double>(), 0.0);
 }
 
+// The deck twist check end to end on the imported deck-3d (two rail
+// lines): a study of two axles at 160 and 250 km/h, run on the FE rung,
+// has a twist value in every job and a verdict against the 1.5 mm limit of
+// V > 200 km/h. The generated track is on the deck's centreline, so the
+// twist is only the round-off of a mirror-symmetric model and load
+// (tests/engine/deck_twist_test.cpp twists an eccentric track).
+TEST_F(Generate, Deck3dStudyChecksTheTwistBetweenItsTwoRails) {
+  ASSERT_EQ(generate("--dofs 5000 --spans 20 --approach 10").exit_code, 0);
+  const json scene = json::parse(read_text(out() / "moving-forces.json"));
+  json axles = json::array();
+  for (double offset : {0.0, 3.0}) axles.push_back({{"offset_m", offset}, {"load_N", 170e3}});
+  json analysis = scene.at("analysis");
+  analysis.erase("dt_s");
+  json study = {{"name", "twist on deck-3d"},
+                      {"structure", scene.at("structure")},
+                      {"trains", json::array({json{{"name", "two axles"}, {"moving_forces", axles}}})},
+                      {"speeds_kmh", json::array({160, 250})},
+                      {"analysis", analysis},
+                      {"fidelity", {{"model", "moving_forces"}, {"structure", "fe"}}}};
+  if (scene.contains("outputs")) study["outputs"] = scene.at("outputs");
+  const auto file = out() / "study.json";
+  std::ofstream(file) << study.dump(2);
+  const std::string db = (out() / "s.sqlite").string();
+  const VsiRun run = vsi("run '" + file.string() + "' --db '" + db + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  const std::string id = study_id_of(run.out + run.err);
+  ASSERT_FALSE(id.empty()) << run.out;
+  const VsiRun q = vsi("query --db '" + db + "' --study " + id + " --format json");
+  ASSERT_EQ(q.exit_code, 0) << q.err;
+  const json out_json = json::parse(q.out);
+  const json* twist = nullptr;
+  for (const json& c : out_json.at("checks"))
+    if (c.at("id") == "deck_twist") twist = &c;
+  ASSERT_NE(twist, nullptr) << q.out;
+  EXPECT_EQ(twist->at("quantity"), "deck_twist_mm_per_3m");
+  EXPECT_EQ(twist->at("limit"), 1.5);
+  EXPECT_EQ(twist->at("limit_verified"), false);
+  EXPECT_EQ(twist->at("clause"), "EN 1990 A2.4.4.2.2");
+  EXPECT_EQ(twist->at("cases"), 2);
+  EXPECT_EQ(twist->at("missing"), 0);
+  EXPECT_EQ(twist->at("verdict"), "PASS") << twist->dump();
+  ASSERT_TRUE(twist->at("value").is_number()) << twist->dump();
+  // Round-off of the symmetric model: far below a micrometre over 3 m.
+  EXPECT_LT(twist->at("value").get<double>(), 1e-6) << twist->dump();
+}
+
 TEST_F(Generate, Deck3dRefusesASizeTheRailsAloneExceedAndWritesNothing) {
   const VsiRun run = generate("--dofs 1000");
   EXPECT_EQ(run.exit_code, 2);

@@ -116,6 +116,14 @@ TEST_F(QueryVerdictsTest, CancelledJobsMakeTheChecksIncompleteAndStayInTheCsv) {
   EXPECT_EQ(acc.at("limit"), 100.0);
   EXPECT_EQ(acc.at("clause"), "EN 1990 A2.4.4.2.1(4)P");
   EXPECT_TRUE(acc.at("limit_verified").is_boolean());
+  // A plane model has no cross level: the twist check is not applicable, never 0.
+  const json& twist = check_of(out, "deck_twist");
+  EXPECT_EQ(twist.at("verdict"), "NOT EVALUATED");
+  EXPECT_TRUE(twist.at("limit").is_null());
+  EXPECT_TRUE(twist.at("value").is_null());
+  EXPECT_NE(twist.at("note").get<std::string>().find("Not applicable: a plane model has one rail line"),
+            std::string::npos)
+      << twist.dump();
   // The governing value is the largest of the done jobs, and its case names
   // that job.
   double largest = -1.0;

@@ -2,8 +2,14 @@
 // report written, then opened in headless Chromium (Debian's chromium).
 #include <gtest/gtest.h>
 
+#include <sqlite3.h>
+
+#include <cmath>
 #include <cstdlib>
+#include <map>
+#include <memory>
 #include <regex>
+#include <sstream>
 
 #include "png_image.hpp"
 #include "vsi_test_support.hpp"
@@ -57,6 +63,19 @@ class ReportTest : public VsiCliTest {
   std::filesystem::path db() const { return dir_ / "study.sqlite"; }
   VsiRun report(const std::string& id, const std::string& out, const std::string& extra = "") const {
     return vsi("report --db '" + db().string() + "' --study " + id + " --out '" + (dir_ / out).string() + "' " + extra);
+  }
+  std::string chromium_flags() const {
+    return " --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --no-first-run --user-data-dir='" +
+           (dir_ / "profile").string() + "' --enable-logging=stderr --v=0 ";
+  }
+  // The DOM headless Chromium builds from a report file; its log in log_file.
+  std::string chromium_dom(const std::string& browser, const std::filesystem::path& html,
+                           const std::filesystem::path& log_file) const {
+    const auto dom_file = dir_ / "dom.html";
+    const std::string dump = "timeout 120 " + browser + chromium_flags() + "--dump-dom 'file://" + html.string() +
+                             "' >'" + dom_file.string() + "' 2>'" + log_file.string() + "'";
+    EXPECT_EQ(std::system(dump.c_str()), 0) << read_text(log_file);
+    return read_text(dom_file);
   }
 };
 
@@ -117,13 +136,10 @@ TEST_F(ReportTest, HeadlessChromiumRendersTheReport) {
   const std::string id = submit(small_study(), true);
   ASSERT_EQ(report(id, "report.html").exit_code, 0);
   const std::string url = "file://" + (dir_ / "report.html").string();
-  const std::string flags = " --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --no-first-run "
-                            "--user-data-dir='" + (dir_ / "profile").string() + "' --enable-logging=stderr --v=0 ";
-  const auto dom_file = dir_ / "dom.html", log_file = dir_ / "chromium.log";
-  const std::string dump = "timeout 120 " + browser + flags + "--dump-dom '" + url + "' >'" + dom_file.string() +
-                           "' 2>'" + log_file.string() + "'";
-  ASSERT_EQ(std::system(dump.c_str()), 0) << read_text(log_file);
-  const std::string dom = read_text(dom_file);
+  const std::string flags = chromium_flags();
+  const auto log_file = dir_ / "chromium.log";
+  const std::string dom = chromium_dom(browser, dir_ / "report.html", log_file);
+  ASSERT_FALSE(HasFailure());
   for (const char* text : {"HSLM-A1", "HSLM-A2", "verdict FAIL", "<svg", "class=\"series\"", "class=\"limit\""})
     EXPECT_NE(dom.find(text), std::string::npos) << text;
   const std::string log = read_text(log_file);
@@ -152,6 +168,155 @@ TEST_F(ReportTest, HeadlessChromiumRendersTheReport) {
   EXPECT_GT(drawn / area, 0.02) << "page looks blank";
   EXPECT_GT(blue, 50) << "no series drawn";
   EXPECT_GT(red, 50) << "no limit line or FAIL verdict drawn";
+}
+
+// The price rows vsi stored, read with SQLite itself.
+struct StoredRow {
+  std::string job, quantity, rung, status, title;
+  double dt_s = 0.0, cpu_s = 0.0;
+  std::optional<double> error;
+  bool reference = false;
+};
+
+std::vector<StoredRow> stored_price_rows(const std::filesystem::path& db) {
+  sqlite3* raw = nullptr;
+  EXPECT_EQ(sqlite3_open_v2(db.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  const std::unique_ptr<sqlite3, int (*)(sqlite3*)> handle(raw, sqlite3_close);
+  sqlite3_stmt* st = nullptr;
+  EXPECT_EQ(sqlite3_prepare_v2(raw,
+                               "SELECT p.job_id, p.quantity, p.model || ' / ' || p.structure || ' / ' || "
+                               "p.contact_law, p.status, p.dt_s, p.cpu_s, p.error, p.reference, j.train, "
+                               "j.speed_kmh, j.irregularity FROM price_rows p JOIN jobs j ON j.id = p.job_id",
+                               -1, &st, nullptr),
+            SQLITE_OK)
+      << sqlite3_errmsg(raw);
+  std::vector<StoredRow> rows;
+  const auto text = [&](int c) { return std::string(reinterpret_cast<const char*>(sqlite3_column_text(st, c))); };
+  while (sqlite3_step(st) == SQLITE_ROW) {
+    StoredRow r;
+    r.job = text(0);
+    r.quantity = text(1);
+    r.rung = text(2);
+    r.status = text(3);
+    r.dt_s = sqlite3_column_double(st, 4);
+    r.cpu_s = sqlite3_column_double(st, 5);
+    if (sqlite3_column_type(st, 6) != SQLITE_NULL) r.error = sqlite3_column_double(st, 6);
+    r.reference = sqlite3_column_int(st, 7) != 0;
+    std::ostringstream title;
+    title << r.quantity << ": " << text(8) << " at " << sqlite3_column_double(st, 9) << " km/h, " << text(10);
+    r.title = title.str();
+    rows.push_back(r);
+  }
+  sqlite3_finalize(st);
+  return rows;
+}
+
+TEST_F(ReportTest, AccuracyPriceChartHasOnePointPerStoredRunAtItsLogCoordinates) {
+  const std::string id = submit(small_study(), true);
+  // Before vsi price: one line saying how to get the chart.
+  ASSERT_EQ(report(id, "before.html", "--no-histories").exit_code, 0);
+  const std::string before = read_text(dir_ / "before.html");
+  EXPECT_NE(before.find("No accuracy-price chart: run vsi price --db F --study " + id.substr(0, 12)), std::string::npos);
+  EXPECT_EQ(before.find("price-chart"), std::string::npos);
+
+  const VsiRun price = vsi("price --db '" + db().string() + "' --study " + id + " --format json --threads 2");
+  ASSERT_EQ(price.exit_code, 0) << price.err;
+  const nlohmann::json priced = nlohmann::json::parse(price.out);
+  const std::vector<StoredRow> rows = stored_price_rows(db());
+  // Every run of every priced job, once per priced quantity (7), as vsi price printed it.
+  std::size_t runs = 0;
+  for (const auto& job : priced.at("jobs")) {
+    runs += job.at("price").at("rows").size();
+    for (const auto& run : job.at("price").at("rows"))
+      for (const auto& [q, e] : run.at("errors").items()) {
+        const auto it = std::find_if(rows.begin(), rows.end(), [&](const StoredRow& r) {
+          return r.job == job.at("job") && r.quantity == q && r.dt_s == run.at("dt_s").get<double>() &&
+                 r.rung == run.at("model").get<std::string>() + " / " + run.at("structure").get<std::string>() +
+                               " / " + run.at("contact_law").get<std::string>();
+        });
+        ASSERT_NE(it, rows.end()) << q;
+        EXPECT_EQ(it->cpu_s, run.at("cpu_s").get<double>());
+        EXPECT_EQ(it->error.has_value(), !e.is_null()) << q;
+        if (it->error) {
+          EXPECT_EQ(*it->error, e.get<double>()) << q;
+        }
+      }
+  }
+  ASSERT_GT(runs, 0u);
+  EXPECT_EQ(rows.size(), 7 * runs);
+
+  ASSERT_EQ(report(id, "report.html", "--no-histories").exit_code, 0);
+  const std::string html = read_text(dir_ / "report.html");
+  // The charted rows: ok runs with an error, by chart.
+  std::map<std::string, std::vector<const StoredRow*>> charts;
+  for (const StoredRow& r : rows)
+    if (r.status == "ok" && r.error && r.cpu_s > 0.0) charts[r.title].push_back(&r);
+  ASSERT_FALSE(charts.empty());
+  const std::regex point_re(
+      "<circle class=\"price-point( pareto)?\" data-rung=\"([^\"]*)\" data-dt-s=\"([^\"]*)\" "
+      "cx=\"([^\"]*)\" cy=\"([^\"]*)\"");
+  std::size_t drawn = 0, references = 0;
+  for (const auto& [title, group] : charts) {
+    SCOPED_TRACE(title);
+    const auto at = html.find("class=\"plot price-chart\" width=\"680\" height=\"320\" viewBox=\"0 0 680 320\" "
+                              "role=\"img\" aria-label=\"" + title + "\"");
+    ASSERT_NE(at, std::string::npos);
+    const std::string svg = html.substr(at, html.find("</svg>", at) - at);
+    // The log mapping, recomputed: whole decades around the CPU times; the
+    // error axis from max(1e-6, the decade below the smallest non-zero
+    // |error|) to the decade above max(|error|, 5 %).
+    double cpu_lo = INFINITY, cpu_hi = 0.0, err_lo = INFINITY, err_hi = 0.05;
+    for (const StoredRow* r : group) {
+      cpu_lo = std::min(cpu_lo, r->cpu_s);
+      cpu_hi = std::max(cpu_hi, r->cpu_s);
+      if (*r->error != 0.0) err_lo = std::min(err_lo, std::abs(*r->error));
+      err_hi = std::max(err_hi, std::abs(*r->error));
+    }
+    const double x0 = std::floor(std::log10(cpu_lo));
+    const double x1 = std::max(std::ceil(std::log10(cpu_hi)), x0 + 1);
+    const double y0 = std::isfinite(err_lo) ? std::max(-6.0, std::floor(std::log10(err_lo))) : -6.0;
+    const double y1 = std::max(std::ceil(std::log10(err_hi)), y0 + 1);
+    const double left = 70, width = 680 - 70 - 215, top = 30, height = 320 - 30 - 45;
+    std::size_t points = 0;
+    for (std::sregex_iterator m(svg.begin(), svg.end(), point_re), end; m != end; ++m) {
+      ++points;
+      const std::string rung = (*m)[2];
+      const double dt = std::stod((*m)[3]);
+      const auto row = std::find_if(group.begin(), group.end(),
+                                    [&](const StoredRow* r) { return r->rung == rung && r->dt_s == dt; });
+      ASSERT_NE(row, group.end()) << rung << " " << dt;
+      const double e = std::max(std::abs(*(*row)->error), std::pow(10.0, y0));
+      const double cx = left + (std::log10((*row)->cpu_s) - x0) / (x1 - x0) * width;
+      const double cy = top + height - (std::log10(e) - y0) / (y1 - y0) * height;
+      // The SVG prints two decimals: 0.005 px of rounding.
+      EXPECT_NEAR(std::stod((*m)[4]), cx, 0.0051) << rung << " " << dt;
+      EXPECT_NEAR(std::stod((*m)[5]), cy, 0.0051) << rung << " " << dt;
+    }
+    EXPECT_EQ(points, group.size());
+    drawn += points;
+    // The reference run marked, the bands drawn.
+    const bool has_reference =
+        std::any_of(group.begin(), group.end(), [](const StoredRow* r) { return r->reference; });
+    EXPECT_EQ(svg.find("class=\"reference\"") != std::string::npos, has_reference);
+    references += has_reference ? 1 : 0;
+    EXPECT_NE(svg.find("data-band=\"1 %\""), std::string::npos);
+    EXPECT_NE(svg.find("data-band=\"5 %\""), std::string::npos);
+    EXPECT_NE(svg.find("class=\"pareto-front\""), std::string::npos);
+  }
+  EXPECT_GT(references, 0u);
+  // No point in the report that is not a stored row.
+  std::size_t all_points = 0;
+  for (std::sregex_iterator m(html.begin(), html.end(), point_re), end; m != end; ++m) ++all_points;
+  EXPECT_EQ(all_points, drawn);
+
+  // And it renders in headless Chromium.
+  const std::string browser = chromium();
+  ASSERT_FALSE(browser.empty()) << "Debian's chromium is not installed (tests/setup installs it)";
+  const auto log_file = dir_ / "chromium.log";
+  const std::string dom = chromium_dom(browser, dir_ / "report.html", log_file);
+  EXPECT_NE(dom.find("price-point"), std::string::npos);
+  EXPECT_NE(dom.find("Accuracy price"), std::string::npos);
+  EXPECT_EQ(read_text(log_file).find("Uncaught"), std::string::npos);
 }
 
 }  // namespace
