@@ -76,6 +76,9 @@ void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSu
     sum.max_abs_displacement_m = std::max(sum.max_abs_displacement_m, run.max_abs_displacement_m[i]);
     sum.max_abs_acceleration_mps2 = std::max(sum.max_abs_acceleration_mps2, run.max_abs_acceleration_mps2[i]);
   }
+  sum.max_abs_deck_twist_m = run.max_abs_twist_m;
+  sum.deck_twist_x_m = run.twist_x_m;
+  sum.deck_twist_note = sweep.twist_gauge().unavailable;
   if (run.sections)
     run.sections->summarize(sum);
   else

@@ -78,6 +78,15 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
     }
     rails_.push_back(std::move(rail));
   }
+  twist_ = make_deck_twist_gauge(s, rail_lines);
+  if (twist_.available()) {
+    twist_modes_ = DenseMatrix::Zero(static_cast<Eigen::Index>(twist_.forms.size()), n_modes_);
+    for (std::size_t b = 0; b < twist_.forms.size(); ++b)
+      for (const auto& [index, coef] : twist_.forms[b]) {
+        const double* phi = basis.row(twist_.dofs[static_cast<std::size_t>(index)]);
+        for (int k = 0; k < n_modes_; ++k) twist_modes_(static_cast<Eigen::Index>(b), k) += coef * phi[k];
+      }
+  }
 }
 
 void ModalSweep::modal_load(double x, double* p, ModalSweepWorkspace& ws) const {
@@ -137,6 +146,7 @@ ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, Modal
   out.max_abs_displacement_m.assign(np, 0.0);
   out.max_abs_acceleration_mps2.assign(np, 0.0);
   if (sections_) out.sections.emplace(sections_->forms());
+  if (twist_.available()) out.max_abs_twist_m = 0.0;
   if (keep_acceleration) {
     ws.acceleration.resize(np);
     for (auto& a : ws.acceleration) a.resize(static_cast<std::size_t>(n_steps) + 1);
@@ -172,6 +182,14 @@ ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, Modal
       if (!store) continue;
       histories->deck_displacement_m[i].push_back(u);
       histories->deck_acceleration_mps2[i].push_back(a);
+    }
+    for (Eigen::Index b = 0; b < twist_modes_.rows(); ++b) {
+      double t = 0.0;
+      for (std::size_t k = 0; k < n; ++k) t += twist_modes_(b, static_cast<Eigen::Index>(k)) * ws.q[k];
+      if (std::abs(t) > *out.max_abs_twist_m || (step == 0 && b == 0)) {
+        out.max_abs_twist_m = std::abs(t);
+        out.twist_x_m = twist_.x_m[static_cast<std::size_t>(b)];
+      }
     }
   };
 

@@ -23,6 +23,7 @@
 #include "core/status.hpp"
 #include "integration/modal_recurrence.hpp"
 #include "model/train.hpp"
+#include "simulation/deck_twist.hpp"
 #include "simulation/result.hpp"
 
 namespace railvsi {
@@ -45,6 +46,10 @@ struct ModalSweepRun {
   std::vector<double> max_abs_displacement_m, max_abs_acceleration_mps2;  // per output point
   // The section envelope when the sweep has section forces.
   std::optional<SectionEnvelope> sections;
+  // Deck twist over 3 m (m), max over steps and bases, and the start of
+  // its base; absent when the sweep's rails give no twist (twist_gauge()).
+  std::optional<double> max_abs_twist_m;
+  double twist_x_m = 0.0;
 };
 
 class ModalSweep {
@@ -65,6 +70,7 @@ class ModalSweep {
   const ModalBasis& basis() const { return basis_; }
   int num_modes() const { return n_modes_; }
   const ModalSectionForces* sections() const { return sections_.get(); }
+  const DeckTwistGauge& twist_gauge() const { return twist_; }
   double dt_s() const { return dt_s_; }
 
  private:
@@ -92,6 +98,10 @@ class ModalSweep {
   int width_ = 0;  // columns of the cubics: modes, then section forms
   double dt_s_ = 0.0;
   std::shared_ptr<const ModalSectionForces> sections_;
+  // The twist of each base as a row over the modes (the gauge's forms
+  // applied to the mode shapes at the rail DOFs): t = row . q.
+  DeckTwistGauge twist_;
+  DenseMatrix twist_modes_;
   double share_ = 1.0;
   std::vector<ModalStep> steps_;
   std::vector<double> inverse_omega2_;

@@ -151,8 +151,7 @@ CheckResult deck_twist_check(const StructureModel& structure, const std::vector<
                        speed_kmh, line ? "the study's line_speed_kmh" : "the study's highest speed", gauge.rail_a,
                        gauge.rail_b);
   if (c.missing > 0)
-    c.note += " Jobs without a twist value: failed or not run, or run by the exact modal sweep of moving forces, "
-              "which evaluates no twist (pin an FE rung).";
+    c.note += " Jobs without a twist value: failed or not run.";
   return c;
 }
 
