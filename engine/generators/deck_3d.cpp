@@ -314,7 +314,7 @@ double mesh_aspect(const Deck3dOptions& o, const Deck3dMesh& m) {
 }
 
 // Saint-Venant torsion constant of a solid rectangle (Timoshenko & Goodier,
-// Theory of Elasticity, 3rd ed., 1970, section 109, eq. 170): with h the
+// Theory of Elasticity, 3rd ed., 1970, section 109): with h the
 // shorter side, J = b h^3 / 3 (1 - 192 h / (pi^5 b) sum over odd n of
 // tanh(n pi b / 2h) / n^5).
 double rectangle_torsion_constant_m4(double width_m, double depth_m) {
