@@ -19,6 +19,24 @@ namespace {
 
 constexpr double kJointTol_m = 1e-9;
 
+double deck_width_m(const Deck3dOptions& o) { return o.box ? o.box->top_width_m : o.width_m; }
+double deck_depth_m(const Deck3dOptions& o) { return o.box ? o.box->depth_m : o.depth_m; }
+
+// Half the box from the centreline out: the void, a web, the overhang of
+// the top slab (none when the slabs are equally wide).
+std::vector<double> box_half_widths_m(const BoxGirderSection& b) {
+  std::vector<double> w{0.5 * b.bottom_width_m - b.web_thickness_m, b.web_thickness_m};
+  if (b.top_width_m > b.bottom_width_m) w.push_back(0.5 * (b.top_width_m - b.bottom_width_m));
+  return w;
+}
+std::vector<double> box_heights_m(const BoxGirderSection& b) {
+  return {b.bottom_thickness_m, b.depth_m - b.top_thickness_m - b.bottom_thickness_m, b.top_thickness_m};
+}
+int min_ny(const Deck3dOptions& o) { return o.box ? 2 * static_cast<int>(box_half_widths_m(*o.box).size()) : 2; }
+int min_nz(const Deck3dOptions& o) { return o.box ? 3 : 1; }
+// A box's end diaphragms take one element at each end of a span.
+int min_nx(const Deck3dOptions& o) { return o.box ? 4 : 1; }
+
 void check_options(const Deck3dOptions& o) {
   if (o.spans_m.empty()) throw InputError("/spans_m", "at least one span is needed");
   for (std::size_t i = 0; i < o.spans_m.size(); ++i)
@@ -36,19 +54,126 @@ void check_options(const Deck3dOptions& o) {
     if (!(value >= 0.0)) throw InputError(fmt::format("/{}", key), "must be >= 0");
   if (!(o.poisson > -1.0 && o.poisson < 0.5)) throw InputError("/poisson", "must be in (-1, 0.5)");
   if (!(o.damping_ratio >= 0.0 && o.damping_ratio < 1.0)) throw InputError("/damping_ratio", "must be in [0, 1)");
+  if (o.box) {
+    try {
+      check_box_girder(*o.box);
+    } catch (const InputError& e) {
+      throw InputError("/box" + e.json_path(), e.what());
+    }
+  }
   if (o.rail_y_m.empty()) throw InputError("/rail_y_m", "at least one rail is needed");
   for (std::size_t r = 0; r < o.rail_y_m.size(); ++r)
-    if (!(std::abs(o.rail_y_m[r]) <= 0.5 * o.width_m))
+    if (!(std::abs(o.rail_y_m[r]) <= 0.5 * deck_width_m(o)))
       throw InputError(fmt::format("/rail_y_m/{}", r),
-                       fmt::format("rail at y = {} m is off the deck (width {} m)", o.rail_y_m[r], o.width_m));
+                       fmt::format("rail at y = {} m is off the deck (width {} m)", o.rail_y_m[r], deck_width_m(o)));
   if (o.mesh) {
     if (o.mesh->nx.size() != o.spans_m.size())
       throw InputError("/mesh/nx", fmt::format("has {} entries for {} spans", o.mesh->nx.size(), o.spans_m.size()));
     for (std::size_t s = 0; s < o.mesh->nx.size(); ++s)
-      if (o.mesh->nx[s] < 1) throw InputError(fmt::format("/mesh/nx/{}", s), "must be >= 1");
+      if (o.mesh->nx[s] < min_nx(o))
+        throw InputError(fmt::format("/mesh/nx/{}", s),
+                         o.box ? "must be >= 4 for a box girder (its end diaphragms take one element at each end)"
+                               : "must be >= 1");
     if (o.mesh->ny < 1) throw InputError("/mesh/ny", "must be >= 1");
     if (o.mesh->nz < 1) throw InputError("/mesh/nz", "must be >= 1");
+    if (o.box && (o.mesh->ny < min_ny(o) || o.mesh->ny % 2 != 0))
+      throw InputError("/mesh/ny", fmt::format("a box girder needs an even ny >= {} (a line on the centreline, "
+                                               "each plate at least one element)",
+                                               min_ny(o)));
+    if (o.box && o.mesh->nz < min_nz(o))
+      throw InputError("/mesh/nz", "a box girder needs nz >= 3 (each plate at least one element)");
   }
+}
+
+// n cells over regions of these lengths: one each, then one at a time to
+// the region with the largest cells, so that the cells are as even as the
+// thinnest plate allows and every face is a grid line.
+std::vector<int> split_cells(const std::vector<double>& lengths, int n) {
+  std::vector<int> count(lengths.size(), 1);
+  for (int placed = static_cast<int>(lengths.size()); placed < n; ++placed) {
+    std::size_t widest = 0;
+    for (std::size_t r = 1; r < lengths.size(); ++r)
+      if (lengths[r] / count[r] > lengths[widest] / count[widest]) widest = r;
+    ++count[widest];
+  }
+  return count;
+}
+
+// Grid lines from `start` over the regions, split as counted.
+std::vector<double> region_lines(double start, const std::vector<double>& lengths, const std::vector<int>& count) {
+  std::vector<double> lines{start};
+  double at = start;
+  for (std::size_t r = 0; r < lengths.size(); ++r) {
+    for (int q = 1; q < count[r]; ++q) lines.push_back(at + lengths[r] * q / count[r]);
+    at += lengths[r];
+    lines.push_back(at);
+  }
+  return lines;
+}
+
+// The ny x nz grid of the cross-section: its lines, its cells that are
+// concrete, and the nodes of those cells (the others carry no DOFs). A box
+// has a solid diaphragm in the end element of each span: there (`end`),
+// its void is concrete too. Without diaphragms the end sections distort
+// freely and the first twisting mode is a racking of the cell at about a
+// third of the St Venant torsion frequency.
+struct SectionGrid {
+  int ny = 0, nz = 0;
+  std::vector<double> y_m, z_m;    // ny + 1 and nz + 1 lines
+  std::vector<double> dy_m, dz_m;  // cell sizes
+  std::array<std::vector<char>, 2> concrete;  // [end] cell j + ny * k
+  std::array<std::vector<char>, 2> used;      // [end] node j + (ny + 1) * k
+  bool cell(int j, int k, bool end) const { return concrete[end][static_cast<std::size_t>(j + ny * k)] != 0; }
+  bool node(int j, int k, bool end) const { return used[end][static_cast<std::size_t>(j + (ny + 1) * k)] != 0; }
+  long nodes(bool end) const { return std::count(used[end].begin(), used[end].end(), 1); }
+  long soffit_nodes() const { return std::count(used[0].begin(), used[0].begin() + ny + 1, 1); }
+};
+
+// Nodes of the end (diaphragm) elements: stations 0, 1, nx - 1, nx.
+bool end_station(int i, int nx) { return i <= 1 || i >= nx - 1; }
+bool end_element(int i, int nx) { return i == 0 || i == nx - 1; }
+long end_stations(int nx) { return std::min(4, nx + 1); }
+
+SectionGrid section_grid(const Deck3dOptions& o, int ny, int nz) {
+  SectionGrid s;
+  s.ny = ny;
+  s.nz = nz;
+  if (!o.box) {  // the solid rectangle, uniform
+    for (int j = 0; j <= ny; ++j) s.y_m.push_back(-0.5 * o.width_m + o.width_m * j / ny);
+    for (int k = 0; k <= nz; ++k) s.z_m.push_back(o.depth_m * k / nz);
+    s.dy_m.assign(static_cast<std::size_t>(ny), o.width_m / ny);
+    s.dz_m.assign(static_cast<std::size_t>(nz), o.depth_m / nz);
+    for (const bool end : {false, true}) {
+      s.concrete[end].assign(static_cast<std::size_t>(ny * nz), 1);
+      s.used[end].assign(static_cast<std::size_t>((ny + 1) * (nz + 1)), 1);
+    }
+    return s;
+  }
+  const BoxGirderSection& b = *o.box;
+  const std::vector<double> half = box_half_widths_m(b), heights = box_heights_m(b);
+  const std::vector<double> out = region_lines(0.0, half, split_cells(half, ny / 2));
+  for (std::size_t m = out.size(); m-- > 1;) s.y_m.push_back(-out[m]);
+  s.y_m.insert(s.y_m.end(), out.begin(), out.end());
+  s.z_m = region_lines(0.0, heights, split_cells(heights, nz));
+  for (int j = 0; j < ny; ++j) s.dy_m.push_back(s.y_m[j + 1] - s.y_m[j]);
+  for (int k = 0; k < nz; ++k) s.dz_m.push_back(s.z_m[k + 1] - s.z_m[k]);
+  for (const bool end : {false, true}) {
+    s.concrete[end].assign(static_cast<std::size_t>(ny * nz), 0);
+    s.used[end].assign(static_cast<std::size_t>((ny + 1) * (nz + 1)), 0);
+  }
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j) {
+      const double y = std::abs(0.5 * (s.y_m[j] + s.y_m[j + 1])), z = 0.5 * (s.z_m[k] + s.z_m[k + 1]);
+      const bool top = z > b.depth_m - b.top_thickness_m, under = y < 0.5 * b.bottom_width_m;
+      const bool web = y > 0.5 * b.bottom_width_m - b.web_thickness_m;
+      for (const bool end : {false, true}) {
+        if (!(top || (under && (end || z < b.bottom_thickness_m || web)))) continue;
+        s.concrete[end][static_cast<std::size_t>(j + ny * k)] = 1;
+        for (int c = 0; c < 4; ++c)
+          s.used[end][static_cast<std::size_t>(j + (c & 1) + (ny + 1) * (k + (c >> 1)))] = 1;
+      }
+    }
+  return s;
 }
 
 double total_length_m(const Deck3dOptions& o) { return std::accumulate(o.spans_m.begin(), o.spans_m.end(), 0.0); }
@@ -74,7 +199,7 @@ long rail_dofs(const Deck3dOptions& o) {
 // (u, v) at the bottom centre of the first end face and a guided one (v) at
 // the bottom centre of the last: three constraints for the three rigid-body
 // motions the vertical supports leave (x, y and rotation about z).
-long fixed_dofs_per_span(int ny) { return 2L * (ny + 1) + 3; }
+long fixed_dofs_per_span(const SectionGrid& s) { return 2L * s.soffit_nodes() + 3; }
 
 // One span's structured grid of nodes.
 struct SpanGrid {
@@ -83,6 +208,7 @@ struct SpanGrid {
   int first_node = 0;
   int node(int i, int j, int k) const { return first_node + i + (nx + 1) * (j + (ny + 1) * k); }
   int num_nodes() const { return (nx + 1) * (ny + 1) * (nz + 1); }
+  // Only for nodes of the section (a box's void has none).
   bool fixed(int i, int j, int k, int c) const {
     if (k != 0) return false;
     const bool end = (i == 0 || i == nx), centre = (j == ny / 2);
@@ -117,24 +243,33 @@ struct CompressedColumns {
   std::vector<double> values;
 };
 
-void append_span_columns(const SpanGrid& g, const Matrix24& Ke, const std::vector<std::array<int, 3>>& node_dofs,
-                         CompressedColumns& out) {
+// cell_K[end][j + ny * k]: the stiffness of the elements of that cell of
+// the section (in an end element or not), null where there is no
+// concrete. Node pairs that share no element get no entry.
+void append_span_columns(const SpanGrid& g, const std::array<std::vector<const Matrix24*>, 2>& cell_K,
+                         const std::vector<std::array<int, 3>>& node_dofs, CompressedColumns& out) {
   const int nn = g.num_nodes();
   std::vector<double> blocks(static_cast<std::size_t>(nn) * 27 * 9, 0.0);
+  std::vector<char> coupled(static_cast<std::size_t>(nn) * 27, 0);
   const auto slot = [](int di, int dj, int dk) { return (dk + 1) * 9 + (dj + 1) * 3 + (di + 1); };
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i)
+      for (int i = 0; i < g.nx; ++i) {
+        const Matrix24* Ke_cell = cell_K[end_element(i, g.nx)][static_cast<std::size_t>(j + g.ny * k)];
+        if (Ke_cell == nullptr) continue;
+        const Matrix24& Ke = *Ke_cell;
         for (int a = 0; a < 8; ++a) {
           const int ai = a & 1, aj = (a >> 1) & 1, ak = (a >> 2) & 1;
           const int na = g.node(i + ai, j + aj, k + ak) - g.first_node;
           for (int b = 0; b < 8; ++b) {
             const int s = slot((b & 1) - ai, ((b >> 1) & 1) - aj, ((b >> 2) & 1) - ak);
+            coupled[static_cast<std::size_t>(na) * 27 + s] = 1;
             double* block = &blocks[(static_cast<std::size_t>(na) * 27 + s) * 9];
             for (int r = 0; r < 3; ++r)
               for (int c = 0; c < 3; ++c) block[r * 3 + c] += Ke(3 * a + r, 3 * b + c);
           }
         }
+    }
   out.inner.reserve(out.inner.size() + static_cast<std::size_t>(nn) * 81);
   out.values.reserve(out.values.size() + static_cast<std::size_t>(nn) * 81);
   for (int k = 0; k <= g.nz; ++k)
@@ -150,9 +285,10 @@ void append_span_columns(const SpanGrid& g, const Matrix24& Ke, const std::vecto
                 if (i + di < 0 || i + di > g.nx || j + dj < 0 || j + dj > g.ny || k + dk < 0 || k + dk > g.nz)
                   continue;
                 const int q = g.node(i + di, j + dj, k + dk);
+                const std::size_t pq = static_cast<std::size_t>(p - g.first_node) * 27 + slot(di, dj, dk);
+                if (!coupled[pq]) continue;
                 // K(q r, p c) = K(p c, q r): block (p, q), row c, column r.
-                const double* block =
-                    &blocks[(static_cast<std::size_t>(p - g.first_node) * 27 + slot(di, dj, dk)) * 9];
+                const double* block = &blocks[pq * 9];
                 for (int r = 0; r < 3; ++r) {
                   const int row = node_dofs[static_cast<std::size_t>(q)][static_cast<std::size_t>(r)];
                   if (row < 0) continue;
@@ -171,15 +307,89 @@ double mesh_aspect(const Deck3dOptions& o, const Deck3dMesh& m) {
     dx_min = std::min(dx_min, o.spans_m[s] / m.nx[s]);
     dx_max = std::max(dx_max, o.spans_m[s] / m.nx[s]);
   }
-  const double dy = o.width_m / m.ny, dz = o.depth_m / m.nz;
-  return std::max({dx_max, dy, dz}) / std::min({dx_min, dy, dz});
+  const SectionGrid s = section_grid(o, m.ny, m.nz);
+  const auto [dy_min, dy_max] = std::minmax_element(s.dy_m.begin(), s.dy_m.end());
+  const auto [dz_min, dz_max] = std::minmax_element(s.dz_m.begin(), s.dz_m.end());
+  return std::max({dx_max, *dy_max, *dz_max}) / std::min({dx_min, *dy_min, *dz_min});
+}
+
+// Saint-Venant torsion constant of a solid rectangle (Timoshenko & Goodier,
+// Theory of Elasticity, 3rd ed., 1970, section 109): with h the
+// shorter side, J = b h^3 / 3 (1 - 192 h / (pi^5 b) sum over odd n of
+// tanh(n pi b / 2h) / n^5).
+double rectangle_torsion_constant_m4(double width_m, double depth_m) {
+  const double b = std::max(width_m, depth_m), h = std::min(width_m, depth_m);
+  double sum = 0.0;
+  for (int n = 1; n < 100; n += 2) sum += std::tanh(n * std::numbers::pi * b / (2.0 * h)) / std::pow(n, 5);
+  return b * std::pow(h, 3) / 3.0 * (1.0 - 192.0 * h / (std::pow(std::numbers::pi, 5) * b) * sum);
 }
 
 }  // namespace
 
+void check_box_girder(const BoxGirderSection& b) {
+  const std::pair<const char*, double> positive[] = {
+      {"top_width_m", b.top_width_m},           {"top_thickness_m", b.top_thickness_m},
+      {"bottom_width_m", b.bottom_width_m},     {"bottom_thickness_m", b.bottom_thickness_m},
+      {"web_thickness_m", b.web_thickness_m},   {"depth_m", b.depth_m}};
+  for (const auto& [key, value] : positive)
+    if (!(value > 0.0 && std::isfinite(value))) throw InputError(fmt::format("/{}", key), "must be > 0");
+  if (!(2.0 * b.web_thickness_m < b.bottom_width_m))
+    throw InputError("/web_thickness_m", fmt::format("two webs of {} m leave no void in a bottom slab {} m wide "
+                                                     "(a web must be thinner than half the bottom width)",
+                                                     b.web_thickness_m, b.bottom_width_m));
+  if (!(b.bottom_width_m <= b.top_width_m))
+    throw InputError("/bottom_width_m", fmt::format("{} m is wider than the top slab ({} m); the webs are vertical "
+                                                    "and stand on the edges of the bottom slab",
+                                                    b.bottom_width_m, b.top_width_m));
+  if (!(b.top_thickness_m + b.bottom_thickness_m < b.depth_m))
+    throw InputError("/depth_m", fmt::format("{} m leaves no web between the slabs ({} m + {} m thick)", b.depth_m,
+                                             b.top_thickness_m, b.bottom_thickness_m));
+}
+
+DeckSectionProperties deck_section_properties(const Deck3dOptions& o) {
+  DeckSectionProperties p;
+  if (!o.box) {
+    p.area_m2 = o.width_m * o.depth_m;
+    p.I_m4 = o.width_m * std::pow(o.depth_m, 3) / 12.0;
+    p.I_lateral_m4 = o.depth_m * std::pow(o.width_m, 3) / 12.0;
+    p.centroid_z_m = 0.5 * o.depth_m;
+    p.torsion_J_m4 = rectangle_torsion_constant_m4(o.width_m, o.depth_m);
+  } else {
+    // Rectangles (width, height, centre z, centre |y|): slabs and webs.
+    const BoxGirderSection& b = *o.box;
+    const double web_h = b.depth_m - b.top_thickness_m - b.bottom_thickness_m;
+    const double web_y = 0.5 * (b.bottom_width_m - b.web_thickness_m);
+    const std::array<std::array<double, 4>, 4> parts{{
+        {b.top_width_m, b.top_thickness_m, b.depth_m - 0.5 * b.top_thickness_m, 0.0},
+        {b.bottom_width_m, b.bottom_thickness_m, 0.5 * b.bottom_thickness_m, 0.0},
+        {b.web_thickness_m, web_h, b.bottom_thickness_m + 0.5 * web_h, web_y},
+        {b.web_thickness_m, web_h, b.bottom_thickness_m + 0.5 * web_h, -web_y}}};
+    double first_moment = 0.0;
+    for (const auto& [w, h, z, y] : parts) {
+      p.area_m2 += w * h;
+      first_moment += w * h * z;
+    }
+    p.centroid_z_m = first_moment / p.area_m2;
+    for (const auto& [w, h, z, y] : parts) {
+      p.I_m4 += w * std::pow(h, 3) / 12.0 + w * h * std::pow(z - p.centroid_z_m, 2);
+      p.I_lateral_m4 += h * std::pow(w, 3) / 12.0 + w * h * y * y;
+    }
+    // Bredt: the mid-lines of the slabs and webs enclose a rectangle.
+    const double cell_w = b.bottom_width_m - b.web_thickness_m;
+    const double cell_h = b.depth_m - 0.5 * (b.top_thickness_m + b.bottom_thickness_m);
+    const double s_over_t = 2.0 * cell_h / b.web_thickness_m + cell_w / b.top_thickness_m + cell_w / b.bottom_thickness_m;
+    p.torsion_J_m4 = 4.0 * std::pow(cell_w * cell_h, 2) / s_over_t;
+  }
+  p.polar_m4 = p.I_m4 + p.I_lateral_m4;
+  return p;
+}
+
 long deck_3d_dofs(const Deck3dOptions& o, const Deck3dMesh& m) {
   long n = rail_dofs(o);
-  for (const int nx : m.nx) n += 3L * (nx + 1) * (m.ny + 1) * (m.nz + 1) - fixed_dofs_per_span(m.ny);
+  const SectionGrid s = section_grid(o, m.ny, m.nz);
+  for (const int nx : m.nx)
+    n += 3L * ((nx + 1) * s.nodes(false) + end_stations(nx) * (s.nodes(true) - s.nodes(false))) -
+         fixed_dofs_per_span(s);
   return n;
 }
 
@@ -194,16 +404,17 @@ Deck3dMesh choose_deck_3d_mesh(const Deck3dOptions& o) {
   // of the target, the one with the most cubic elements.
   Deck3dMesh best;
   double best_error = 1e300, best_aspect = 1e300;
-  for (int nz = 1; nz <= 1000; ++nz) {
+  for (int nz = min_nz(o); nz <= 1000; ++nz) {
     bool reachable = false;
-    for (int ny = 2; o.width_m / ny >= 0.25 * o.depth_m / nz; ny += 2) {
+    for (int ny = min_ny(o); deck_width_m(o) / ny >= 0.25 * deck_depth_m(o) / nz; ny += 2) {
       Deck3dMesh m{std::vector<int>(o.spans_m.size(), 2), ny, nz};
       if (static_cast<double>(deck_3d_dofs(o, m)) > 1.05 * target) break;  // finer sections only grow
       reachable = true;
-      const double per_station = 3.0 * (ny + 1) * (nz + 1);
-      const double stations = (target - rail_dofs(o) + spans * fixed_dofs_per_span(ny)) / per_station;
+      const SectionGrid section = section_grid(o, ny, nz);
+      const double per_station = 3.0 * static_cast<double>(section.nodes(false));
+      const double stations = (target - rail_dofs(o) + spans * fixed_dofs_per_span(section)) / per_station;
       for (std::size_t s = 0; s < o.spans_m.size(); ++s)
-        m.nx[s] = std::max(2, 2 * static_cast<int>(std::lround((stations - spans) * o.spans_m[s] / total / 2.0)));
+        m.nx[s] = std::max(std::max(2, min_nx(o)), 2 * static_cast<int>(std::lround((stations - spans) * o.spans_m[s] / total / 2.0)));
       const double error = std::abs(static_cast<double>(deck_3d_dofs(o, m)) - target) / target;
       const double aspect = mesh_aspect(o, m);
       const bool better = (error <= 0.01 && (best_error > 0.01 || aspect < best_aspect)) ||
@@ -229,6 +440,7 @@ Deck3d make_deck_3d(const Deck3dOptions& o) {
   Deck3d out;
   out.mesh = choose_deck_3d_mesh(o);
   const Deck3dMesh& mesh = out.mesh;
+  const SectionGrid section = section_grid(o, mesh.ny, mesh.nz);
   const double total = total_length_m(o);
   const int n_total = static_cast<int>(deck_3d_dofs(o, mesh));
 
@@ -241,10 +453,12 @@ Deck3d make_deck_3d(const Deck3dOptions& o) {
     for (int k = 0; k <= g.nz; ++k)
       for (int j = 0; j <= g.ny; ++j)
         for (int i = 0; i <= g.nx; ++i) {
-          out.node_m.push_back({x0 + g.length_m * i / g.nx, -0.5 * o.width_m + o.width_m * j / g.ny,
-                                o.depth_m * k / g.nz});
+          out.node_m.push_back({x0 + g.length_m * i / g.nx, section.y_m[static_cast<std::size_t>(j)],
+                                section.z_m[static_cast<std::size_t>(k)]});
           std::array<int, 3> dofs{};
-          for (int c = 0; c < 3; ++c) dofs[static_cast<std::size_t>(c)] = g.fixed(i, j, k, c) ? -1 : next_dof++;
+          for (int c = 0; c < 3; ++c)
+            dofs[static_cast<std::size_t>(c)] =
+                (!section.node(j, k, end_station(i, g.nx)) || g.fixed(i, j, k, c)) ? -1 : next_dof++;
           out.node_dofs.push_back(dofs);
         }
     grids.push_back(g);
@@ -258,9 +472,44 @@ Deck3d make_deck_3d(const Deck3dOptions& o) {
   kd.outer.reserve(static_cast<std::size_t>(n_total) + 1);
   std::vector<Triplet> m_deck;
   for (const SpanGrid& g : grids) {
-    const double dx = g.length_m / g.nx, dy = o.width_m / g.ny, dz = o.depth_m / g.nz;
-    append_span_columns(g, hex8_box_stiffness(o.E_Pa, o.poisson, dx, dy, dz), out.node_dofs, kd);
-    // Each element's mass in equal eighths on its corners.
+    const double dx = g.length_m / g.nx;
+    // One element stiffness per cell size (the solid section: one in all).
+    std::vector<std::pair<std::array<double, 2>, Matrix24>> by_size;
+    std::array<std::vector<const Matrix24*>, 2> cell_K;
+    by_size.reserve(static_cast<std::size_t>(g.ny * g.nz));
+    for (const bool end : {false, true}) {
+      cell_K[end].assign(static_cast<std::size_t>(g.ny * g.nz), nullptr);
+      for (int k = 0; k < g.nz; ++k)
+        for (int j = 0; j < g.ny; ++j) {
+          if (!section.cell(j, k, end)) continue;
+          const std::array<double, 2> size{section.dy_m[static_cast<std::size_t>(j)],
+                                           section.dz_m[static_cast<std::size_t>(k)]};
+          auto it = std::find_if(by_size.begin(), by_size.end(), [&](const auto& e) { return e.first == size; });
+          if (it == by_size.end())
+            it = by_size.emplace(by_size.end(), size, hex8_box_stiffness(o.E_Pa, o.poisson, dx, size[0], size[1]));
+          cell_K[end][static_cast<std::size_t>(j + g.ny * k)] = &it->second;
+        }
+    }
+    append_span_columns(g, cell_K, out.node_dofs, kd);
+    if (o.box) {
+      // Each element's mass in equal eighths on its corners.
+      std::vector<double> node_mass(static_cast<std::size_t>(g.num_nodes()), 0.0);
+      for (int k = 0; k < g.nz; ++k)
+        for (int j = 0; j < g.ny; ++j)
+          for (int i = 0; i < g.nx; ++i)
+            if (section.cell(j, k, end_element(i, g.nx)))
+              for (int a = 0; a < 8; ++a)
+                node_mass[static_cast<std::size_t>(g.node(i + (a & 1), j + ((a >> 1) & 1), k + (a >> 2)) -
+                                                   g.first_node)] +=
+                    o.density_kg_per_m3 * dx * section.dy_m[static_cast<std::size_t>(j)] *
+                    section.dz_m[static_cast<std::size_t>(k)] / 8.0;
+      for (int p = 0; p < g.num_nodes(); ++p)
+        for (const int d : out.node_dofs[static_cast<std::size_t>(g.first_node + p)])
+          if (d >= 0) m_deck.emplace_back(d, d, node_mass[static_cast<std::size_t>(p)]);
+      continue;
+    }
+    // Solid: every node's elements are equal, eighths of each on its corners.
+    const double dy = o.width_m / g.ny, dz = o.depth_m / g.nz;
     const double eighth = o.density_kg_per_m3 * dx * dy * dz / 8.0;
     for (int k = 0; k <= g.nz; ++k)
       for (int j = 0; j <= g.ny; ++j)
@@ -280,10 +529,20 @@ Deck3d make_deck_3d(const Deck3dOptions& o) {
   std::vector<RailLine> rails;
   const std::vector<double> rx = rail_node_x(o);
   const auto top_point = [&](const SpanGrid& g, double x, double y, double share) {
-    const double fx = (x - g.x0_m) / (g.length_m / g.nx), fy = (y + 0.5 * o.width_m) / (o.width_m / g.ny);
+    const double fx = (x - g.x0_m) / (g.length_m / g.nx);
     const int i = std::clamp(static_cast<int>(std::floor(fx)), 0, g.nx - 1);
-    const int j = std::clamp(static_cast<int>(std::floor(fy)), 0, g.ny - 1);
-    const double xi = fx - i, eta = fy - j;
+    int j = 0;
+    double eta = 0.0;
+    if (o.box) {  // lines at the plate faces, uneven
+      const auto above = std::upper_bound(section.y_m.begin(), section.y_m.end(), y);
+      j = std::clamp(static_cast<int>(above - section.y_m.begin()) - 1, 0, g.ny - 1);
+      eta = (y - section.y_m[static_cast<std::size_t>(j)]) / section.dy_m[static_cast<std::size_t>(j)];
+    } else {
+      const double fy = (y + 0.5 * o.width_m) / (o.width_m / g.ny);
+      j = std::clamp(static_cast<int>(std::floor(fy)), 0, g.ny - 1);
+      eta = fy - j;
+    }
+    const double xi = fx - i;
     std::vector<std::pair<int, double>> w;
     for (int b = 0; b < 4; ++b) {
       const double weight = ((b & 1) ? xi : 1.0 - xi) * ((b & 2) ? eta : 1.0 - eta);
@@ -332,8 +591,11 @@ Deck3d make_deck_3d(const Deck3dOptions& o) {
 
   // ---- damping: Rayleigh on the deck at its beam-theory first bending
   // frequency and max(30 Hz, f3), as bridge-2d; the pads have their dashpots.
-  out.section_area_m2 = o.width_m * o.depth_m;
-  out.section_I_m4 = o.width_m * std::pow(o.depth_m, 3) / 12.0;
+  const DeckSectionProperties props = deck_section_properties(o);
+  out.section_area_m2 = props.area_m2;
+  out.section_I_m4 = props.I_m4;
+  out.section_J_m4 = props.torsion_J_m4;
+  out.section_polar_m4 = props.polar_m4;
   const double longest = *std::max_element(o.spans_m.begin(), o.spans_m.end());
   const double f1 = simply_supported_frequency_hz(longest, o.E_Pa * out.section_I_m4,
                                                    o.density_kg_per_m3 * out.section_area_m2);

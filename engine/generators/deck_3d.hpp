@@ -1,6 +1,7 @@
 #pragma once
 // Generator of a 3D deck at the scale of a commercial finite-element model:
-// simply supported spans of solid concrete (8-node hexahedra, lumped mass),
+// simply supported spans of concrete (8-node hexahedra, lumped mass), of a
+// solid rectangular section or a single-cell box girder,
 // carrying rails on pads (direct fastening: no sleepers, no ballast). The
 // rails continue over approach and exit lengths on rigid ground, so a long
 // train can start on the track. The mesh is refined to a requested number
@@ -18,19 +19,40 @@
 
 namespace railvsi {
 
-// Elements along x of each span, across the width, through the depth.
+// Elements along x of each span, across the width, through the depth. For a
+// box girder, the ny x nz grid has lines on every slab and web face (ny
+// even, a line on the centreline) and only its cells inside the plates are
+// elements.
 struct Deck3dMesh {
   std::vector<int> nx;
   int ny = 2;
   int nz = 1;
 };
 
+// A single-cell box girder, symmetric about the deck centreline: vertical
+// webs whose outer faces are the edges of the bottom slab, a top slab
+// across the full width (overhanging the webs by the difference), and a
+// solid diaphragm in the end element of each span (one element, L / nx
+// thick; without it the end sections would rack freely). The
+// defaults are an illustrative section, not a design: A = 4.51 m^2,
+// I = 2.60 m^4, Bredt's J = 5.95 m^4, polar moment 19.9 m^4.
+struct BoxGirderSection {
+  double top_width_m = 7.0;
+  double top_thickness_m = 0.3;
+  double bottom_width_m = 5.0;  // outer face to outer face of the webs
+  double bottom_thickness_m = 0.25;
+  double web_thickness_m = 0.4;
+  double depth_m = 2.0;  // soffit to top of the top slab
+};
+
 struct Deck3dOptions {
   std::vector<double> spans_m{25.0, 25.0, 25.0};
   // Solid rectangular section: with the defaults EI = 8.1e10 N*m^2,
-  // 28 t/m, first bending frequency 4.3 Hz at 25 m.
+  // 28 t/m, first bending frequency 4.3 Hz at 25 m. Not used when `box`
+  // is given.
   double width_m = 7.0;
   double depth_m = 1.6;
+  std::optional<BoxGirderSection> box;
   double E_Pa = 34.0e9;                  // C35/45, EN 1992-1-1 Table 3.1 (Ecm)
   double poisson = 0.2;                  // EN 1992-1-1 3.1.3(4), uncracked
   double density_kg_per_m3 = 2500.0;     // reinforced concrete, EN 1991-1-1 Table A.1
@@ -56,12 +78,35 @@ struct Deck3dOptions {
 struct Deck3d {
   std::shared_ptr<const StructureModel> model;
   Deck3dMesh mesh;
-  // Deck nodes, span by span: position (x, y, z) and DOFs (u, v, w; -1 fixed).
+  // Deck nodes, span by span, on the full ny x nz grid: position (x, y, z)
+  // and DOFs (u, v, w; -1 fixed, or all -1 for a node in a box's void).
   std::vector<std::array<double, 3>> node_m;
   std::vector<std::array<int, 3>> node_dofs;
+  // The section as modelled (deck_section_properties).
   double section_area_m2 = 0.0;
-  double section_I_m4 = 0.0;  // about the horizontal centroidal axis
+  double section_I_m4 = 0.0;      // about the horizontal centroidal axis
+  double section_J_m4 = 0.0;      // St Venant torsion constant
+  double section_polar_m4 = 0.0;  // polar moment about the centroid
 };
+
+// Of the section as modelled (gross concrete, the rails not included).
+struct DeckSectionProperties {
+  double area_m2 = 0.0;
+  double I_m4 = 0.0;         // about the horizontal centroidal axis (vertical bending)
+  double I_lateral_m4 = 0.0; // about the vertical axis (lateral bending)
+  double polar_m4 = 0.0;     // I_m4 + I_lateral_m4: rho * polar_m4 is the torsional inertia per metre
+  double centroid_z_m = 0.0; // above the soffit
+  // St Venant torsion constant: for the box, Bredt's J = 4 A_m^2 / (sum of
+  // s/t over the plates' mid-lines), A_m the area they enclose (Bredt
+  // 1896; Timoshenko & Goodier, Theory of Elasticity, 3rd ed., 1970,
+  // section 115); for the rectangle, the series of Timoshenko & Goodier
+  // section 109.
+  double torsion_J_m4 = 0.0;
+};
+
+DeckSectionProperties deck_section_properties(const Deck3dOptions& options);
+// Checks the box alone; InputError paths relative to it ("/web_thickness_m").
+void check_box_girder(const BoxGirderSection& box);
 
 // Throws InputError (paths relative to the options, e.g. "/target_dofs") on
 // bad options or a target out of reach.

@@ -10,6 +10,8 @@
 #include "cli/commands.hpp"
 #include "core/input_error.hpp"
 #include "generators/deck_3d.hpp"
+#include "io/deck_section_loader.hpp"
+#include "io/json_document.hpp"
 #include "io/structure_export.hpp"
 
 namespace railvsi::cli {
@@ -72,8 +74,8 @@ GenerateCommand::GenerateCommand(CLI::App& app) {
                                              "with example scenes");
   generate_->require_subcommand(1);
   CLI::App* deck = generate_->add_subcommand(
-      "deck-3d", "Simply supported spans of solid concrete (8-node hexahedra) with two rails on pads, refined to a "
-                 "number of DOFs; writes K.mtx, M.mtx, C.mtx, map.json, moving-forces.json, multibody.json");
+      "deck-3d", "Simply supported concrete spans (8-node hexahedra; solid, or a box girder with --section) with two "
+                 "rails on pads, refined to a number of DOFs; writes K.mtx, M.mtx, C.mtx, map.json, moving-forces.json, multibody.json");
   deck->add_option("--dofs", args_.dofs,
                    "Total DOFs (deck and rails) the mesh is refined to, within 5 % (the paper's size is 233,292)")
       ->required()
@@ -85,6 +87,9 @@ GenerateCommand::GenerateCommand(CLI::App& app) {
   deck->add_option("--approach", args_.approach_m, "Track on rigid ground before the bridge in m (holds the train "
                                                   "at the start)")
       ->capture_default_str();
+  deck->add_option("--section", args_.section_file,
+                   "Deck section document (schemas/deck-section.schema.json): a solid rectangle or a box girder; "
+                   "default the solid 7 m x 1.6 m");
 }
 
 std::optional<int> GenerateCommand::run_parsed() const {
@@ -105,6 +110,7 @@ int generate_deck_3d_command(const GenerateArgs& args) {
   o.target_dofs = static_cast<int>(std::min<long>(args.dofs, 1L << 30));
   o.spans_m = args.spans_m;
   o.approach_m = args.approach_m;
+  if (!args.section_file.empty()) apply_deck_section_document(read_json_file(args.section_file), args.section_file, o);
   const Deck3d deck = [&] {
     try {
       return make_deck_3d(o);
@@ -114,9 +120,11 @@ int generate_deck_3d_command(const GenerateArgs& args) {
   }();
   const StructureModel& model = *deck.model;
   const std::string summary =
-      fmt::format("{} DOFs: {} spans of {} m x {} m solid concrete, {} x {} x {} hexahedra per span, two rails on pads",
-                  model.num_dofs(), o.spans_m.size(), o.width_m, o.depth_m, deck.mesh.nx.front(), deck.mesh.ny,
-                  deck.mesh.nz);
+      fmt::format("{} DOFs: {} spans of {}, {} x {} x {} hexahedra per span, two rails on pads", model.num_dofs(),
+                  o.spans_m.size(),
+                  o.box ? fmt::format("a concrete box girder {} m wide, {} m deep", o.box->top_width_m, o.box->depth_m)
+                        : fmt::format("{} m x {} m solid concrete", o.width_m, o.depth_m),
+                  deck.mesh.nx.front(), deck.mesh.ny, deck.mesh.nz);
   std::vector<FileToWrite> files = structure_files(model);
   for (const auto& [name, scene] : {std::pair{"moving-forces.json", moving_force_scene(model, summary)},
                                     std::pair{"multibody.json", multibody_scene(model, summary)}})
@@ -128,6 +136,12 @@ int generate_deck_3d_command(const GenerateArgs& args) {
                       {"deck_dofs", model.info().deck_dofs},
                       {"rail_dofs", model.info().track_dofs},
                       {"mesh", {{"nx", deck.mesh.nx}, {"ny", deck.mesh.ny}, {"nz", deck.mesh.nz}}},
+                      {"section",
+                       {{"kind", o.box ? "box" : "solid"},
+                        {"area_m2", deck.section_area_m2},
+                        {"I_m4", deck.section_I_m4},
+                        {"J_m4", deck.section_J_m4},
+                        {"polar_m4", deck.section_polar_m4}}},
                       {"first_frequency_hz", model.info().first_frequency_hz},
                       {"files", ordered_json::array()}};
   for (const FileToWrite& f : files) out["files"].push_back(f.name);

@@ -15,6 +15,7 @@ struct GenerateArgs {
   std::string out_dir;
   std::vector<double> spans_m{25.0, 25.0, 25.0};
   double approach_m = 400.0;
+  std::string section_file;  // a deck-section document; empty: the solid default
 };
 
 class GenerateCommand {

@@ -126,5 +126,48 @@ TEST_F(Generate, Deck3dRefusesASizeTheRailsAloneExceedAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(out()));
 }
 
+TEST_F(Generate, Deck3dBuildsTheBoxGirderOfASectionDocument) {
+  const json box = {{"$schema", "deck-section.schema.json"}, {"kind", "box"},          {"top_width_m", 7.0},
+                    {"top_thickness_m", 0.3},                {"bottom_width_m", 5.0},   {"bottom_thickness_m", 0.25},
+                    {"web_thickness_m", 0.4},                {"depth_m", 2.0}};
+  std::ofstream(dir_ / "box.json") << box.dump(2);
+  const VsiRun run = generate("--dofs 8000 --spans 25 --approach 10 --section '" + (dir_ / "box.json").string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json summary = json::parse(run.out);
+  EXPECT_EQ(summary["section"]["kind"], "box");
+  EXPECT_NEAR(summary["section"]["area_m2"].get<double>(), 4.51, 1e-12);  // 7 x 0.3 + 5 x 0.25 + 2 x 0.4 x 1.45
+  EXPECT_NEAR(summary["dofs"].get<double>(), 8000.0, 400.0);
+  Deck3dOptions o;
+  o.box = BoxGirderSection{7.0, 0.3, 5.0, 0.25, 0.4, 2.0};
+  o.target_dofs = 8000;
+  o.spans_m = {25.0};
+  o.approach_m = 10.0;
+  EXPECT_EQ(summary["dofs"].get<int>(), make_deck_3d(o).model->num_dofs());
+}
+
+TEST_F(Generate, Deck3dRefusesABadSectionNamingTheFileAndPath) {
+  const auto refused = [&](const json& section) {
+    std::ofstream(dir_ / "section.json") << section.dump(2);
+    const VsiRun run = generate("--dofs 8000 --spans 25 --approach 10 --section '" + (dir_ / "section.json").string() + "'");
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_EQ(run.out, "");
+    EXPECT_FALSE(std::filesystem::exists(out()));
+    EXPECT_NE(run.err.find("section.json"), std::string::npos) << run.err;
+    return run.err;
+  };
+  json box = {{"kind", "box"},           {"top_width_m", 7.0},     {"top_thickness_m", 0.3}, {"bottom_width_m", 5.0},
+              {"bottom_thickness_m", 0.25}, {"web_thickness_m", 2.6}, {"depth_m", 2.0}};
+  EXPECT_NE(refused(box).find("/web_thickness_m: two webs of 2.6 m leave no void"), std::string::npos);
+  box["web_thickness_m"] = 0.4;
+  box["width_m"] = 7.0;  // a key of the solid section
+  EXPECT_NE(refused(box).find("/width_m"), std::string::npos);
+  box.erase("width_m");
+  box.erase("depth_m");
+  EXPECT_NE(refused(box).find("depth_m"), std::string::npos);
+  EXPECT_NE(refused({{"kind", "solid"}, {"width_m", 7.0}, {"depth_m", 1.6}, {"web_thickness_m", 0.4}})
+                .find("/web_thickness_m"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace railvsi::test

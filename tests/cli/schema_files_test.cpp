@@ -86,7 +86,8 @@ TEST(SchemaFiles, EveryPropertyHasADescription) {
 
 TEST(SchemaFiles, EveryDocumentSchemaLoadsWithItsReferences) {
   for (const char* name : {"scene.schema.json", "train.schema.json", "irregularity.schema.json",
-                           "structure-map.schema.json", "structure.schema.json", "analysis.schema.json"})
+                           "structure-map.schema.json", "structure.schema.json", "analysis.schema.json",
+                           "deck-section.schema.json"})
     EXPECT_NO_THROW(SchemaValidator{name}) << name;
 }
 
