@@ -96,6 +96,13 @@ StaticInfluence::StaticInfluence(const StructureModel& structure, std::vector<in
       area[i] = area[i - 1] + positive_gauss(h, grid_x_m_[i - 1], grid_x_m_[i]);
     grid_area_.push_back(std::move(area));
   }
+  for (std::size_t f = 0; f < forms_.forms.size(); ++f) {
+    const auto h = [&](double x) { return unit_form_value(static_cast<int>(f), x); };
+    std::vector<double> area(grid_x_m_.size(), 0.0);
+    for (std::size_t i = 1; i < grid_x_m_.size(); ++i)
+      area[i] = area[i - 1] + positive_gauss(h, grid_x_m_[i - 1], grid_x_m_[i]);
+    grid_form_area_.push_back(std::move(area));
+  }
 }
 
 double StaticInfluence::unit_deflection(int k, double x_m) const {
@@ -230,12 +237,16 @@ double StaticInfluence::rails_start_m() const { return grid_x_m_.front(); }
 double StaticInfluence::rails_end_m() const { return grid_x_m_.back(); }
 
 double StaticInfluence::positive_area_to(int k, double x_m) const {
-  const auto& area = grid_area_[static_cast<std::size_t>(k)];
+  return positive_area_to([&](double x) { return unit_deflection(k, x); }, grid_area_[static_cast<std::size_t>(k)],
+                          x_m);
+}
+
+double StaticInfluence::positive_area_to(const std::function<double(double)>& h, const std::vector<double>& area,
+                                         double x_m) const {
   if (x_m <= grid_x_m_.front()) return 0.0;
   if (x_m >= grid_x_m_.back()) return area.back();
   const auto it = std::upper_bound(grid_x_m_.begin(), grid_x_m_.end(), x_m);
   const std::size_t i = static_cast<std::size_t>(it - grid_x_m_.begin()) - 1;
-  const auto h = [&](double x) { return unit_deflection(k, x); };
   return area[i] + positive_gauss(h, grid_x_m_[i], x_m);
 }
 
@@ -253,17 +264,27 @@ StaticEnvelope StaticInfluence::train_envelope(int k, const std::vector<MovingFo
 }
 
 LoadModel71Result StaticInfluence::lm71(int k, const LoadModel71& lm) const {
+  return lm71_of([&](double x) { return unit_deflection(k, x); }, grid_area_[static_cast<std::size_t>(k)], lm);
+}
+
+LoadModel71Result StaticInfluence::lm71_form(int form, const LoadModel71& lm) const {
+  return lm71_of([&](double x) { return unit_form_value(form, x); }, grid_form_area_[static_cast<std::size_t>(form)],
+                 lm);
+}
+
+LoadModel71Result StaticInfluence::lm71_of(const std::function<double(double)>& h, const std::vector<double>& area,
+                                           const LoadModel71& lm) const {
   const double group_m = lm.point_spacing_m * (lm.point_loads - 1);
-  const double total_area = grid_area_[static_cast<std::size_t>(k)].back();
-  const auto deflection = [&](double a) {
+  const double total_area = area.back();
+  const auto effect = [&](double a) {
     double w = 0.0;
-    for (int j = 0; j < lm.point_loads; ++j) w += lm.point_load_N * unit_deflection(k, a + j * lm.point_spacing_m);
-    const double window = positive_area_to(k, a + group_m + lm.clear_distance_m) -
-                          positive_area_to(k, a - lm.clear_distance_m);
+    for (int j = 0; j < lm.point_loads; ++j) w += lm.point_load_N * h(a + j * lm.point_spacing_m);
+    const double window = positive_area_to(h, area, a + group_m + lm.clear_distance_m) -
+                          positive_area_to(h, area, a - lm.clear_distance_m);
     return w + lm.distributed_N_per_m * (total_area - window);
   };
   const double step = (grid_x_m_[1] - grid_x_m_[0]);
-  const auto [a, value] = maximize(deflection, rails_start_m() - group_m, rails_end_m(), step);
+  const auto [a, value] = maximize(effect, rails_start_m() - group_m, rails_end_m(), step);
   return {value, a};
 }
 

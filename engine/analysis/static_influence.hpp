@@ -8,6 +8,7 @@
 //
 // Sign convention: loads act downward, deflections are reported downward
 // positive (the magnitude a designer compares with a limit).
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -93,10 +94,18 @@ class StaticInfluence {
   // the point-load group anywhere on the rails, q_vk wherever the influence
   // line is downward except within the clear distance of the group.
   LoadModel71Result lm71(int k, const LoadModel71& lm = {}) const;
+  // The same for section form f (its largest positive value: sagging moment,
+  // positive shear, upward reaction), the distributed load wherever f's
+  // influence line is positive. `max_deflection_m` then holds f's value.
+  LoadModel71Result lm71_form(int form, const LoadModel71& lm = {}) const;
 
  private:
   // Integral of max(unit_deflection, 0) from the start of the rails to x.
   double positive_area_to(int k, double x_m) const;
+  // The same for any influence line h with its cumulative grid area.
+  double positive_area_to(const std::function<double(double)>& h, const std::vector<double>& area, double x_m) const;
+  LoadModel71Result lm71_of(const std::function<double(double)>& h, const std::vector<double>& area,
+                            const LoadModel71& lm) const;
   double form_value_at(std::size_t form, const RailContactRow& row, const DeckPoint& on_deck) const;
   double rails_start_m() const;
   double rails_end_m() const;
@@ -109,6 +118,7 @@ class StaticInfluence {
   // Cumulative positive area at the grid x (per output point).
   std::vector<double> grid_x_m_;
   std::vector<std::vector<double>> grid_area_;
+  std::vector<std::vector<double>> grid_form_area_;  // per section form
 };
 
 }  // namespace railvsi

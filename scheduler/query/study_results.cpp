@@ -29,12 +29,14 @@ void bind_filter(Statement& s, const QueryFilter& f) {
 
 }  // namespace
 
-std::optional<double> JobResult::overall(const std::string& quantity) const {
+std::optional<double> JobResult::value(const std::string& quantity, const std::string& location) const {
   const auto q = envelopes.find(quantity);
   if (q == envelopes.end()) return std::nullopt;
-  const auto v = q->second.find("");
+  const auto v = q->second.find(location);
   return v == q->second.end() ? std::nullopt : v->second;
 }
+
+std::optional<double> JobResult::overall(const std::string& quantity) const { return value(quantity, ""); }
 
 std::optional<double> JobResult::error_estimate(const std::string& quantity, const std::string& location) const {
   const auto q = error_estimates.find(quantity);

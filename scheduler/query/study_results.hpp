@@ -43,6 +43,8 @@ struct JobResult {
   bool has_warnings() const { return !warnings.empty() && warnings != "[]"; }
   // quantity -> location ("" for the whole job) -> value (nullopt: not produced)
   std::map<std::string, std::map<std::string, std::optional<double>>> envelopes;
+  // The stored value of quantity at location ("" overall), if any.
+  std::optional<double> value(const std::string& quantity, const std::string& location) const;
   std::optional<double> overall(const std::string& quantity) const;
   // quantity -> location -> error estimate of the value (study_verification);
   // only values that have one.
