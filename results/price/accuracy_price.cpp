@@ -11,6 +11,7 @@
 #include <mutex>
 #include <thread>
 
+#include "planning/time_step_warnings.hpp"
 #include "solver/modal_basis.hpp"
 #include "core/input_error.hpp"
 #include "envelopes/code_filter.hpp"
@@ -177,6 +178,14 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
       row.cpu_s = cpu_s + row.setup_cpu_s;
       row.wall_s = wall_s + op.wall_s + basis.wall_s;
       row.steps = result.summary.steps;
+      // The run's health warnings, and those of its dt against the policy
+      // (as vsi simulate adds them; the exact modal rung's dt only samples).
+      std::vector<RunWarning> warnings = result.summary.warnings;
+      if (result.summary.fidelity.solver_path != "modal-exact")
+        for (RunWarning& w : time_step_warnings(s, report.cutoff_hz)) warnings.push_back(std::move(w));
+      for (const RunWarning& w : warnings)
+        if (std::find(row.warnings.begin(), row.warnings.end(), w.code) == row.warnings.end())
+          row.warnings.push_back(w.code);
       const JobEnvelopes e = compute_envelopes(result, s.analysis.dt_s, s.analysis.history_stride, report.cutoff_hz);
       row.status = e.status;
       row.message = e.message.empty() ? result.status.message() : e.message;

@@ -29,6 +29,7 @@ struct PriceRow {
   // shared part.
   double cpu_s = 0.0, wall_s = 0.0, setup_cpu_s = 0.0;
   std::optional<double> cpu_predicted_s;  // cost_model, before the run
+  std::vector<std::string> warnings;      // the run's health warning codes (run.warnings), each once
   std::map<std::string, std::optional<double>> values;  // by price_quantities(); absent: none
   std::map<std::string, std::optional<double>> errors;  // signed relative to the reference, fractions
   bool ok() const { return status == "ok"; }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
@@ -92,6 +93,7 @@ ordered_json price_json(const PriceReport& p) {
     j["wall_s"] = r.wall_s;
     j["setup_cpu_s"] = r.setup_cpu_s;
     j["cpu_predicted_s"] = number(r.cpu_predicted_s);
+    j["warnings"] = r.warnings;
     j["values"] = quantity_map(r.values);
     j["errors"] = quantity_map(r.errors);
     ordered_json front = ordered_json::array();
@@ -212,7 +214,7 @@ std::string csv_header(bool with_job) {
   std::string h = with_job ? "job," : "";
   h += "model,structure,contact_law,modes,dt_s,status,steps,cpu_s,cpu_predicted_s,wall_s,reference";
   for (std::string_view q : price_quantities()) h += fmt::format(",{0},error_{0},pareto_{0}", q);
-  return h + '\n';
+  return h + ",warnings\n";
 }
 
 std::string csv_value(std::optional<double> v) { return v && std::isfinite(*v) ? fmt::format("{:.17g}", *v) : ""; }
@@ -233,7 +235,7 @@ std::string price_csv(const PriceReport& p, const std::string& job) {
       o << ',' << csv_value(v) << ',' << csv_value(e) << ','
         << (std::find(front.begin(), front.end(), i) != front.end() ? 1 : 0);
     }
-    o << '\n';
+    o << ',' << fmt::format("{}", fmt::join(r.warnings, ";")) << '\n';
   }
   return o.str();
 }

@@ -61,7 +61,7 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
     }
   }();
   // The time-step policy is the FE rung's (HHT period error): the modal rung's dt only samples.
-  if (result.summary.fidelity.modes == 0)
+  if (result.summary.fidelity.solver_path != "modal-exact")
     for (RunWarning& w : time_step_warnings(scene, cutoff)) extra.push_back(std::move(w));
   for (RunWarning& w : extra) result.summary.warnings.push_back(std::move(w));
   const RunFrame frame = run_frame(scene, cutoff);

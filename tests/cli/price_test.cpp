@@ -99,7 +99,14 @@ TEST_F(Price, ErrorsAgreeWithIndependentSimulateRuns) {
     const auto file = write_json("rung.json", rung_document(doc, row));
     const VsiRun sim = vsi("simulate " + file.string());
     ASSERT_EQ(sim.exit_code, 0) << sim.err;
-    simulated[i] = simulate_values(json::parse(sim.out));
+    const json sim_out = json::parse(sim.out);
+    simulated[i] = simulate_values(sim_out);
+    // The row's warning codes are the run's, each once.
+    std::vector<std::string> codes;
+    for (const json& w : sim_out.at("run").at("warnings"))
+      if (std::find(codes.begin(), codes.end(), w.at("code").get<std::string>()) == codes.end())
+        codes.push_back(w.at("code").get<std::string>());
+    EXPECT_EQ(row.at("warnings").get<std::vector<std::string>>(), codes) << row.dump();
     if (row.at("contact_law") == "hertz" && row.at("dt_s") == ref.at("dt_s")) ref_row = i;
   }
   ASSERT_TRUE(ref_row.has_value());
