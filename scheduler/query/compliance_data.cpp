@@ -515,6 +515,22 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       for (int f : {forms.points[k].moment_left, forms.points[k].moment_right})
         if (f >= 0) lm71_moment_Nm[k] = std::max(lm71_moment_Nm[k], influence->lm71_form(f).max_deflection_m);
     bool moment_partial = false;
+    // The largest stored value of a quantity at a point over a train's jobs;
+    // all: every job stored one.
+    struct Dynamic {
+      double value = -1.0;
+      const JobResult* job = nullptr;
+      bool all = true;
+    };
+    const auto dynamic_max = [&](const std::string& train, const char* quantity, const std::string& point) {
+      Dynamic d;
+      for (const JobResult* j : by_train[train]) {
+        const std::optional<double> v = j->value(quantity, point);
+        if (!v) d.all = false;
+        else if (*v > d.value) d.value = *v, d.job = j;
+      }
+      return d;
+    };
     for (const std::string& t : train_order) {
       const std::vector<MovingForce> axles = axle_loads(scenes.at(t).train);
       const StaticSectionEnvelope section_stat =
@@ -523,75 +539,40 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       const JobResult* gov_job = nullptr;
       std::string gov_point;
       bool missing = false;
+      // One load effect at one point: (1 + phi'dyn + phi''/2) x static
+      // against Phi alpha LM71; unit_scale and unit turn SI into the note's unit.
+      const auto consider = [&](const std::string& point, const char* effect_name, double stat, const Dynamic& dyn,
+                                double lm71, double unit_scale, const char* unit) {
+        const double phi_dyn = dyn.value / stat - 1.0;
+        const double effect = (1.0 + phi_dyn + 0.5 * phi2nd) * stat;
+        const double r = effect / (Phi * alpha * lm71);
+        if (!ratio || r > *ratio) ratio = r, gov_job = dyn.job, gov_point = point;
+        if (r <= worst) return;
+        worst = r;
+        worst_note = fmt::format(
+            "Governing: {} at {}, {}: static {:.4g} {}, dynamic {:.4g} {}, phi'dyn = {:.4g}, phi'' = {:.4g} ({}, "
+            "unverified; v = {:g} km/h), (1 + phi'dyn + phi''/2) x static = {:.4g} {} against Phi alpha LM71 = "
+            "{:.4g} {}. A ratio above 1 means the dynamic analysis governs the design load effect, not that the "
+            "bridge fails.",
+            t, point, effect_name, stat * unit_scale, unit, dyn.value * unit_scale, unit, phi_dyn, phi2nd,
+            kPhiDoublePrimeClause, max_speed_kmh, effect * unit_scale, unit, Phi * alpha * lm71 * unit_scale, unit);
+      };
       for (std::size_t k = 0; k < structure.outputs().size(); ++k) {
         const std::string& point = structure.outputs()[k].name;
         const double y_stat = influence->train_envelope(static_cast<int>(k), axles).max_deflection_m;
-        double y_dyn = -1.0;
-        const JobResult* y_dyn_job = nullptr;
-        for (const JobResult* j : by_train[t]) {
-          const std::optional<double> v = j->value("deck_displacement_m", point);
-          if (!v) {
-            missing = true;
-            continue;
-          }
-          if (*v > y_dyn) y_dyn = *v, y_dyn_job = j;
-        }
+        const Dynamic y = dynamic_max(t, "deck_displacement_m", point);
+        missing = missing || !y.all;
+        if (y.value >= 0.0 && y_stat > 0.0 && lm71_deflection_m[k] > 0.0)
+          consider(point, "deflection", y_stat, y, lm71_deflection_m[k], 1e3, "mm");
         // The bending moment (beam decks): the same rule on M, when every
         // job of the train stored it (a study asking no section forces has none).
         if (k < section_stat.max_abs_bending_moment_Nm.size() && section_stat.max_abs_bending_moment_Nm[k] &&
             lm71_moment_Nm[k] > 0.0) {
           const double m_stat = *section_stat.max_abs_bending_moment_Nm[k];
-          double m_dyn = -1.0;
-          const JobResult* m_job = nullptr;
-          bool all = true;
-          for (const JobResult* j : by_train[t]) {
-            const std::optional<double> m = j->value("bending_moment_Nm", point);
-            if (!m) {
-              all = false;
-              continue;
-            }
-            if (*m > m_dyn) m_dyn = *m, m_job = j;
-          }
-          moment_partial = moment_partial || !all;
-          if (all && m_dyn >= 0.0 && m_stat > 0.0) {
-            const double phi_m = m_dyn / m_stat - 1.0;
-            const double effect_m = (1.0 + phi_m + 0.5 * phi2nd) * m_stat;
-            const double r_m = effect_m / (Phi * alpha * lm71_moment_Nm[k]);
-            if (!ratio || r_m > *ratio) {
-              ratio = r_m;
-              gov_job = m_job;
-              gov_point = point;
-            }
-            if (r_m > worst) {
-              worst = r_m;
-              worst_note = fmt::format(
-                  "Governing: {} at {}, bending moment: static {:.4g} kNm, dynamic {:.4g} kNm, phi'dyn = {:.4g}, "
-                  "phi'' = {:.4g} ({}, unverified; v = {:g} km/h), (1 + phi'dyn + phi''/2) M_stat = {:.4g} kNm "
-                  "against Phi alpha LM71 = {:.4g} kNm. A ratio above 1 means the dynamic analysis governs the "
-                  "design load effect, not that the bridge fails.",
-                  t, point, m_stat * 1e-3, m_dyn * 1e-3, phi_m, phi2nd, kPhiDoublePrimeClause, max_speed_kmh,
-                  effect_m * 1e-3, Phi * alpha * lm71_moment_Nm[k] * 1e-3);
-            }
-          }
-        }
-        if (y_dyn < 0.0 || y_stat <= 0.0 || lm71_deflection_m[k] <= 0.0) continue;
-        const double phi_dyn = y_dyn / y_stat - 1.0;
-        const double effect = (1.0 + phi_dyn + 0.5 * phi2nd) * y_stat;
-        const double r = effect / (Phi * alpha * lm71_deflection_m[k]);
-        if (!ratio || r > *ratio) {
-          ratio = r;
-          gov_job = y_dyn_job;
-          gov_point = point;
-          if (r > worst) {
-            worst = r;
-            worst_note = fmt::format(
-                "Governing: {} at {}: static {:.4g} mm, dynamic {:.4g} mm, phi'dyn = {:.4g}, phi'' = {:.4g} "
-                "({}, unverified; v = {:g} km/h), (1 + phi'dyn + phi''/2) y_stat = {:.4g} mm against "
-                "Phi alpha LM71 = {:.4g} mm. A ratio above 1 means the dynamic analysis governs the design "
-                "load effect, not that the bridge fails.",
-                t, point, y_stat * 1e3, y_dyn * 1e3, phi_dyn, phi2nd, kPhiDoublePrimeClause, max_speed_kmh,
-                effect * 1e3, Phi * alpha * lm71_deflection_m[k] * 1e3);
-          }
+          const Dynamic m = dynamic_max(t, "bending_moment_Nm", point);
+          moment_partial = moment_partial || !m.all;
+          if (m.all && m.value >= 0.0 && m_stat > 0.0)
+            consider(point, "bending moment", m_stat, m, lm71_moment_Nm[k], 1e-3, "kNm");
         }
       }
       cases.push_back({t, gov_job ? gov_job->speed_kmh : 0.0, gov_job ? gov_job->irregularity : "",

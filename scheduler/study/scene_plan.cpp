@@ -14,8 +14,12 @@ StudyAsks scene_asks(const Scene& scene) {
     a.wheel_unloading = a.comfort = !scene.train.is_moving_forces();
     return a;
   }
-  const auto& list = *scene.fidelity.asks;
+  return asks_from_list(*scene.fidelity.asks);
+}
+
+StudyAsks asks_from_list(const std::vector<std::string>& list) {
   const auto has = [&](const char* what) { return std::find(list.begin(), list.end(), what) != list.end(); };
+  StudyAsks a;
   a.deck = has("deck");
   a.wheel_unloading = has("wheel_unloading");
   a.comfort = has("comfort");

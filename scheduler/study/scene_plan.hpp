@@ -31,6 +31,8 @@ void apply_rung_structure(const ScenePlan& plan, AnalysisOptions& analysis);
 
 // What a scene asks: its "asks", else what the train can give.
 StudyAsks scene_asks(const Scene& scene);
+// What a given "asks" list (of a scene or a study) asks.
+StudyAsks asks_from_list(const std::vector<std::string>& list);
 
 // The planner's input for a scene on a structure with these frequencies;
 // modes_below_cutoff as counted by count_modes (-1: not counted).

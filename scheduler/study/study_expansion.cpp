@@ -147,16 +147,8 @@ struct TrainFacts {
 // comfort when a check needs them; with no checks at all, what the train
 // can give.
 StudyAsks study_asks(const json& doc, bool load_model) {
+  if (doc.contains("asks")) return asks_from_list(doc.at("asks").get<std::vector<std::string>>());
   StudyAsks a;
-  if (doc.contains("asks")) {
-    const json& list = doc.at("asks");
-    const auto has = [&](const char* what) { return std::find(list.begin(), list.end(), what) != list.end(); };
-    a.deck = has("deck");
-    a.wheel_unloading = has("wheel_unloading");
-    a.comfort = has("comfort");
-    a.section_forces = has("section_forces");
-    return a;
-  }
   if (!doc.contains("checks") || doc.at("checks").empty()) {
     a.wheel_unloading = a.comfort = !load_model;
     return a;
