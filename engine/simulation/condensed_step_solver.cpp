@@ -24,8 +24,10 @@ class CondensedStepSolver final : public StepSolver {
 
   Status solve(const StepProblem& p, StepSolution& s) override {
     const double one_alpha = 1.0 + options_.alpha;
-    // 1. Free prediction with the new contact forces set to zero.
-    if (Status st = op_->solve(p.rhs_s, s.u_s, *ws_); !st.ok()) return st;
+    // 1. Free prediction with the new contact forces set to zero: the
+    // structure's only at the rail DOFs (the split solve,
+    // StructureOperator::forward), the vehicles' whole.
+    if (Status st = op_->forward(p.rhs_s, y_, *ws_); !st.ok()) return st;
     s.u_v.resize(layout_.num_vehicle_dofs);
     for (const VehicleInstance& v : layout_.vehicles) {
       const int n = v.model->num_dofs();
@@ -33,11 +35,17 @@ class CondensedStepSolver final : public StepSolver {
     }
     const auto nc = static_cast<Eigen::Index>(layout_.contacts.size());
     s.iterations = 0;
-    if (nc == 0) return Status::Ok();
-
-    // 2-3. Penetration affine in P: delta = delta_bar - (1+alpha) A P.
     bool any_on_track = false;
     for (Eigen::Index c = 0; c < nc; ++c) any_on_track = any_on_track || p.rows[c].has_value();
+    if (!any_on_track) {
+      // No load on the structure's rails: its displacement is the free one.
+      if (Status st = op_->backward(y_, s.u_s, *ws_); !st.ok()) return st;
+      if (nc == 0) return Status::Ok();
+    } else if (Status st = op_->rail_solution(y_, s.u_s, *ws_); !st.ok()) {
+      return st;
+    }
+
+    // 2-3. Penetration affine in P: delta = delta_bar - (1+alpha) A P.
     assemble_A(p.rows);
     if (p.rigid) add_wheel_following(p, s);
     for (Eigen::Index c = 0; c < nc; ++c) {
@@ -59,8 +67,8 @@ class CondensedStepSolver final : public StepSolver {
     if (any_on_track) {
       load_.setZero(op_->num_dofs());
       add_rail_loads(p.rows, s.P, one_alpha, load_, coords_);
-      if (Status st2 = op_->solve(load_, correction_, *ws_); !st2.ok()) return st2;
-      s.u_s += correction_;
+      op_->add_rail_forward(load_, y_, *ws_);
+      if (Status st2 = op_->backward(y_, s.u_s, *ws_); !st2.ok()) return st2;
     }
     for (Eigen::Index c = 0; c < nc; ++c) {
       const ContactSpec& cs = layout_.contacts[c];
@@ -186,7 +194,7 @@ class CondensedStepSolver final : public StepSolver {
   std::unique_ptr<SolveWorkspace> ws_;
   std::vector<const ContactLaw*> laws_;
   DenseMatrix A_, T_, S_;
-  Vector delta_bar_, load_, correction_;
+  Vector delta_bar_, load_, y_;  // y_: the forward image of the step's load
   std::vector<WheelDefect> defect_;  // d_a, d_v of the free prediction
   ContactWorkspace contact_ws_;
 };

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "solver/rail_suffix.hpp"
 
 namespace railvsi {
 namespace {
@@ -16,16 +17,17 @@ class CholmodWorkspace final : public SolveWorkspace {
   cholmod_dense* X = nullptr;
   cholmod_dense* Y = nullptr;
   cholmod_dense* E = nullptr;
+  Vector permuted, suffix;  // the split solve's scratch (rail_suffix.hpp)
   ~CholmodWorkspace() override {
     cholmod_free_dense(&X, common.get());
     cholmod_free_dense(&Y, common.get());
     cholmod_free_dense(&E, common.get());
   }
   // Solves for the columns of B; the result is in X.
-  bool solve(const cholmod_factor* L, Eigen::Ref<DenseMatrix> B) {
+  bool solve(const cholmod_factor* L, Eigen::Ref<DenseMatrix> B, int system = CHOLMOD_A) {
     cholmod_dense b = cholmod_view(B);
-    return cholmod_solve2(CHOLMOD_A, const_cast<cholmod_factor*>(L), &b, nullptr, &X, nullptr, &Y,
-                          &E, common.get()) != 0;
+    return cholmod_solve2(system, const_cast<cholmod_factor*>(L), &b, nullptr, &X, nullptr, &Y, &E,
+                          common.get()) != 0;
   }
 };
 
@@ -78,6 +80,14 @@ CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMat
       reuse ? cholmod_copy_factor(analysis_of->factor_.get(), c) : cholmod_analyze(&view, c),
       CholmodFactorDeleter{c});
   if (!factor_) throw InputError("/structure", "CHOLMOD could not analyse the structure matrix");
+  const std::vector<int>& rails = model.rail_dofs();
+  if (!reuse && options.rail_flexibility && options.rails_last_max_fill_growth > 0.0 && !rails.empty()) {
+    if (cholmod_factor* last = analyze_with_last(&view, *factor_, c->lnz, rails,
+                                                 1.0 + options.rails_last_max_fill_growth, c)) {
+      factor_.reset(last);
+      suffix_start_ = railvsi::suffix_start(*factor_, rails);
+    }
+  }
   analysis_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int ok = cholmod_factorize(&view, factor_.get(), c);
   if (!ok || c->status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n ||
@@ -106,6 +116,56 @@ Status CholmodOperator::solve(const Vector& b, Vector& x, SolveWorkspace& ws_bas
   if (!ws.solve(factor_.get(), bmap) || !ws.X)
     return {StatusCode::kDiverged, fmt::format("CHOLMOD solve failed (status {})", ws.common.get()->status)};
   x = Eigen::Map<const Vector>(static_cast<const double*>(ws.X->x), n_);
+  return Status::Ok();
+}
+
+// The split solve (rail_suffix.hpp): P K_bar P^T = L D L^T, forward
+// y = (L D)^-1 P b, backward x = P^T L^-T y.
+Status CholmodOperator::forward(const Vector& b, Vector& y, SolveWorkspace& ws_base) const {
+  if (!splits_at_rails()) return StructureOperator::forward(b, y, ws_base);
+  auto& ws = static_cast<CholmodWorkspace&>(ws_base);
+  const int* perm = static_cast<const int*>(factor_->Perm);
+  ws.permuted.resize(n_);
+  for (int k = 0; k < n_; ++k) ws.permuted[k] = b[perm[k]];
+  Eigen::Map<DenseMatrix> bmap(ws.permuted.data(), n_, 1);
+  if (!ws.solve(factor_.get(), bmap, CHOLMOD_LD) || !ws.X)
+    return {StatusCode::kDiverged, fmt::format("CHOLMOD solve failed (status {})", ws.common.get()->status)};
+  y = Eigen::Map<const Vector>(static_cast<const double*>(ws.X->x), n_);
+  return Status::Ok();
+}
+
+Status CholmodOperator::rail_solution(const Vector& y, Vector& x, SolveWorkspace& ws_base) const {
+  if (!splits_at_rails()) return StructureOperator::rail_solution(y, x, ws_base);
+  auto& ws = static_cast<CholmodWorkspace&>(ws_base);
+  ws.suffix = y.tail(n_ - suffix_start_);
+  suffix_backward(*factor_, suffix_start_, ws.suffix.data());
+  const int* perm = static_cast<const int*>(factor_->Perm);
+  x.resize(n_);
+  for (int k = suffix_start_; k < n_; ++k) x[perm[k]] = ws.suffix[k - suffix_start_];
+  return Status::Ok();
+}
+
+void CholmodOperator::add_rail_forward(const Vector& load, Vector& y, SolveWorkspace& ws_base) const {
+  if (!splits_at_rails()) return StructureOperator::add_rail_forward(load, y, ws_base);
+  auto& ws = static_cast<CholmodWorkspace&>(ws_base);
+  const int* perm = static_cast<const int*>(factor_->Perm);
+  ws.suffix.resize(n_ - suffix_start_);
+  for (int k = suffix_start_; k < n_; ++k) ws.suffix[k - suffix_start_] = load[perm[k]];
+  suffix_forward(*factor_, suffix_start_, ws.suffix.data());
+  y.tail(n_ - suffix_start_) += ws.suffix;
+}
+
+Status CholmodOperator::backward(const Vector& y, Vector& x, SolveWorkspace& ws_base) const {
+  if (!splits_at_rails()) return StructureOperator::backward(y, x, ws_base);
+  auto& ws = static_cast<CholmodWorkspace&>(ws_base);
+  ws.permuted = y;
+  Eigen::Map<DenseMatrix> ymap(ws.permuted.data(), n_, 1);
+  if (!ws.solve(factor_.get(), ymap, CHOLMOD_Lt) || !ws.X)
+    return {StatusCode::kDiverged, fmt::format("CHOLMOD solve failed (status {})", ws.common.get()->status)};
+  const double* z = static_cast<const double*>(ws.X->x);
+  const int* perm = static_cast<const int*>(factor_->Perm);
+  x.resize(n_);
+  for (int k = 0; k < n_; ++k) x[perm[k]] = z[k];
   return Status::Ok();
 }
 

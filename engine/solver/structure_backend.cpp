@@ -27,7 +27,9 @@ std::shared_ptr<const StructureOperator> make_structure_operator(std::shared_ptr
   switch (options.structure_backend) {
     case StructureBackend::kFiniteElements:
       return std::make_shared<const CholmodOperator>(
-          *model, factors, CholmodOperatorOptions{options.rail_flexibility, options.flexibility_block_columns});
+          *model, factors,
+          CholmodOperatorOptions{options.rail_flexibility, options.flexibility_block_columns,
+                                 options.rails_last_max_fill_growth});
     case StructureBackend::kModal: {
       auto basis = options.modal_basis ? options.modal_basis : make_modal_basis(model, options);
       if (basis->structure().num_dofs() != model->num_dofs())

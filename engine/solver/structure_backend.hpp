@@ -23,6 +23,9 @@ struct StructureOperatorOptions {
   double modal_cutoff_hz = 0.0;
   bool rail_flexibility = true;
   int flexibility_block_columns = 64;  // FE: right-hand sides per blocked solve
+  // FE: order the rail DOFs last when this adds at most this fraction of
+  // the factor's nonzeros, for one solve per step (rail_suffix.hpp); 0: never.
+  double rails_last_max_fill_growth = 0.10;
   // Modal: modes computed before (of the same structure, for the same
   // options), shared between operators for several dt; computed when null.
   std::shared_ptr<const ModalBasis> modal_basis = nullptr;

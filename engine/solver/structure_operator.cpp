@@ -14,6 +14,19 @@ SparseMatrix effective_matrix(const StructureModel& model, const EffectiveMatrix
   return A;
 }
 
+Status StructureOperator::forward(const Vector& b, Vector& y, SolveWorkspace&) const {
+  y = b;
+  return Status::Ok();
+}
+
+Status StructureOperator::rail_solution(const Vector& y, Vector& x, SolveWorkspace& ws) const {
+  return solve(y, x, ws);
+}
+
+void StructureOperator::add_rail_forward(const Vector& load, Vector& y, SolveWorkspace&) const { y += load; }
+
+Status StructureOperator::backward(const Vector& y, Vector& x, SolveWorkspace& ws) const { return solve(y, x, ws); }
+
 void StructureOperator::compute_rail_flexibility(const StructureModel& model, const SparseMatrix* Kbar) {
   const auto start = std::chrono::steady_clock::now();
   rail_index_.assign(static_cast<std::size_t>(model.num_dofs()), -1);

@@ -52,6 +52,21 @@ class StructureOperator {
   // `rows` (blocked solves on the FE backend, Phi D Phi^T on the modal one).
   virtual DenseMatrix inverse_block(const std::vector<int>& rows, const std::vector<int>& cols,
                                     SolveWorkspace& ws) const = 0;
+  // The solve in two halves around the contact problem: y = forward(b),
+  // then backward(y) = K_bar^-1 b. In between, rail_solution(y) writes the
+  // rows of K_bar^-1 b at the rail DOFs into x (other rows are left
+  // undefined), and add_rail_forward(load, y) makes y the forward image of
+  // b + load for a load on the rail DOFs only. These defaults cost two
+  // solves; the FE backend with the rail DOFs last in its factor does it
+  // in one (rail_suffix.hpp, splits_at_rails()).
+  virtual Status forward(const Vector& b, Vector& y, SolveWorkspace& ws) const;
+  virtual Status rail_solution(const Vector& y, Vector& x, SolveWorkspace& ws) const;
+  virtual void add_rail_forward(const Vector& load, Vector& y, SolveWorkspace& ws) const;
+  virtual Status backward(const Vector& y, Vector& x, SolveWorkspace& ws) const;
+  // Whether forward + backward is one solve, and rail_solution and
+  // add_rail_forward work on the rail DOFs alone.
+  virtual bool splits_at_rails() const { return false; }
+
   // Columns of K_bar^-1 for the given model DOFs, restricted to the same DOFs.
   DenseMatrix flexibility_block(const std::vector<int>& dofs, SolveWorkspace& ws) const {
     return inverse_block(dofs, dofs, ws);
