@@ -103,7 +103,31 @@ CholmodOperator::CholmodOperator(const StructureModel& model, const EffectiveMat
                                  factor_->n, dof));
   }
   factorization_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (options.rail_flexibility) compute_rail_flexibility(model, &A);
+  if (options.rail_flexibility && splits_at_rails()) {
+    rail_flexibility_from_suffix(model);
+  } else if (options.rail_flexibility) {
+    compute_rail_flexibility(model, &A);
+  }
+}
+
+// The rail DOFs are in the factor's suffix: K_bar^-1 there is the inverse
+// of the suffix's block (rail_suffix.hpp), no solve of the whole structure.
+void CholmodOperator::rail_flexibility_from_suffix(const StructureModel& model) {
+  const auto start = std::chrono::steady_clock::now();
+  index_rail_dofs(model);
+  const DenseMatrix Z = suffix_inverse(*factor_, suffix_start_);
+  const int* perm = static_cast<const int*>(factor_->Perm);
+  std::vector<int> position(static_cast<std::size_t>(n_));
+  for (int k = 0; k < n_; ++k) position[static_cast<std::size_t>(perm[k])] = k - suffix_start_;
+  const std::vector<int>& dofs = model.rail_dofs();
+  const auto m = static_cast<Eigen::Index>(dofs.size());
+  rail_flexibility_.resize(m, m);
+  for (Eigen::Index j = 0; j < m; ++j)
+    for (Eigen::Index i = 0; i < m; ++i)
+      rail_flexibility_(i, j) = Z(position[static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)])],
+                                  position[static_cast<std::size_t>(dofs[static_cast<std::size_t>(j)])]);
+  flexibility_solves_ = 0;
+  flexibility_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::unique_ptr<SolveWorkspace> CholmodOperator::make_workspace() const {

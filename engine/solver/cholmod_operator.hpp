@@ -56,6 +56,7 @@ class CholmodOperator final : public StructureOperator {
   double analysis_s() const { return analysis_s_; }
 
  private:
+  void rail_flexibility_from_suffix(const StructureModel& model);
   int n_ = 0;
   int block_columns_ = 64;
   double analysis_s_ = 0.0;

@@ -43,4 +43,10 @@ int suffix_start(const cholmod_factor& L, const std::vector<int>& last);
 void suffix_forward(const cholmod_factor& L, int start, double* z);
 void suffix_backward(const cholmod_factor& L, int start, double* z);
 
+// K_bar^-1 restricted to the suffix, in the factor's order: the inverse of
+// the suffix's own block of L D L^T (the Cholesky factor of the Schur
+// complement of the rest), by LAPACK's dpotri on that block made dense.
+// Sized (n - start)^2: for a suffix of a few thousand columns.
+DenseMatrix suffix_inverse(const cholmod_factor& L, int start);
+
 }  // namespace railvsi

@@ -27,11 +27,16 @@ void StructureOperator::add_rail_forward(const Vector& load, Vector& y, SolveWor
 
 Status StructureOperator::backward(const Vector& y, Vector& x, SolveWorkspace& ws) const { return solve(y, x, ws); }
 
-void StructureOperator::compute_rail_flexibility(const StructureModel& model, const SparseMatrix* Kbar) {
-  const auto start = std::chrono::steady_clock::now();
+void StructureOperator::index_rail_dofs(const StructureModel& model) {
   rail_index_.assign(static_cast<std::size_t>(model.num_dofs()), -1);
   const auto& dofs = model.rail_dofs();
   for (std::size_t i = 0; i < dofs.size(); ++i) rail_index_[dofs[i]] = static_cast<int>(i);
+}
+
+void StructureOperator::compute_rail_flexibility(const StructureModel& model, const SparseMatrix* Kbar) {
+  const auto start = std::chrono::steady_clock::now();
+  index_rail_dofs(model);
+  const auto& dofs = model.rail_dofs();
   auto ws = make_workspace();
   if (Kbar) {
     SubstructureSummary summary;

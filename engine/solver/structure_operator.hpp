@@ -92,6 +92,8 @@ class StructureOperator {
   // Kbar: the matrix the operator inverts, for the track substructure
   // (substructured_flexibility.hpp); null: flexibility_block of all rail DOFs.
   void compute_rail_flexibility(const StructureModel& model, const SparseMatrix* Kbar = nullptr);
+  // Sets rail_index() for the model's rail DOFs (rail_flexibility()'s order).
+  void index_rail_dofs(const StructureModel& model);
   EffectiveMatrixFactors factors_;
   DenseMatrix rail_flexibility_;
   std::vector<int> rail_index_;
