@@ -21,6 +21,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/huge_pages.hpp"
 #include "generators/deck_3d.hpp"
 #include "io/train_loader.hpp"
 #include "simulation/simulation.hpp"
@@ -143,4 +144,12 @@ BENCHMARK(BM_SeedScaleKhst)->Unit(benchmark::kSecond)->Iterations(1);
 }  // namespace
 }  // namespace railvsi
 
-BENCHMARK_MAIN();
+// As vsi does (core/huge_pages.hpp): heap memory on transparent huge pages.
+int main(int argc, char** argv) {
+  railvsi::reexec_with_huge_pages(argv);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
