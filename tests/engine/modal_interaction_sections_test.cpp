@@ -20,7 +20,8 @@ namespace {
 
 constexpr double kL = 20.0, kEI = 1.0e10, kMass = 10000.0, kP = 170e3;
 
-std::shared_ptr<const StructureModel> span(std::vector<std::pair<std::string, double>> points) {
+// The simply supported span, 0.5 m elements, 2 % Rayleigh damping.
+Bridge2dOptions span_options(std::vector<std::pair<std::string, double>> points) {
   Bridge2dOptions b;
   b.spans_m = {kL};
   b.deck_EI_Nm2 = kEI;
@@ -28,7 +29,10 @@ std::shared_ptr<const StructureModel> span(std::vector<std::pair<std::string, do
   b.damping_ratio = 0.02;
   b.element_length_m = 0.5;
   b.output_points = std::move(points);
-  return make_bridge_2d(b);
+  return b;
+}
+std::shared_ptr<const StructureModel> span(std::vector<std::pair<std::string, double>> points) {
+  return make_bridge_2d(span_options(std::move(points)));
 }
 
 Scene on_modes(Scene s, int modes) {
@@ -111,29 +115,29 @@ TEST_P(ModalInteractionClosedForm, SlowCrossingGivesTheStaticMaxima) {
 INSTANTIATE_TEST_SUITE_P(Modes, ModalInteractionClosedForm, ::testing::Values(1, 4, 16),
                          [](const auto& info) { return std::to_string(info.param) + "modes"; });
 
-// The span with a ballasted track (a 30 m approach holds the coach at
-// t = 0): the deck carries the ballast springs' forces, which the forms
-// read at the track's DOFs.
-Scene ice3_on_track(bool damped) {
-  Bridge2dOptions b;
-  b.spans_m = {kL};
-  b.deck_EI_Nm2 = kEI;
-  b.deck_mass_kg_per_m = kMass;
-  b.damping_ratio = damped ? 0.02 : 0.0;
-  b.element_length_m = 0.5;
-  b.output_points = {{"quarter", kL / 4}, {"mid", kL / 2}};
-  TrackOptions t;
-  t.approach_m = 30.0;
-  t.exit_m = 6.0;
-  if (!damped) t.pad_c_Ns_per_m = t.ballast_c_Ns_per_m = t.subballast_c_Ns_per_m = 0.0;
-  b.track = t;
+// One ICE3 coach (multibody, linear Hertz contact) at 200 km/h.
+Scene ice3_at_200(std::shared_ptr<const StructureModel> structure) {
   Scene scene;
-  scene.structure = make_bridge_2d(b);
+  scene.structure = std::move(structure);
   scene.train.vehicles.push_back({make_car_2d(testing::ice3_coach()), 0.0});
   scene.speed_mps = 200 / 3.6;
   scene.analysis.dt_s = 2.5e-4;
   scene.analysis.contact.law = "linear-hertz";
   return scene;
+}
+
+// The span with a ballasted track (a 30 m approach holds the coach at
+// t = 0): the deck carries the ballast springs' forces, which the forms
+// read at the track's DOFs.
+Scene ice3_on_track(bool damped) {
+  Bridge2dOptions b = span_options({{"quarter", kL / 4}, {"mid", kL / 2}});
+  if (!damped) b.damping_ratio = 0.0;
+  TrackOptions t;
+  t.approach_m = 30.0;
+  t.exit_m = 6.0;
+  if (!damped) t.pad_c_Ns_per_m = t.ballast_c_Ns_per_m = t.subballast_c_Ns_per_m = 0.0;
+  b.track = t;
+  return ice3_at_200(make_bridge_2d(b));
 }
 
 // The worst relative error of the four quantities at both output points
@@ -157,12 +161,7 @@ double worst_against(const RunSummary& modal, const RunSummary& fe, const char* 
 // modes are uncoupled): the modal rung with growing mode counts against the
 // FE rung at the same step. The error falls with the mode count.
 TEST(ModalInteractionSections, ConvergeToTheFeRungWithTheModeCount) {
-  Scene scene;
-  scene.structure = span({{"quarter", kL / 4}, {"mid", kL / 2}});
-  scene.train.vehicles.push_back({make_car_2d(testing::ice3_coach()), 0.0});
-  scene.speed_mps = 200 / 3.6;
-  scene.analysis.dt_s = 2.5e-4;
-  scene.analysis.contact.law = "linear-hertz";
+  const Scene scene = ice3_at_200(span({{"quarter", kL / 4}, {"mid", kL / 2}}));
   const Result fe = Simulation(scene).run();
   ASSERT_TRUE(fe.status.ok()) << fe.status.message();
   const std::vector<int> modes = {1, 2, 4, 8, 16};
