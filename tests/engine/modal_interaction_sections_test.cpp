@@ -106,7 +106,7 @@ TEST_P(ModalInteractionClosedForm, SlowCrossingGivesTheStaticMaxima) {
   const Quantities e = relative_error(of(r.summary), ref);
   std::printf("[modal sections] slow crossing, %d modes: M %+.2e V %+.2e R %+.2e theta %+.2e\n", GetParam(),
               e.moment, e.shear, e.reaction, e.rotation);
-  // Measured: |errors| <= 2.3e-6 for 1, 4 and 16 modes (the force moves 2 mm
+  // Measured: |errors| <= 5.8e-6 for 1, 4 and 16 modes (the force moves 2 mm
   // per step; the dynamic part at this speed is of that order), as on the
   // FE and the exact modal rungs (section_forces_test).
   EXPECT_LT(worst(e), 2e-5);
