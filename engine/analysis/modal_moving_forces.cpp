@@ -24,10 +24,8 @@ Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis) {
   if (&basis.structure() != scene.structure.get())
     throw InputError("/structure", "the modal basis was computed for another structure");
   const auto& rails = scene.analysis.contact.rail_lines;
-  const auto& asks = scene.fidelity.asks;
-  const bool sections_asked = !asks || std::find(asks->begin(), asks->end(), "section_forces") != asks->end();
   const ModalSweep sweep(basis, scene.train, rails, scene.analysis.dt_s,
-                         sections_asked ? modal_section_forces(basis, rails) : nullptr);
+                         scene.fidelity.asks_section_forces() ? modal_section_forces(basis, rails) : nullptr);
   ModalSweepWorkspace ws;
   Result result;
   const long n_steps = modal_run_steps(scene);
@@ -82,14 +80,7 @@ void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSu
   if (run.sections)
     run.sections->summarize(sum);
   else
-    sum.section_forces_note = s.info().deck_beam ? "section forces were not asked (asks without \"section_forces\")"
-                                                 : make_section_forms(s).unavailable;
-}
-
-std::shared_ptr<const ModalSectionForces> modal_section_forces(const ModalBasis& basis,
-                                                               const std::vector<int>& rail_lines) {
-  if (!make_section_forms(basis.structure()).available()) return nullptr;
-  return std::make_shared<const ModalSectionForces>(basis, rail_lines);
+    sum.section_forces_note = s.info().deck_beam ? kSectionForcesNotAsked : make_section_forms(s).unavailable;
 }
 
 Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions& options) {

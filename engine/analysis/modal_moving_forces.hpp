@@ -7,7 +7,7 @@
 // What it gives up against the FE rung: the modes above the cut-off, and
 // the coupling terms of a non-proportional damping matrix (each mode keeps
 // phi^T C phi / (2 omega), recorded in the fidelity). Section forces of a
-// beam deck by the mode-acceleration method (analysis/modal_section_forces).
+// beam deck by the mode-acceleration method (simulation/modal_section_forces).
 #include "analysis/modal_sweep.hpp"
 #include "solver/modal_basis.hpp"
 #include "simulation/result.hpp"
@@ -33,10 +33,5 @@ Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions
 double modal_run_start_x_m(const Scene& scene);
 long modal_run_steps(const Scene& scene);
 void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSummary& summary);
-// The section forces of the basis's structure on these rail lines, null
-// when it has none (not a beam deck): why is then in the run's
-// section_forces_note.
-std::shared_ptr<const ModalSectionForces> modal_section_forces(const ModalBasis& basis,
-                                                               const std::vector<int>& rail_lines);
 
 }  // namespace railvsi

@@ -135,7 +135,6 @@ ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, Modal
   for (auto* v : {&ws.p, &ws.p_next}) v->assign(static_cast<std::size_t>(width_), 0.0);
   for (auto* v : {&ws.q, &ws.qd, &ws.qdd}) v->assign(n, 0.0);
   ws.form_values.assign(sections_ ? static_cast<std::size_t>(sections_->num_forms()) : 0, 0.0);
-  ws.dynamic_u.assign(sections_ ? n : 0, 0.0);
   ws.element.assign(rails_.size() * offsets_.size(), 0);
   ws.first.assign(rails_.size(), 0);
   ws.last.assign(rails_.size(), 0);
@@ -229,20 +228,10 @@ ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, Modal
 
 void ModalSweep::record_sections(const double* p, ModalSweepWorkspace& ws, SectionEnvelope& envelope) const {
   const auto n = static_cast<std::size_t>(n_modes_);
-  // The modes' dynamic part on u: q - p / omega^2.
-  double* dynamic_u = ws.dynamic_u.data();
-  for (std::size_t k = 0; k < n; ++k) dynamic_u[k] = ws.q[k] - p[k] * inverse_omega2_[k];
-  const double* on_u = sections_->on_u().data();  // column-major: nf x n
-  const double* on_v = sections_->on_v().data();
-  const double* on_a = sections_->on_a().data();
-  const std::size_t nf = ws.form_values.size();
-  double* values = ws.form_values.data();
-  for (std::size_t f = 0; f < nf; ++f) values[f] = p[n + f];  // exact static value under the loads
-  for (std::size_t k = 0; k < n; ++k) {
-    const double du = dynamic_u[k], v = ws.qd[k], a = ws.qdd[k];
-    const std::size_t col = k * nf;
-    for (std::size_t f = 0; f < nf; ++f) values[f] += on_u[col + f] * du + on_v[col + f] * v + on_a[col + f] * a;
-  }
+  // The exact static value under the loads (the sweep's last columns of p)
+  // plus the modes' dynamic part.
+  for (std::size_t f = 0; f < ws.form_values.size(); ++f) ws.form_values[f] = p[n + f];
+  sections_->add_dynamic_part(ws.q.data(), ws.qd.data(), ws.qdd.data(), p, ws.form_values.data());
   envelope.update(ws.form_values);
 }
 

@@ -18,7 +18,7 @@
 #include <optional>
 #include <vector>
 
-#include "analysis/modal_section_forces.hpp"
+#include "simulation/modal_section_forces.hpp"
 #include "solver/modal_basis.hpp"
 #include "core/status.hpp"
 #include "integration/modal_recurrence.hpp"
@@ -32,7 +32,7 @@ namespace railvsi {
 struct ModalSweepWorkspace {
   // p, p_next: the modal loads, then (with section forces) the static
   // value of each form under the loads.
-  std::vector<double> p, p_next, q, qd, qdd, form_values, dynamic_u;
+  std::vector<double> p, p_next, q, qd, qdd, form_values;
   // Deck acceleration at every step (n_steps + 1 samples) per output point,
   // for the code filter; kept only when asked.
   std::vector<std::vector<double>> acceleration;

@@ -5,7 +5,6 @@
 #include <functional>
 #include <limits>
 
-#include <fmt/format.h>
 
 #include "core/input_error.hpp"
 #include "solver/cholmod_operator.hpp"
@@ -57,12 +56,10 @@ double positive_gauss(const std::function<double(double)>& f, double a, double b
 StaticInfluence::StaticInfluence(const StructureModel& structure, std::vector<int> rail_lines)
     : structure_(structure), rail_lines_(std::move(rail_lines)) {
   if (rail_lines_.empty()) rail_lines_ = {0};
-  for (int r : rail_lines_)
-    if (r < 0 || r >= static_cast<int>(structure_.rails().size()))
-      throw InputError("/analysis/contact/rail_lines", fmt::format("rail line {} does not exist", r));
   CholmodOperatorOptions options;
   options.rail_flexibility = false;
   const CholmodOperator op(structure_, EffectiveMatrixFactors{0.0, 0.0, 1.0}, options);
+  sections_.emplace(structure_, rail_lines_, op);  // checks the rail lines
   auto ws = op.make_workspace();
   for (const OutputPoint& p : structure_.outputs()) {
     Vector e = Vector::Zero(structure_.num_dofs());
@@ -71,15 +68,6 @@ StaticInfluence::StaticInfluence(const StructureModel& structure, std::vector<in
     const Status st = op.solve(e, g, *ws);
     if (!st.ok()) throw InputError("/structure", "static influence line: " + st.message());
     influence_.push_back(std::move(g));
-  }
-  forms_ = make_section_forms(structure_);
-  for (const LinearForm& f : forms_.forms) {
-    Vector c = Vector::Zero(structure_.num_dofs());
-    for (const auto& [d, v] : f.u) c[d] += v;
-    Vector g = Vector::Zero(structure_.num_dofs());
-    const Status st = op.solve(c, g, *ws);
-    if (!st.ok()) throw InputError("/structure", "static influence line of a section force: " + st.message());
-    form_influence_.push_back(std::move(g));
   }
 
   // Grid for the cumulative positive area: each element of the first rail
@@ -96,7 +84,7 @@ StaticInfluence::StaticInfluence(const StructureModel& structure, std::vector<in
       area[i] = area[i - 1] + positive_gauss(h, grid_x_m_[i - 1], grid_x_m_[i]);
     grid_area_.push_back(std::move(area));
   }
-  for (std::size_t f = 0; f < forms_.forms.size(); ++f) {
+  for (std::size_t f = 0; f < section_forms().forms.size(); ++f) {
     const auto h = [&](double x) { return unit_form_value(static_cast<int>(f), x); };
     std::vector<double> area(grid_x_m_.size(), 0.0);
     for (std::size_t i = 1; i < grid_x_m_.size(); ++i)
@@ -118,56 +106,22 @@ double StaticInfluence::unit_deflection(int k, double x_m) const {
   return w;
 }
 
-// c.u with K u = -N^T for a unit load located by `row`, plus the load's own
-// term when it stands on the deck line itself (`on_deck`, element -1 if not).
-double StaticInfluence::form_value_at(std::size_t form, const RailContactRow& row, const DeckPoint& on_deck) const {
-  const Vector& g = form_influence_[form];
-  double value = 0.0;
-  for (int i = 0; i < 4; ++i)
-    if (row.dof[i] >= 0) value -= row.weight[i] * g[row.dof[i]];
-  if (on_deck.element >= 0) value += forms_.forms[form].unit_load_value(on_deck);
-  return value;
-}
-
-double StaticInfluence::unit_form_value(int form, int rail, double x_m) const {
-  const auto row = structure_.rails()[static_cast<std::size_t>(rail)].locate(x_m);
-  if (!row) return 0.0;
-  const DeckPoint at = forms_.rail_is_deck[static_cast<std::size_t>(rail)]
-                           ? deck_point(structure_.info().deck_line, x_m)
-                           : DeckPoint{};
-  return form_value_at(static_cast<std::size_t>(form), *row, at);
-}
-
-void StaticInfluence::add_form_values(int rail, double x_m, double scale, std::vector<double>& values) const {
-  const auto row = structure_.rails()[static_cast<std::size_t>(rail)].locate(x_m);
-  if (!row) return;
-  const DeckPoint at = forms_.rail_is_deck[static_cast<std::size_t>(rail)]
-                           ? deck_point(structure_.info().deck_line, x_m)
-                           : DeckPoint{};
-  for (std::size_t f = 0; f < forms_.forms.size(); ++f) values[f] += scale * form_value_at(f, *row, at);
-}
-
-double StaticInfluence::unit_form_value(int form, double x_m) const {
-  double value = 0.0;
-  for (int r : rail_lines_) value += unit_form_value(form, r, x_m);
-  return value / static_cast<double>(rail_lines_.size());
-}
-
 StaticSectionEnvelope StaticInfluence::section_envelope(const std::vector<MovingForce>& axles) const {
   StaticSectionEnvelope out;
-  if (!forms_.available()) {
-    out.unavailable = forms_.unavailable;
+  const SectionForms& forms = section_forms();
+  if (!forms.available()) {
+    out.unavailable = forms.unavailable;
     return out;
   }
   double length = 0.0;
   for (const MovingForce& a : axles) length = std::max(length, a.offset_m);
   // Every form at once for the train with its first axle at x.
-  std::vector<double> values(forms_.forms.size());
+  std::vector<double> values(forms.forms.size());
   const auto all_forms = [&](double front_x) -> const std::vector<double>& {
     std::fill(values.begin(), values.end(), 0.0);
     const double share = 1.0 / static_cast<double>(rail_lines_.size());
     for (int r : rail_lines_)
-      for (const MovingForce& a : axles) add_form_values(r, front_x - a.offset_m, share * a.load_N, values);
+      for (const MovingForce& a : axles) sections_->add_form_values(r, front_x - a.offset_m, share * a.load_N, values);
     return values;
   };
   // The quantities: the larger magnitude of the two sides of a section,
@@ -180,14 +134,14 @@ StaticSectionEnvelope StaticInfluence::section_envelope(const std::vector<Moving
     double best_front_x = 0.0;
   };
   std::vector<Quantity> qs;
-  for (std::size_t p = 0; p < forms_.points.size(); ++p) {
-    const SectionForms::Point& f = forms_.points[p];
+  for (std::size_t p = 0; p < forms.points.size(); ++p) {
+    const SectionForms::Point& f = forms.points[p];
     if (f.moment_left < 0) continue;
     const double x = structure_.outputs()[p].x_m;
     qs.push_back({{f.moment_left, f.moment_right}, true, x});
     qs.push_back({{f.shear_left, f.shear_right}, true, x});
   }
-  for (const SectionForms::Support& s : forms_.supports) {
+  for (const SectionForms::Support& s : forms.supports) {
     qs.push_back({{s.reaction}, false, s.x_m});
     qs.push_back({s.rotations, true, s.x_m});
   }
@@ -217,7 +171,7 @@ StaticSectionEnvelope StaticInfluence::section_envelope(const std::vector<Moving
     q.best = std::max(q.best, refined.second);
   }
   std::size_t k = 0;
-  for (const SectionForms::Point& f : forms_.points) {
+  for (const SectionForms::Point& f : forms.points) {
     if (f.moment_left < 0) {
       out.max_abs_bending_moment_Nm.emplace_back();
       out.max_abs_shear_force_N.emplace_back();
@@ -226,7 +180,7 @@ StaticSectionEnvelope StaticInfluence::section_envelope(const std::vector<Moving
     out.max_abs_bending_moment_Nm.push_back(qs[k++].best);
     out.max_abs_shear_force_N.push_back(qs[k++].best);
   }
-  for (std::size_t s = 0; s < forms_.supports.size(); ++s) {
+  for (std::size_t s = 0; s < forms.supports.size(); ++s) {
     out.max_reaction_N.push_back(qs[k++].best);
     out.max_abs_rotation_rad.push_back(std::max(0.0, qs[k++].best));
   }

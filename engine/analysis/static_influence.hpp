@@ -15,7 +15,7 @@
 
 #include "model/structure_model.hpp"
 #include "model/train.hpp"
-#include "simulation/section_forms.hpp"
+#include "simulation/section_influence.hpp"
 
 namespace railvsi {
 
@@ -75,16 +75,11 @@ class StaticInfluence {
   // best sample.
   StaticEnvelope train_envelope(int k, const std::vector<MovingForce>& axles) const;
 
-  // Section forces (beam decks): the forms, and the value of form f under a
-  // downward unit load at x standing on rail line r alone, or shared between
-  // the rail lines as unit_deflection. Influence lines by reciprocity:
-  // one solve K g_f = c_f per form, plus the load's own term in the element
-  // it stands on.
-  const SectionForms& section_forms() const { return forms_; }
-  double unit_form_value(int form, int rail, double x_m) const;
-  double unit_form_value(int form, double x_m) const;
-  // Adds scale x unit_form_value(f, rail, x) to values[f] for every form.
-  void add_form_values(int rail, double x_m, double scale, std::vector<double>& values) const;
+  // Section forces (beam decks): the forms and their influence lines
+  // (simulation/section_influence.hpp), with the same factor of K.
+  const SectionInfluence& sections() const { return *sections_; }
+  const SectionForms& section_forms() const { return sections_->forms(); }
+  double unit_form_value(int form, double x_m) const { return sections_->unit_form_value(form, x_m); }
   // Every first-axle position as train_envelope, plus each axle standing
   // exactly on each section and support (where point-load maxima of moment,
   // shear and reaction occur).
@@ -106,15 +101,13 @@ class StaticInfluence {
   double positive_area_to(const std::function<double(double)>& h, const std::vector<double>& area, double x_m) const;
   LoadModel71Result lm71_of(const std::function<double(double)>& h, const std::vector<double>& area,
                             const LoadModel71& lm) const;
-  double form_value_at(std::size_t form, const RailContactRow& row, const DeckPoint& on_deck) const;
   double rails_start_m() const;
   double rails_end_m() const;
 
   const StructureModel& structure_;
   std::vector<int> rail_lines_;
   std::vector<Vector> influence_;  // K^-1 e_k per output point
-  SectionForms forms_;
-  std::vector<Vector> form_influence_;  // K^-1 c_f per form
+  std::optional<SectionInfluence> sections_;  // set by the constructor
   // Cumulative positive area at the grid x (per output point).
   std::vector<double> grid_x_m_;
   std::vector<std::vector<double>> grid_area_;

@@ -88,6 +88,9 @@ struct RunWarning {
   std::optional<double> factor;  // e.g. dt over the policy's dt
 };
 
+// section_forces_note of a modal run whose asks leave section forces out.
+inline constexpr const char* kSectionForcesNotAsked = "section forces were not asked (asks without \"section_forces\")";
+
 struct RunSummary {
   std::vector<PointSummary> points;
   double max_abs_displacement_m = 0.0;

@@ -8,10 +8,10 @@ namespace railvsi {
 
 RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics,
                    double start_x_m, const StructureCoordinates& coords, const SectionForms& section_forms,
-                   const DeckTwistGauge& twist)
+                   const DeckTwistGauge& twist, const ModalSectionForces* modal_sections)
     : scene_(scene), layout_(layout), coords_(coords), start_x_m_(start_x_m),
       history_(coords.M(), coords.C(), coords.K()), rigid_(scene, layout, coords),
-      sections_(section_forms), section_envelope_(section_forms), twist_(twist) {
+      sections_(section_forms), modal_sections_(modal_sections), section_envelope_(section_forms), twist_(twist) {
   const int ns = coords.size();
   s_.resize(ns);
   s_.u = statics.u_s;
@@ -163,16 +163,34 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
       hist.carbody_acceleration_mps2[b++].push_back(vehicles_[v].a[d]);
 }
 
-// The loads standing on the deck line itself (a deck without track): the
-// moving forces or the contact forces of the wheels on it.
 void RunState::record_sections(double front_x_m) {
+  const auto& rails = scene_.analysis.contact.rail_lines;
+  const double share = 1.0 / static_cast<double>(rails.size());
+  if (modal_sections_) {
+    // Mode acceleration: the exact static value under the loads on the
+    // rails (moving forces, contact forces) plus the modes' dynamic part
+    // under the modal loads of the same loads (f_s_, of this step).
+    const SectionInfluence& statics = modal_sections_->statics();
+    section_values_.assign(sections_.forms.size(), 0.0);
+    for (int r : rails)
+      for (const MovingForce& m : scene_.train.moving_forces)
+        statics.add_form_values(r, TrainLayout::position_m(front_x_m, m.offset_m), share * m.load_N, section_values_);
+    for (Eigen::Index c = 0; c < P_.size(); ++c) {
+      const ContactSpec& cs = layout_.contacts[c];
+      statics.add_form_values(cs.rail_line, TrainLayout::position_m(front_x_m, cs.offset_m), P_[c], section_values_);
+    }
+    modal_sections_->add_dynamic_part(s_.u.data(), s_.v.data(), s_.a.data(), f_s_.data(), section_values_.data());
+    section_envelope_.update(section_values_);
+    return;
+  }
+  // FE: the forms of the state, plus the direct term of the loads standing
+  // on the deck line itself (a deck without track): the moving forces or
+  // the contact forces of the wheels on it.
   const RailLine& deck = scene_.structure->info().deck_line;
   deck_loads_.clear();
   const auto add_load = [&](double x_m, double down_N) {
     if (deck.covers(x_m)) deck_loads_.push_back({x_m, down_N});
   };
-  const auto& rails = scene_.analysis.contact.rail_lines;
-  const double share = 1.0 / static_cast<double>(rails.size());
   for (int r : rails)
     if (sections_.rail_is_deck[static_cast<std::size_t>(r)])
       for (const MovingForce& m : scene_.train.moving_forces)

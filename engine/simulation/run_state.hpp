@@ -11,6 +11,7 @@
 #include "simulation/run_monitor.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/deck_twist.hpp"
+#include "simulation/modal_section_forces.hpp"
 #include "simulation/section_forms.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "simulation/step_solver.hpp"
@@ -20,10 +21,13 @@ namespace railvsi {
 class RunState {
  public:
   // `coords`: the structure coordinates of the step solver (and of
-  // statics.u_s), `section_forms` (of the FE DOFs; none on the modal
-  // structure) and `twist` (the deck twist gauge): referenced, not copied.
+  // statics.u_s), `section_forms` (of the FE DOFs), `twist` (the deck twist
+  // gauge) and `modal_sections` (on the modal structure: the same forms on
+  // its modes, evaluated by mode acceleration; null on the FE structure):
+  // referenced, not copied.
   RunState(const Scene& scene, const TrainLayout& layout, const StaticState& statics, double start_x_m,
-           const StructureCoordinates& coords, const SectionForms& section_forms, const DeckTwistGauge& twist);
+           const StructureCoordinates& coords, const SectionForms& section_forms, const DeckTwistGauge& twist,
+           const ModalSectionForces* modal_sections = nullptr);
 
   // Advance from t_n to t_new = t_n + dt.
   Status step(const HhtCoefficients& h, double t_new, StepSolver& solver, int& iterations);
@@ -69,6 +73,7 @@ class RunState {
   double window_start_m_ = 0.0, window_end_m_ = 0.0;
   // Section forces of a beam deck (empty forms otherwise).
   const SectionForms& sections_;
+  const ModalSectionForces* modal_sections_;
   SectionEnvelope section_envelope_;
   std::vector<DeckLoad> deck_loads_;
   std::vector<double> section_values_;

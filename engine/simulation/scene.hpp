@@ -1,6 +1,7 @@
 #pragma once
 // Everything one run needs, already validated: the immutable models and the
 // options. Built by io/scene_loader from a JSON document or directly in code.
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -60,6 +61,11 @@ struct FidelityRequest {
   double tolerance = 0.01;
   // kAuto: what the run must answer; absent: what the train can give.
   std::optional<std::vector<std::string>> asks;
+  // Whether the run must give section forces (absent asks: yes). The
+  // modal rungs skip them otherwise; the FE rungs compute them anyway.
+  bool asks_section_forces() const {
+    return !asks || std::find(asks->begin(), asks->end(), "section_forces") != asks->end();
+  }
 };
 
 struct Scene {

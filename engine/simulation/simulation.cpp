@@ -6,9 +6,11 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "simulation/modal_section_forces.hpp"
 #include "simulation/run_state.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "simulation/step_solver.hpp"
+#include "solver/modal_operator.hpp"
 
 namespace railvsi {
 namespace {
@@ -130,6 +132,9 @@ struct SimulationSetup {
   double setup_s = 0.0;
   SectionForms section_forms;
   DeckTwistGauge twist;
+  // On the modal structure: the section forms on its modes (null on the FE
+  // structure, or when none are asked or possible: section_forms says why).
+  std::shared_ptr<const ModalSectionForces> modal_sections;
 };
 
 Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
@@ -167,7 +172,7 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
                      "on the rigid path: use a compliant law (hertz or linear-hertz)");
   auto setup = std::make_unique<SimulationSetup>(
       SimulationSetup{HhtCoefficients(an.hht, an.dt_s), x0, duration, TrainLayout(scene_.train, an.contact), {}, {}, 0.0, {},
-                      make_deck_twist_gauge(*scene_.structure, an.contact.rail_lines)});
+                      make_deck_twist_gauge(*scene_.structure, an.contact.rail_lines), nullptr});
   check_rigid_contact_alpha(setup->layout, an.hht.alpha);
   if (an.solver == SolverPath::kReference && an.structure_backend != StructureBackend::kFiniteElements)
     throw InputError("/analysis/solver", "the reference path assembles the finite-element structure: use "
@@ -182,12 +187,18 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
                               ? op_->static_operator(*scene_.structure)
                               : make_structure_operator(scene_.structure, {0.0, 0.0, 1.0}, fe_statics);
   setup->statics = static_equilibrium(scene_, setup->layout, x0, *statics_op);
-  // Section forces read the FE DOFs: none on the modal structure.
-  if (an.structure_backend == StructureBackend::kModal)
-    setup->section_forms.unavailable = "section forces are not computed on the modal structure (its state is the "
-                                       "modal coordinates): use \"structure\": \"fe\"";
-  else
-    setup->section_forms = make_section_forms(*scene_.structure);
+  // Section forces of a beam deck: forms of the FE DOFs, or on the modal
+  // structure the same forms on its modes by mode acceleration (their
+  // static part from a factor of K: the modal static operator would miss
+  // the static share of the modes above the cut-off).
+  setup->section_forms = make_section_forms(*scene_.structure);
+  const auto* modal = an.solver == SolverPath::kCondensed ? dynamic_cast<const ModalOperator*>(op_.get()) : nullptr;
+  if (modal && setup->section_forms.available()) {
+    if (scene_.fidelity.asks_section_forces())
+      setup->modal_sections = std::make_shared<const ModalSectionForces>(modal->basis(), rails);
+    else
+      setup->section_forms.unavailable = kSectionForcesNotAsked;
+  }
   for (std::size_t c = 0; c < setup->layout.contacts.size(); ++c)
     setup->layout.contacts[c].law =
         setup->layout.contacts[c].law->at_static_load(setup->statics.P[static_cast<Eigen::Index>(c)]);
@@ -247,7 +258,9 @@ Result Simulation::run() const {
   sum.dt_s = an.dt_s;
   sum.static_wheel_load_N.assign(statics.P.data(), statics.P.data() + statics.P.size());
 
-  RunState state(sc, layout, statics, x0, coords, setup.section_forms, setup.twist);
+  RunState state(sc, layout, statics, x0, coords,
+                 setup.modal_sections ? setup.modal_sections->forms() : setup.section_forms, setup.twist,
+                 setup.modal_sections.get());
   sum.setup_s = setup.setup_s + std::chrono::duration<double>(Clock::now() - t_start).count();
   const long steps = step_count(setup.duration_s, an.dt_s);
   state.record(0, 0.0, result.histories, /*store=*/true);

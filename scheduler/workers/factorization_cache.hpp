@@ -16,7 +16,7 @@
 #include <set>
 #include <string>
 
-#include "analysis/modal_section_forces.hpp"
+#include "simulation/modal_section_forces.hpp"
 #include "solver/modal_basis.hpp"
 #include "solver/structure_operator.hpp"
 
