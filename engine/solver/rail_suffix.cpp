@@ -16,13 +16,43 @@ std::vector<char> membership(int n, const std::vector<int>& dofs) {
 // A supernode's values: nsrow x nscol, column-major, its diagonal block on top.
 using SupernodeBlock = Eigen::Map<const DenseMatrix, 0, Eigen::OuterStride<>>;
 
-// The supernode whose first column is `start`.
-int supernode_at(const cholmod_factor& L, int start) {
-  const int* super = static_cast<const int*>(L.super);
-  int s = static_cast<int>(L.nsuper);
-  while (s > 0 && super[s] > start) --s;
-  return s;
-}
+// The arrays of a supernodal factor (cholmod_factor's super, pi, px, s, x).
+struct Supernodes {
+  explicit Supernodes(const cholmod_factor& L)
+      : super(static_cast<const int*>(L.super)), pi(static_cast<const int*>(L.pi)),
+        px(static_cast<const int*>(L.px)), s(static_cast<const int*>(L.s)), x(static_cast<const double*>(L.x)),
+        count(static_cast<int>(L.nsuper)) {}
+  struct Block {
+    int k1, nscol, nsrow;  // first column, columns, rows
+    const int* rows;       // row indices, the block's own columns first
+    SupernodeBlock X;
+  };
+  Block block(int k) const {
+    const int nscol = super[k + 1] - super[k], nsrow = pi[k + 1] - pi[k];
+    return {super[k], nscol, nsrow, s + pi[k], SupernodeBlock(x + px[k], nsrow, nscol, Eigen::OuterStride<>(nsrow))};
+  }
+  // The supernode holding column j.
+  int at(int j) const {
+    int k = count;
+    while (k > 0 && super[k] > j) --k;
+    return k;
+  }
+  const int *super, *pi, *px, *s;
+  const double* x;
+  int count;
+};
+
+// The arrays of a simplicial factor (p, i, nz, x; the diagonal first in
+// each column, D's for LDL').
+struct Columns {
+  explicit Columns(const cholmod_factor& L)
+      : p(static_cast<const int*>(L.p)), i(static_cast<const int*>(L.i)), nz(static_cast<const int*>(L.nz)),
+        x(static_cast<const double*>(L.x)), n(static_cast<int>(L.n)), ll(L.is_ll != 0) {}
+  const int *p, *i, *nz;
+  const double* x;
+  int n;
+  bool ll;
+};
 
 }  // namespace
 
@@ -59,101 +89,75 @@ int suffix_start(const cholmod_factor& L, const std::vector<int>& last) {
   for (int k = n - m; k < n; ++k)
     if (!in_last[static_cast<std::size_t>(perm[k])]) return -1;
   if (!L.is_super) return n - m;
-  return static_cast<const int*>(L.super)[supernode_at(L, n - m)];
+  const Supernodes sn(L);
+  return sn.super[sn.at(n - m)];
 }
 
 void suffix_forward(const cholmod_factor& L, int start, double* z) {
-  const int n = static_cast<int>(L.n);
-  const double* Lx = static_cast<const double*>(L.x);
   if (L.is_super) {
-    const int* super = static_cast<const int*>(L.super);
-    const int* pi = static_cast<const int*>(L.pi);
-    const int* px = static_cast<const int*>(L.px);
-    const int* Ls = static_cast<const int*>(L.s);
+    const Supernodes sn(L);
     Vector below;
-    for (int s = supernode_at(L, start); s < static_cast<int>(L.nsuper); ++s) {
-      const int k1 = super[s], nscol = super[s + 1] - k1, nsrow = pi[s + 1] - pi[s];
-      const int* rows = Ls + pi[s];
-      const SupernodeBlock X(Lx + px[s], nsrow, nscol, Eigen::OuterStride<>(nsrow));
-      Eigen::Map<Vector> zs(z + (k1 - start), nscol);
-      X.topRows(nscol).triangularView<Eigen::Lower>().solveInPlace(zs);
-      below.noalias() = X.bottomRows(nsrow - nscol) * zs;
-      for (int i = nscol; i < nsrow; ++i) z[rows[i] - start] -= below[i - nscol];
+    for (int s = sn.at(start); s < sn.count; ++s) {
+      const Supernodes::Block b = sn.block(s);
+      Eigen::Map<Vector> zs(z + (b.k1 - start), b.nscol);
+      b.X.topRows(b.nscol).triangularView<Eigen::Lower>().solveInPlace(zs);
+      below.noalias() = b.X.bottomRows(b.nsrow - b.nscol) * zs;
+      for (int i = b.nscol; i < b.nsrow; ++i) z[b.rows[i] - start] -= below[i - b.nscol];
     }
     return;
   }
-  const int* Lp = static_cast<const int*>(L.p);
-  const int* Li = static_cast<const int*>(L.i);
-  const int* Lnz = static_cast<const int*>(L.nz);
-  for (int j = start; j < n; ++j) {
-    const int p = Lp[j];
+  const Columns col(L);
+  for (int j = start; j < col.n; ++j) {
+    const int p = col.p[j];
     // LL': divide before the update; LDL' (unit L, D on the diagonal): after.
-    const double zj = L.is_ll ? z[j - start] / Lx[p] : z[j - start];
-    for (int q = p + 1; q < p + Lnz[j]; ++q) z[Li[q] - start] -= Lx[q] * zj;
-    z[j - start] = L.is_ll ? zj : zj / Lx[p];
+    const double zj = col.ll ? z[j - start] / col.x[p] : z[j - start];
+    for (int q = p + 1; q < p + col.nz[j]; ++q) z[col.i[q] - start] -= col.x[q] * zj;
+    z[j - start] = col.ll ? zj : zj / col.x[p];
   }
 }
 
 void suffix_backward(const cholmod_factor& L, int start, double* z) {
-  const int n = static_cast<int>(L.n);
-  const double* Lx = static_cast<const double*>(L.x);
   if (L.is_super) {
-    const int* super = static_cast<const int*>(L.super);
-    const int* pi = static_cast<const int*>(L.pi);
-    const int* px = static_cast<const int*>(L.px);
-    const int* Ls = static_cast<const int*>(L.s);
+    const Supernodes sn(L);
     Vector below;
-    const int first = supernode_at(L, start);
-    for (int s = static_cast<int>(L.nsuper) - 1; s >= first; --s) {
-      const int k1 = super[s], nscol = super[s + 1] - k1, nsrow = pi[s + 1] - pi[s];
-      const int* rows = Ls + pi[s];
-      const SupernodeBlock X(Lx + px[s], nsrow, nscol, Eigen::OuterStride<>(nsrow));
-      Eigen::Map<Vector> zs(z + (k1 - start), nscol);
-      below.resize(nsrow - nscol);
-      for (int i = nscol; i < nsrow; ++i) below[i - nscol] = z[rows[i] - start];
-      zs.noalias() -= X.bottomRows(nsrow - nscol).transpose() * below;
-      X.topRows(nscol).triangularView<Eigen::Lower>().transpose().solveInPlace(zs);
+    for (int s = sn.count - 1, first = sn.at(start); s >= first; --s) {
+      const Supernodes::Block b = sn.block(s);
+      Eigen::Map<Vector> zs(z + (b.k1 - start), b.nscol);
+      below.resize(b.nsrow - b.nscol);
+      for (int i = b.nscol; i < b.nsrow; ++i) below[i - b.nscol] = z[b.rows[i] - start];
+      zs.noalias() -= b.X.bottomRows(b.nsrow - b.nscol).transpose() * below;
+      b.X.topRows(b.nscol).triangularView<Eigen::Lower>().transpose().solveInPlace(zs);
     }
     return;
   }
-  const int* Lp = static_cast<const int*>(L.p);
-  const int* Li = static_cast<const int*>(L.i);
-  const int* Lnz = static_cast<const int*>(L.nz);
-  for (int j = n - 1; j >= start; --j) {
-    const int p = Lp[j];
+  const Columns col(L);
+  for (int j = col.n - 1; j >= start; --j) {
+    const int p = col.p[j];
     double t = z[j - start];
-    for (int q = p + 1; q < p + Lnz[j]; ++q) t -= Lx[q] * z[Li[q] - start];
-    z[j - start] = L.is_ll ? t / Lx[p] : t;
+    for (int q = p + 1; q < p + col.nz[j]; ++q) t -= col.x[q] * z[col.i[q] - start];
+    z[j - start] = col.ll ? t / col.x[p] : t;
   }
 }
 
 DenseMatrix suffix_inverse(const cholmod_factor& L, int start) {
-  const int n = static_cast<int>(L.n), m = n - start;
-  const double* Lx = static_cast<const double*>(L.x);
+  const int m = static_cast<int>(L.n) - start;
   // The suffix's block of the Cholesky factor, lower triangle (an LDL'
   // factor becomes L D^1/2: D > 0 for K_bar).
   DenseMatrix C = DenseMatrix::Zero(m, m);
   if (L.is_super) {
-    const int* super = static_cast<const int*>(L.super);
-    const int* pi = static_cast<const int*>(L.pi);
-    const int* px = static_cast<const int*>(L.px);
-    const int* Ls = static_cast<const int*>(L.s);
-    for (int s = supernode_at(L, start); s < static_cast<int>(L.nsuper); ++s) {
-      const int k1 = super[s], nscol = super[s + 1] - k1, nsrow = pi[s + 1] - pi[s];
-      const double* X = Lx + px[s];
-      for (int j = 0; j < nscol; ++j)
-        for (int i = j; i < nsrow; ++i)
-          C(Ls[pi[s] + i] - start, k1 + j - start) = X[i + static_cast<std::ptrdiff_t>(j) * nsrow];
+    const Supernodes sn(L);
+    for (int s = sn.at(start); s < sn.count; ++s) {
+      const Supernodes::Block b = sn.block(s);
+      for (int j = 0; j < b.nscol; ++j)
+        for (int i = j; i < b.nsrow; ++i) C(b.rows[i] - start, b.k1 + j - start) = b.X(i, j);
     }
   } else {
-    const int* Lp = static_cast<const int*>(L.p);
-    const int* Li = static_cast<const int*>(L.i);
-    const int* Lnz = static_cast<const int*>(L.nz);
-    for (int j = start; j < n; ++j) {
-      const int p = Lp[j];
-      const double scale = L.is_ll ? 1.0 : std::sqrt(Lx[p]);
-      C(j - start, j - start) = L.is_ll ? Lx[p] : scale;
-      for (int q = p + 1; q < p + Lnz[j]; ++q) C(Li[q] - start, j - start) = Lx[q] * scale;
+    const Columns col(L);
+    for (int j = start; j < col.n; ++j) {
+      const int p = col.p[j];
+      const double scale = col.ll ? 1.0 : std::sqrt(col.x[p]);
+      C(j - start, j - start) = col.ll ? col.x[p] : scale;
+      for (int q = p + 1; q < p + col.nz[j]; ++q) C(col.i[q] - start, j - start) = col.x[q] * scale;
     }
   }
   int info = 0;

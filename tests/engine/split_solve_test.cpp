@@ -44,16 +44,26 @@ struct Case {
   double max_fill_growth;  // allowed to the rail-last ordering
 };
 
-class SplitSolve : public ::testing::TestWithParam<Case> {};
+class SplitSolve : public ::testing::TestWithParam<Case> {
+ protected:
+  // The case's model and its operator with the rail-last ordering allowed
+  // as the case says.
+  void SetUp() override {
+    model_ = GetParam().model();
+    CholmodOperatorOptions options;
+    options.rails_last_max_fill_growth = GetParam().max_fill_growth;
+    op_ = std::make_unique<const CholmodOperator>(*model_, dynamic_factors(), options);
+  }
+  std::shared_ptr<const StructureModel> model_;
+  std::unique_ptr<const CholmodOperator> op_;
+};
 
 double relative(const Vector& got, const Vector& want) { return (got - want).norm() / want.norm(); }
 
 TEST_P(SplitSolve, ForwardThenBackwardIsTheSolveAndTheRailRowsComeFromTheSuffix) {
-  const auto model = GetParam().model();
+  const auto& model = model_;
+  const CholmodOperator& op = *op_;
   const EffectiveMatrixFactors f = dynamic_factors();
-  CholmodOperatorOptions options;
-  options.rails_last_max_fill_growth = GetParam().max_fill_growth;
-  const CholmodOperator op(*model, f, options);
   ASSERT_TRUE(op.splits_at_rails()) << "the rail DOFs were not ordered last";
   EXPECT_EQ(op.supernodal(), GetParam().supernodal);
   const int n = op.num_dofs();
@@ -99,11 +109,9 @@ TEST_P(SplitSolve, ForwardThenBackwardIsTheSolveAndTheRailRowsComeFromTheSuffix)
 // suffix block (no solve of the whole structure): against the columns of
 // Eigen's LDL' of K_bar at the rail DOFs.
 TEST_P(SplitSolve, RailFlexibilityFromTheSuffixEqualsTheInverseAtTheRails) {
-  const auto model = GetParam().model();
+  const auto& model = model_;
+  const CholmodOperator& op = *op_;
   const EffectiveMatrixFactors f = dynamic_factors();
-  CholmodOperatorOptions options;
-  options.rails_last_max_fill_growth = GetParam().max_fill_growth;
-  const CholmodOperator op(*model, f, options);
   ASSERT_TRUE(op.splits_at_rails());
   EXPECT_EQ(op.flexibility_solves(), 0);
   const Eigen::SimplicialLDLT<SparseMatrix> reference(effective_matrix(*model, f));
