@@ -182,8 +182,8 @@ void CholmodOperator::add_rail_forward(const Vector& load, Vector& y, SolveWorks
 Status CholmodOperator::backward(const Vector& y, Vector& x, SolveWorkspace& ws_base) const {
   if (!splits_at_rails()) return StructureOperator::backward(y, x, ws_base);
   auto& ws = static_cast<CholmodWorkspace&>(ws_base);
-  ws.permuted = y;
-  Eigen::Map<DenseMatrix> ymap(ws.permuted.data(), n_, 1);
+  // cholmod_solve2 reads its right-hand side only, as in solve().
+  Eigen::Map<DenseMatrix> ymap(const_cast<double*>(y.data()), n_, 1);
   if (!ws.solve(factor_.get(), ymap, CHOLMOD_Lt) || !ws.X)
     return {StatusCode::kDiverged, fmt::format("CHOLMOD solve failed (status {})", ws.common.get()->status)};
   const double* z = static_cast<const double*>(ws.X->x);
