@@ -102,6 +102,7 @@ FidelityRequest fidelity_request(const json& doc, const Train& train, ContactOpt
     with_path_prefix("/fidelity", [&] { return make_contact_law(contact); });
   if (r.contains("modal_cutoff_hz")) f.modal_cutoff_hz = r.at("modal_cutoff_hz").get<double>();
   if (r.contains("escalate_below_fraction")) f.escalate_below_fraction = r.at("escalate_below_fraction").get<double>();
+  if (r.contains("escalation_dt_factor")) f.escalation_dt_factor = r.at("escalation_dt_factor").get<double>();
   if (r.contains("reasons")) f.reasons = r.at("reasons").get<std::vector<std::string>>();
   return f;
 }

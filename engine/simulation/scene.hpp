@@ -57,6 +57,7 @@ struct FidelityRequest {
   std::string model, structure;
   std::optional<double> modal_cutoff_hz;
   std::optional<double> escalate_below_fraction;
+  std::optional<double> escalation_dt_factor;  // the repeated run's dt / the scene's; absent: 1
   std::vector<std::string> reasons;
   double tolerance = 0.01;
   // kAuto: what the run must answer; absent: what the train can give.

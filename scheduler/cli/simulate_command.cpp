@@ -60,6 +60,8 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
       throw e.with_file(file_for_errors);
     }
   }();
+  // An escalation for wheel quantities ran at a finer dt: its histories and filter are at that dt.
+  if (result.summary.dt_s > 0.0) scene.analysis.dt_s = result.summary.dt_s;
   // The time-step policy is the FE rung's (HHT period error): the modal rung's dt only samples.
   if (result.summary.fidelity.solver_path != "modal-exact")
     for (RunWarning& w : time_step_warnings(scene, cutoff)) extra.push_back(std::move(w));

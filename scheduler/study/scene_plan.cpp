@@ -90,6 +90,7 @@ ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f) {
     p.chosen_by = "planner";
     p.modal_cutoff_hz = e.modal_cutoff_hz;
     p.escalate_below_fraction = e.escalate_below_fraction;
+    p.escalation_dt_factor = e.escalation_dt_factor;
     p.reasons = e.reasons;
     return p;
   }
@@ -104,6 +105,7 @@ ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f) {
   p.chosen_by = req.reasons.empty() ? "pinned" : "planner";
   p.reasons = req.reasons.empty() ? std::vector<std::string>{"pinned in the scene"} : req.reasons;
   p.escalate_below_fraction = req.escalate_below_fraction;
+  p.escalation_dt_factor = req.escalation_dt_factor;
   if (p.rung.structure == "modal")
     p.modal_cutoff_hz = req.modal_cutoff_hz.value_or(kModalCutoffMargin * code_cutoff_hz(f.f0_hz, f.f3_hz));
   return p;
@@ -124,6 +126,7 @@ nlohmann::json pinned_fidelity_json(const EffectsPlan& plan) {
   }
   if (plan.rung.structure == "modal") j["modal_cutoff_hz"] = plan.modal_cutoff_hz;
   if (plan.escalate_below_fraction) j["escalate_below_fraction"] = *plan.escalate_below_fraction;
+  if (plan.escalation_dt_factor) j["escalation_dt_factor"] = *plan.escalation_dt_factor;
   j["reasons"] = plan.reasons;
   return j;
 }

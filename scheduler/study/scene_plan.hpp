@@ -21,6 +21,7 @@ struct ScenePlan {
   std::string chosen_by;  // "planner", "pinned", "analysis" (no fidelity key)
   double modal_cutoff_hz = 0.0;
   std::optional<double> escalate_below_fraction;
+  std::optional<double> escalation_dt_factor;  // the escalated run's dt / the plan's; absent: 1
   std::vector<std::string> reasons;
 };
 

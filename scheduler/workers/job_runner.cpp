@@ -222,7 +222,15 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache) {
     CacheLookup lookup;
     RungModels models;
     models.fe_operator = [&](const Scene& s) {
-      lookup = cache.get(job.operator_key, [&] { return make_structure_operator(s); });
+      // An escalation at a finer dt (wheel quantities) needs its own K_bar.
+      const std::string key = s.analysis.dt_s == scene.analysis.dt_s
+                                  ? job.operator_key
+                                  : fmt::format("{}/dt={:.17g}", job.operator_key, s.analysis.dt_s);
+      const CacheLookup before = lookup;  // the first run's, counted with the escalation's
+      lookup = cache.get(key, [&] { return make_structure_operator(s); });
+      lookup.factorized = lookup.factorized || before.factorized;
+      lookup.factorization_s += before.factorization_s;
+      lookup.evictions += before.evictions;
       return lookup.op;
     };
     Result result = run_at_rung(scene, plan, models);
@@ -234,7 +242,7 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache) {
     out.setup_s = s.setup_s + lookup.factorization_s;
     out.loop_s = s.wall_s - s.setup_s;
     const JobEnvelopes envelopes =
-        compute_envelopes(result, scene.analysis.dt_s, scene.analysis.history_stride, job.cutoff_hz);
+        compute_envelopes(result, s.dt_s, scene.analysis.history_stride, job.cutoff_hz);  // the dt it ran at
     store_run(s, envelopes, result.status.message(), out);
   } catch (const InputError& e) {
     invalid_input(e, out);

@@ -34,13 +34,16 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
   Result r = Simulation(on_rung, op).run();
   record_rung(on_rung, plan, plan.rung, r.summary);
   if (!plan.escalate_below_fraction || !r.status.ok() || scene.train.is_moving_forces()) return r;
-  const auto why = escalation_reason(r.summary, *plan.escalate_below_fraction);
+  const auto why = escalation_reason(r.summary, *plan.escalate_below_fraction, plan.escalation_dt_factor);
   if (!why) return r;
-  // The contact law changes neither K_bar nor the rail flexibility: same operator.
+  // The contact law changes neither K_bar nor the rail flexibility: the same
+  // operator, unless the time step changes too (wheel quantities asked).
   Scene full = on_rung;
   full.analysis.contact.law = "hertz";
   full.analysis.contact.unilateral = true;
-  Result again = Simulation(full, op).run();
+  const double dt_factor = plan.escalation_dt_factor.value_or(1.0);
+  if (dt_factor != 1.0) full.analysis.dt_s *= dt_factor;
+  Result again = Simulation(full, dt_factor != 1.0 ? models.fe_operator(full) : op).run();
   record_rung(full, plan, escalated(plan.rung), again.summary);
   again.summary.fidelity.escalation = *why;
   again.summary.wall_s += r.summary.wall_s;

@@ -2,9 +2,10 @@
 // A scene run on its planned rung (study/scene_plan): the modal moving-force
 // rung, or the FE rung (moving forces or interaction). An interaction plan
 // with an escalation fraction is repeated with nonlinear unilateral Hertz
-// when a contact force drops below that fraction of its static load; the
-// Result is then the repeated run's, its fidelity says why, and its wall
-// time counts both runs. Every Result's fidelity names the rung, who chose
+// when a contact force drops below that fraction of its static load (at the
+// plan's escalation_dt_factor x dt, on an operator for that dt); the Result
+// is then the repeated run's (its summary's dt_s is the one it ran at), its
+// fidelity says why, and its wall time counts both runs. Every Result's fidelity names the rung, who chose
 // it and why, its mode count and dt, and what it ignores and why.
 #include <functional>
 #include <memory>

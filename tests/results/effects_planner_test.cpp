@@ -147,7 +147,44 @@ TEST(EffectsPlanner, EscalatesWhenAContactForceDropsBelowTheStatedFraction) {
   EXPECT_EQ(full.contact_law, "hertz");
   EXPECT_TRUE(full.unilateral);
   EXPECT_EQ(full.name(), "interaction/fe");
-  EXPECT_FALSE(ignores(EffectsPlan{full, 0, 0, {}, rung_ignores(full, true, 0.0), {}}, "Hertz"));
+  EXPECT_FALSE(ignores(EffectsPlan{full, 0, 0, {}, rung_ignores(full, true, 0.0), {}, {}}, "Hertz"));
+}
+
+TEST(EffectsPlanner, WheelUnloadingAskedEscalatesAtHalfTheTimeStep) {
+  PlannerInput wheels = span_15m();
+  wheels.load_model = false;
+  wheels.asks.wheel_unloading = true;
+  const EffectsPlan plan = plan_effects(wheels);
+  ASSERT_TRUE(plan.escalation_dt_factor);
+  EXPECT_DOUBLE_EQ(*plan.escalation_dt_factor, 0.5);
+  EXPECT_NE(plan.reasons[2].find("wheel unloading is asked"), std::string::npos) << plan.reasons[2];
+  // Comfort or an irregularity without wheel quantities: the deck and car-body
+  // values hold at the run's step, the escalation keeps it.
+  for (int kind = 0; kind < 2; ++kind) {
+    PlannerInput in = span_15m();
+    in.load_model = false;
+    in.asks.comfort = kind == 0;
+    in.irregularity = kind == 1;
+    const EffectsPlan p = plan_effects(in);
+    EXPECT_TRUE(p.escalate_below_fraction) << kind;
+    EXPECT_FALSE(p.escalation_dt_factor) << kind;
+  }
+  // A load model has no wheels to escalate.
+  PlannerInput forces = span_15m();
+  forces.asks.wheel_unloading = true;
+  EXPECT_FALSE(plan_effects(forces).escalation_dt_factor);
+}
+
+TEST(EffectsPlanner, EscalationReasonNamesTheFinerTimeStep) {
+  RunSummary s = two_wheels(30000.0);
+  s.dt_s = 2.5e-4;
+  const auto halved = escalation_reason(s, 0.5, 0.5);
+  ASSERT_TRUE(halved);
+  EXPECT_NE(halved->find("at dt = 0.000125 s (0.5 x 0.00025 s)"), std::string::npos) << *halved;
+  const auto same = escalation_reason(s, 0.5, 1.0);
+  ASSERT_TRUE(same);
+  EXPECT_EQ(same->find("at dt ="), std::string::npos) << *same;
+  EXPECT_EQ(*same, *escalation_reason(s, 0.5));
 }
 
 TEST(EffectsPlanner, ModalTimeStepSamplesTheCodeFrequencyWithinTheTolerance) {

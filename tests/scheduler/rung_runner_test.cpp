@@ -58,6 +58,56 @@ TEST(RungRunner, WheelThatUnloadsPastTheFractionEscalatesToUnilateralHertz) {
   EXPECT_EQ(r.summary.max_abs_acceleration_mps2, direct.summary.max_abs_acceleration_mps2);
 }
 
+TEST(RungRunner, WheelQuantitiesEscalateAtTheFinerTimeStepOnItsOwnOperator) {
+  const Scene scene = dip_scene(0.004);
+  ScenePlan plan = linear_hertz_plan();
+  plan.escalation_dt_factor = 0.5;
+  std::vector<double> operator_dts;
+  RungModels models;
+  models.fe_operator = [&](const Scene& s) {
+    operator_dts.push_back(s.analysis.dt_s);
+    return make_structure_operator(s);
+  };
+  const Result r = run_at_rung(scene, plan, models);
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  // One operator for the linear-Hertz run at dt, one for Hertz at dt / 2.
+  EXPECT_EQ(operator_dts, (std::vector<double>{1.0e-4, 0.5e-4}));
+  const FidelityRecord& f = r.summary.fidelity;
+  EXPECT_EQ(f.contact_law, "hertz");
+  EXPECT_TRUE(f.unilateral);
+  EXPECT_EQ(r.summary.dt_s, 0.5e-4);
+  EXPECT_EQ(f.dt_s, 0.5e-4);
+  EXPECT_NE(f.escalation.find("at dt = 5e-05 s (0.5 x 0.0001 s)"), std::string::npos) << f.escalation;
+  // It is the unilateral Hertz run at dt / 2 itself.
+  Scene hertz = scene;
+  hertz.analysis.contact.law = "hertz";
+  hertz.analysis.contact.unilateral = true;
+  hertz.analysis.dt_s = 0.5e-4;
+  const Result direct = Simulation(hertz).run();
+  EXPECT_EQ(r.summary.max_unloading_ratio, direct.summary.max_unloading_ratio);
+  EXPECT_EQ(r.summary.contact_loss_s, direct.summary.contact_loss_s);
+  EXPECT_EQ(r.histories.deck_acceleration_mps2.front().size(), direct.histories.deck_acceleration_mps2.front().size());
+}
+
+TEST(RungRunner, NoEscalationKeepsTheTimeStepWhateverTheFactor) {
+  // The factor applies to the repeated run only: a run that stays on linear
+  // Hertz is not repeated and keeps its dt and its one operator.
+  const Scene scene = dip_scene(0.0002);
+  ScenePlan plan = linear_hertz_plan();
+  plan.escalation_dt_factor = 0.5;
+  int operators = 0;
+  RungModels models;
+  models.fe_operator = [&](const Scene& s) {
+    ++operators;
+    return make_structure_operator(s);
+  };
+  const Result r = run_at_rung(scene, plan, models);
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  EXPECT_EQ(operators, 1);
+  EXPECT_EQ(r.summary.dt_s, 1.0e-4);
+  EXPECT_EQ(r.summary.fidelity.contact_law, "linear-hertz");
+}
+
 TEST(RungRunner, SmallUnloadingStaysOnLinearHertzAndSaysWhatItIgnores) {
   const Scene scene = dip_scene(0.0002);
   const Result r = run_at_rung(scene, linear_hertz_plan(), fe_models());

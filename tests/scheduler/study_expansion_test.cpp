@@ -180,6 +180,23 @@ TEST(StudyExpansion, PlannerPinsTheModalRungWithItsSamplingStepInEveryJob) {
   }
 }
 
+TEST(StudyExpansion, WheelUnloadingAskedPinsTheEscalationAtHalfTheTimeStep) {
+  json doc = tiny_study();
+  doc["trains"] = json::array({one_car_train()});
+  doc["speeds_kmh"] = json::array({200});
+  doc["asks"] = {"deck", "wheel_unloading"};
+  const StudyPlan wheels = expand(doc);
+  ASSERT_EQ(wheels.jobs.size(), 1u);
+  const json pinned = json::parse(wheels.jobs[0].scene)["fidelity"];
+  EXPECT_EQ(pinned["contact_law"], "linear-hertz");
+  EXPECT_EQ(pinned["escalate_below_fraction"].get<double>(), 0.5);
+  EXPECT_EQ(pinned["escalation_dt_factor"].get<double>(), 0.5);
+  doc["asks"] = {"deck", "comfort"};
+  const json deck_and_comfort = json::parse(expand(doc).jobs[0].scene)["fidelity"];
+  EXPECT_EQ(deck_and_comfort["escalate_below_fraction"].get<double>(), 0.5);
+  EXPECT_FALSE(deck_and_comfort.contains("escalation_dt_factor"));
+}
+
 TEST(StudyExpansion, PinnedInteractionForALoadModelIsRefusedAtItsPath) {
   json doc = tiny_study();
   doc["fidelity"] = {{"model", "interaction"}, {"structure", "fe"}};
