@@ -33,17 +33,18 @@ EffectsPlan plan_effects(const PlannerInput& in) {
         why.empty() ? "multibody vehicles: their suspensions change the deck response near resonance, so they run "
                       "with interaction"
                     : fmt::format("interaction answers what a force cannot ({})", why.substr(2)));
+    const double fraction = in.asks.wheel_unloading ? kWheelEscalationFraction : kEscalationFraction;
     plan.reasons.push_back(fmt::format("Hertz linearized at the static load first; repeated with nonlinear "
                                        "unilateral Hertz if a contact force drops below {:g} % of its static load",
-                                       100.0 * kEscalationFraction));
-    plan.escalate_below_fraction = kEscalationFraction;
+                                       100.0 * fraction));
+    plan.escalate_below_fraction = fraction;
     if (in.asks.wheel_unloading) {
       plan.escalation_dt_factor = kWheelEscalationDtFactor;
       plan.reasons.push_back(fmt::format(
-          "wheel unloading is asked: the repeated run takes {:g} x the time step (unilateral Hertz's wheel values at "
-          "the policy's dt were measured up to 3.2 % off the full model where a wheel unloads that far, within "
-          "0.5 % at half of it)",
-          kWheelEscalationDtFactor));
+          "wheel unloading is asked: linearized Hertz's own error on dQ/Q reaches 1 % beyond an unloading of {:g}, "
+          "and unilateral Hertz's wheel values at the policy's dt were measured up to 3.2 % off the full model where "
+          "a wheel unloads past half its load, within 1 % at {:g} x dt: the repeated run takes that step",
+          1.0 - kWheelEscalationFraction, kWheelEscalationDtFactor));
     }
   }
   // The structure: modal unless its cut-off cannot be honoured.
@@ -104,8 +105,8 @@ std::optional<std::string> escalation_reason(const RunSummary& summary, double f
     if (!w.evaluated || !(w.static_load_N > 0.0)) continue;
     if (!(w.min_force_N >= fraction * w.static_load_N)) {
       std::string why = fmt::format("wheel {}: contact force down to {:.0f} N, below {:g} % of its static load {:.0f} "
-                                    "N: linearized bilateral Hertz does not hold, repeated with nonlinear unilateral "
-                                    "Hertz",
+                                    "N: linearized bilateral Hertz is not trusted that far, repeated with nonlinear "
+                                    "unilateral Hertz",
                                     w.name, w.min_force_N, 100.0 * fraction, w.static_load_N);
       if (dt_factor && *dt_factor != 1.0)
         why += fmt::format(" at dt = {:.4g} s ({:g} x {:.4g} s) for the wheel values", *dt_factor * summary.dt_s,

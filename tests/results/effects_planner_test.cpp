@@ -59,7 +59,8 @@ TEST(EffectsPlanner, WheelUnloadingComfortOrIrregularityNeedInteractionWithLinea
     EXPECT_EQ(plan.rung.contact_law, "linear-hertz") << kind;
     EXPECT_FALSE(plan.rung.unilateral) << kind;
     ASSERT_TRUE(plan.escalate_below_fraction) << kind;
-    EXPECT_DOUBLE_EQ(*plan.escalate_below_fraction, kEscalationFraction);
+    // Wheel unloading asked: linear Hertz answers only above 70 % of the static load.
+    EXPECT_DOUBLE_EQ(*plan.escalate_below_fraction, kind == 0 ? 0.7 : kEscalationFraction) << kind;
     // Until the modal interaction rung is built in, interaction runs on FE.
     EXPECT_EQ(plan.rung.structure, "fe") << kind;
     EXPECT_NE(plan.reasons.back().find("modal interaction rung is not available"), std::string::npos);
@@ -157,6 +158,9 @@ TEST(EffectsPlanner, WheelUnloadingAskedEscalatesAtHalfTheTimeStep) {
   const EffectsPlan plan = plan_effects(wheels);
   ASSERT_TRUE(plan.escalation_dt_factor);
   EXPECT_DOUBLE_EQ(*plan.escalation_dt_factor, 0.5);
+  ASSERT_TRUE(plan.escalate_below_fraction);
+  EXPECT_DOUBLE_EQ(*plan.escalate_below_fraction, 0.7);
+  EXPECT_NE(plan.reasons[1].find("below 70 % of its static load"), std::string::npos) << plan.reasons[1];
   EXPECT_NE(plan.reasons[2].find("wheel unloading is asked"), std::string::npos) << plan.reasons[2];
   // Comfort or an irregularity without wheel quantities: the deck and car-body
   // values hold at the run's step, the escalation keeps it.
@@ -166,7 +170,8 @@ TEST(EffectsPlanner, WheelUnloadingAskedEscalatesAtHalfTheTimeStep) {
     in.asks.comfort = kind == 0;
     in.irregularity = kind == 1;
     const EffectsPlan p = plan_effects(in);
-    EXPECT_TRUE(p.escalate_below_fraction) << kind;
+    ASSERT_TRUE(p.escalate_below_fraction) << kind;
+    EXPECT_DOUBLE_EQ(*p.escalate_below_fraction, 0.5) << kind;
     EXPECT_FALSE(p.escalation_dt_factor) << kind;
   }
   // A load model has no wheels to escalate.

@@ -189,7 +189,7 @@ TEST(StudyExpansion, WheelUnloadingAskedPinsTheEscalationAtHalfTheTimeStep) {
   ASSERT_EQ(wheels.jobs.size(), 1u);
   const json pinned = json::parse(wheels.jobs[0].scene)["fidelity"];
   EXPECT_EQ(pinned["contact_law"], "linear-hertz");
-  EXPECT_EQ(pinned["escalate_below_fraction"].get<double>(), 0.5);
+  EXPECT_EQ(pinned["escalate_below_fraction"].get<double>(), 0.7);
   EXPECT_EQ(pinned["escalation_dt_factor"].get<double>(), 0.5);
   doc["asks"] = {"deck", "comfort"};
   const json deck_and_comfort = json::parse(expand(doc).jobs[0].scene)["fidelity"];

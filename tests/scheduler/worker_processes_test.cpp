@@ -165,6 +165,58 @@ TEST_F(WorkerProcesses, RunExitsWithThreeWhenJobsFailAndShowsWhy) {
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 0) << "a failed run is not a result";
 }
 
+// The 4 mm dip of rung_runner_test lifts the coach's leading wheelset: the
+// planner's linear Hertz run escalates, and wheel unloading is asked.
+json dip_study() {
+  json doc = tiny_study();
+  doc["structure"]["spans_m"] = {10, 10};
+  doc["structure"]["deck"] = {{"EI_Nm2", 1.0e10}, {"mass_kg_per_m", 10000}};
+  doc["structure"]["damping"] = {{"ratio", 0.02}};
+  doc["structure"]["track"] = {{"approach_m", 24}, {"exit_m", 6}};
+  doc["trains"] = json::array({one_car_train()});
+  doc["speeds_kmh"] = json::array({300});
+  doc["irregularities"] = json::parse(R"([{"defects": [{"type": "dip", "x_m": 4, "length_m": 1, "depth_m": 0.004}]}])");
+  doc["asks"] = {"deck", "wheel_unloading"};
+  doc["analysis"] = {{"dt_s", 1.0e-4}, {"duration_s", 0.25}};
+  doc["outputs"] = json::parse(R"({"points": [{"name": "midspan", "x_m": 5}]})");
+  return doc;
+}
+
+TEST_F(WorkerProcesses, WheelEscalationRunsAtHalfTheStepAndTheJobRecordSaysSo) {
+  const json doc = dip_study();
+  const auto study = write_json("dip.json", doc);
+  const std::string db_file = (dir_ / "dip.sqlite").string();
+  const VsiResult run = vsi({"run", study.string(), "--db", db_file});
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  EXPECT_NE(run.out.find("interaction/fe, dt 5e-05 s, chosen by planner, escalated to unilateral Hertz"),
+            std::string::npos)
+      << run.out;
+  const std::string id = study_id_of(vsi({"submit", study.string(), "--db", db_file}));
+  const json jobs = json::parse(vsi({"query", "--db", db_file, "--study", id, "--format", "json"}).out)["jobs"];
+  ASSERT_EQ(jobs.size(), 1u);
+  const json& fidelity = jobs[0]["fidelity"];
+  EXPECT_EQ(fidelity["contact_law"], "hertz");
+  EXPECT_EQ(fidelity["dt_s"].get<double>(), 5.0e-5);
+  EXPECT_NE(fidelity["escalation"].get<std::string>().find("at dt = 5e-05 s (0.5 x 0.0001 s)"), std::string::npos)
+      << fidelity["escalation"];
+  EXPECT_EQ(jobs[0]["dt_s"].get<double>(), 1.0e-4) << "the job's planned step stays in the jobs table";
+  // The job's envelopes are those of vsi simulate of its scene (filtered at
+  // the step the answer ran at in both).
+  json scene = {{"structure", doc["structure"]}, {"train", doc["trains"][0]}, {"speed_kmh", 300},
+                {"irregularity", doc["irregularities"][0]}, {"fidelity", "auto"}, {"asks", doc["asks"]},
+                {"analysis", doc["analysis"]}, {"outputs", doc["outputs"]}};
+  const VsiResult simulated = vsi({"simulate", write_json("dip-scene.json", scene).string()});
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+  const json summary = json::parse(simulated.out);
+  EXPECT_EQ(summary["run"]["dt_s"].get<double>(), 5.0e-5);
+  const json& point = summary["deck"]["points"][0];
+  EXPECT_DOUBLE_EQ(jobs[0]["envelopes"]["deck_acceleration_mps2"]["midspan"].get<double>(),
+                   point["max_abs_acceleration_filtered_mps2"].get<double>());
+  EXPECT_GT(summary["wheels"]["contact_loss_s"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(jobs[0]["envelopes"]["contact_loss_s"]["all"].get<double>(),
+                   summary["wheels"]["contact_loss_s"].get<double>());
+}
+
 TEST_F(WorkerProcesses, StatusQueryCancelAndRetryFromTheCommandLine) {
   const auto study = write_json("tiny.json", tiny_study());
   const std::string db_file = (dir_ / "t.sqlite").string();
