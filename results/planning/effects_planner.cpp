@@ -41,7 +41,8 @@ EffectsPlan plan_effects(const PlannerInput& in) {
     if (in.asks.wheel_unloading) {
       plan.escalation_dt_factor = kWheelEscalationDtFactor;
       plan.reasons.push_back(fmt::format(
-          "wheel unloading is asked: linearized Hertz's own error on dQ/Q reaches 1 % beyond an unloading of {:g}, "
+          "wheel unloading is asked: linearized Hertz's own error on dQ/Q was measured at 0.95-1.8 % beyond an "
+          "unloading of {:g}, "
           "and unilateral Hertz's wheel values at the policy's dt were measured up to 3.2 % off the full model where "
           "a wheel unloads past half its load, within 1 % at {:g} x dt: the repeated run takes that step",
           1.0 - kWheelEscalationFraction, kWheelEscalationDtFactor));
