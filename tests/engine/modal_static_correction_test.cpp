@@ -116,12 +116,8 @@ TEST(ModalStaticCorrection, WithEveryModeKeptTheRunIsTheUncorrectedOne) {
   for (bool track : {true, false}) {
     Scene scene = with_track();
     if (!track) {
-      Bridge2dOptions b;
-      b.spans_m = {10.0, 10.0};
-      b.deck_EI_Nm2 = 1.0e10;
-      b.deck_mass_kg_per_m = 10000.0;
-      b.damping_ratio = 0.02;
-      b.element_length_m = 1.0;
+      Bridge2dOptions b = testing::small_viaduct_options();
+      b.track.reset();
       scene.structure = make_bridge_2d(b);
     }
     const auto basis = std::make_shared<const ModalBasis>(scene.structure, all_modes(*scene.structure));

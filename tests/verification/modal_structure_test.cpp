@@ -56,6 +56,14 @@ Errors compare(const JobEnvelopes& m, const JobEnvelopes& fe) {
   return e;
 }
 
+// Each error of `e` at most its bound.
+void expect_at_most(const Errors& e, double displacement, double acceleration, double min_force, double unloading) {
+  EXPECT_LE(e.displacement, displacement) << e.modes << " modes";
+  EXPECT_LE(e.acceleration, acceleration) << e.modes << " modes";
+  EXPECT_LE(e.min_force, min_force) << e.modes << " modes";
+  EXPECT_LE(e.unloading, unloading) << e.modes << " modes";
+}
+
 // One cut-off: without and with the static correction of the dropped modes
 // (the same modes for both).
 struct Rung {
@@ -131,15 +139,9 @@ TEST(ModalStructure, ViaductWithTrackStaysWithinTheMeasuredErrors) {
   const auto e = ladder(viaduct(), filter_hz, {30, 60, 100, 200}, &fe_wall);
   ASSERT_EQ(e.size(), 4u);
   // 60 Hz, 66 modes: measured 4.4e-3, 0.23, 0.040, 0.022.
-  EXPECT_LE(e[1].plain.displacement, 6e-3);
-  EXPECT_LE(e[1].plain.acceleration, 0.3);
-  EXPECT_LE(e[1].plain.min_force, 0.06);
-  EXPECT_LE(e[1].plain.unloading, 0.03);
+  expect_at_most(e[1].plain, 6e-3, 0.3, 0.06, 0.03);
   // 200 Hz, 548 modes: measured 8.9e-4, 0.095, 0.098, 0.054.
-  EXPECT_LE(e[3].plain.displacement, 1.5e-3);
-  EXPECT_LE(e[3].plain.acceleration, 0.13);
-  EXPECT_LE(e[3].plain.min_force, 0.13);
-  EXPECT_LE(e[3].plain.unloading, 0.07);
+  expect_at_most(e[3].plain, 1.5e-3, 0.13, 0.13, 0.07);
   // With the static correction (FE dQ/Q 0.450): it helps where every track
   // mode is dropped (30 Hz: dQ/Q error 0.374 -> 0.063, min force 0.68 ->
   // 0.11) and where the dropped ones lie above the wheel-on-track
@@ -149,10 +151,7 @@ TEST(ModalStructure, ViaductWithTrackStaysWithinTheMeasuredErrors) {
   // -> 0.080): their static part is a poor stand-in for their dynamics.
   EXPECT_LE(e[0].corrected.unloading, 0.09);
   EXPECT_LE(e[0].corrected.min_force, 0.16);
-  EXPECT_LE(e[3].corrected.displacement, 1e-3);
-  EXPECT_LE(e[3].corrected.acceleration, 0.12);
-  EXPECT_LE(e[3].corrected.min_force, 0.08);
-  EXPECT_LE(e[3].corrected.unloading, 0.045);
+  expect_at_most(e[3].corrected, 1e-3, 0.12, 0.08, 0.045);
   EXPECT_LT(e[3].corrected.unloading, e[3].plain.unloading);
   // Guards of the 60 Hz and 100 Hz rows (measured 0.130 and 0.080).
   EXPECT_LE(e[1].corrected.unloading, 0.17);
@@ -183,10 +182,7 @@ TEST(ModalStructure, ViaductWithoutTrackConvergesToTheFiniteElementRung) {
   // deck is unchanged (18 modes: displacement 1.8e-4, acceleration 1.4e-3).
   EXPECT_LE(e[2].corrected.min_force, 1e-3);
   EXPECT_LE(e[2].corrected.unloading, 1e-3);
-  EXPECT_LE(e[3].corrected.min_force, 1e-3);
-  EXPECT_LE(e[3].corrected.unloading, 1e-3);
-  EXPECT_LE(e[3].corrected.displacement, 4e-4);
-  EXPECT_LE(e[3].corrected.acceleration, 3e-3);
+  expect_at_most(e[3].corrected, 4e-4, 3e-3, 1e-3, 1e-3);
 }
 
 // One 25 m span of the deck-3d generator (hexahedra, two rails on pads;
@@ -214,10 +210,7 @@ TEST(ModalStructure, ThreeDimensionalDeckConvergesToTheFiniteElementRung) {
   // 7.1e-3, 7.2e-3 and dQ/Q 6.8e-3 ... 7.0e-3: the rail-on-pad modes
   // (about 150 Hz) are above these cut-offs.
   for (std::size_t i = 1; i < e.size(); ++i) EXPECT_LT(e[i].plain.acceleration, e[i - 1].plain.acceleration) << i;
-  EXPECT_LE(e[2].plain.displacement, 5e-4);
-  EXPECT_LE(e[2].plain.acceleration, 1.5e-3);
-  EXPECT_LE(e[2].plain.min_force, 1e-2);
-  EXPECT_LE(e[2].plain.unloading, 1e-2);
+  expect_at_most(e[2].plain, 5e-4, 1.5e-3, 1e-2, 1e-2);
   // With the static correction (the rail-on-pad modes' static flexibility
   // under the wheels; FE dQ/Q 0.0313): dQ/Q 2.0e-3, 2.3e-3, 2.2e-3 and min
   // force 2.1e-3, 2.4e-3, 2.3e-3 at 5, 9, 15 modes, a third of the
