@@ -11,6 +11,9 @@
 #include <fmt/format.h>
 #include <numbers>
 
+#include "core/input_error.hpp"
+#include "io/json_document.hpp"
+#include "io/scene_loader.hpp"
 #include "simulation/simulation.hpp"
 #include "solver/modal_operator.hpp"
 #include "solver/residual_flexibility.hpp"
@@ -148,6 +151,24 @@ TEST(ModalStaticCorrection, WithEveryModeKeptTheRunIsTheUncorrectedOne) {
                                                      fe.histories.deck_displacement_m),
                 1e-9);
     }
+  }
+}
+
+// "static_correction" in a scene's analysis: read on the modal structure
+// (default true), refused with its path on the FE one.
+TEST(ModalStaticCorrection, SceneOptionIsReadAndRefusedWithoutModes) {
+  const std::string path = RAILVSI_SOURCE_DIR "/jobs/examples/viaduct-ice3.json";
+  nlohmann::json doc = read_json_file(path);
+  doc["analysis"]["structure"] = "modal";
+  EXPECT_TRUE(parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs/examples", path).analysis.modal_static_correction);
+  doc["analysis"]["static_correction"] = false;
+  EXPECT_FALSE(parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs/examples", path).analysis.modal_static_correction);
+  doc["analysis"]["structure"] = "fe";
+  try {
+    parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs/examples", path);
+    ADD_FAILURE() << "static_correction on the FE structure was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/analysis/static_correction");
   }
 }
 
