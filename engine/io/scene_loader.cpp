@@ -126,6 +126,10 @@ AnalysisOptions parse_analysis(const json& a) {
   if ((a.contains("modes") || a.contains("cutoff_hz")) && o.structure_backend != StructureBackend::kModal)
     throw InputError(a.contains("modes") ? "/analysis/modes" : "/analysis/cutoff_hz",
                      "modes and cutoff_hz choose the modes of the modal structure: give \"structure\": \"modal\"");
+  o.modal_static_correction = a.value("static_correction", o.modal_static_correction);
+  if (a.contains("static_correction") && o.structure_backend != StructureBackend::kModal)
+    throw InputError("/analysis/static_correction",
+                     "static_correction corrects the modes of the modal structure: give \"structure\": \"modal\"");
   if (a.contains("modes") && a.contains("cutoff_hz"))
     throw InputError("/analysis/cutoff_hz", "give either modes or cutoff_hz, not both");
   o.max_newton_iterations = a.value("max_newton_iterations", o.max_newton_iterations);

@@ -45,8 +45,15 @@ class CondensedStepSolver final : public StepSolver {
       return st;
     }
 
-    // 2-3. Penetration affine in P: delta = delta_bar - (1+alpha) A P.
-    assemble_A(p.rows);
+    // 2-3. Penetration affine in P: delta = delta_bar - A P. With a
+    // residual flexibility R (the modal backend's dropped modes), the rail
+    // under the wheels also moves by R f_{n+1}, f_{n+1} = -N^T P the rail
+    // loads at t_{n+1}: A gains N R N^T, at weight 1 (quasi-static, at
+    // t_{n+1}, not HHT-shifted). delta_bar would gain R times the known
+    // rail loads, but a train of vehicles has none (Train: moving forces
+    // or vehicles). Not on the rigid path: its wheels follow the rail's
+    // slope and curvature from the state, which has no residual part.
+    assemble_A(p.rows, p.rigid ? nullptr : op_->rail_residual_flexibility());
     if (p.rigid) add_wheel_following(p, s);
     for (Eigen::Index c = 0; c < nc; ++c) {
       const ContactSpec& cs = layout_.contacts[c];
@@ -90,13 +97,14 @@ class CondensedStepSolver final : public StepSolver {
   }
 
  private:
-  // (1+alpha) (N F_s N^T + E F_v E^T), F_s the rail flexibility.
-  void assemble_A(const std::vector<std::optional<RailContactRow>>& rows) {
+  // (1+alpha) (N F_s N^T + E F_v E^T) + N R N^T, F_s the rail flexibility,
+  // R the residual one (null: none).
+  void assemble_A(const std::vector<std::optional<RailContactRow>>& rows, const DenseMatrix* R) {
     const auto nc = A_.rows();
     const DenseMatrix& F = op_->rail_flexibility();
     for (Eigen::Index c = 0; c < nc; ++c) {
       for (Eigen::Index e = c; e < nc; ++e) {
-        double a = 0.0;
+        double a = 0.0, residual = 0.0;
         if (rows[c] && rows[e]) {
           for (int i = 0; i < 4; ++i) {
             const int di = rows[c]->dof[i];
@@ -104,7 +112,11 @@ class CondensedStepSolver final : public StepSolver {
             const int ri = op_->rail_index(di);
             for (int j = 0; j < 4; ++j) {
               const int dj = rows[e]->dof[j];
-              if (dj >= 0) a += rows[c]->weight[i] * rows[e]->weight[j] * F(ri, op_->rail_index(dj));
+              if (dj < 0) continue;
+              const double w = rows[c]->weight[i] * rows[e]->weight[j];
+              const int rj = op_->rail_index(dj);
+              a += w * F(ri, rj);
+              if (R) residual += w * (*R)(ri, rj);
             }
           }
         }
@@ -112,7 +124,7 @@ class CondensedStepSolver final : public StepSolver {
         const ContactSpec& ce = layout_.contacts[e];
         if (cc.vehicle == ce.vehicle)
           a += vehicles_[layout_.vehicles[cc.vehicle].type].wheel_flexibility(cc.local_wheel, ce.local_wheel);
-        A_(c, e) = A_(e, c) = (1.0 + options_.alpha) * a;
+        A_(c, e) = A_(e, c) = (1.0 + options_.alpha) * a + residual;
       }
     }
   }

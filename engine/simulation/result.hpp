@@ -69,6 +69,9 @@ struct FidelityRecord {
   double dt_s = 0.0;
   int modes = 0;                 // modal rungs: modes kept, all up to modal_cutoff_hz
   double modal_cutoff_hz = 0.0;
+  // Modal interaction: the dropped modes' static flexibility at the rails
+  // was added to the contact's (ModalOperatorOptions::static_correction).
+  bool static_correction = false;
   std::vector<std::string> reasons;
   struct Ignored {
     std::string what, why;

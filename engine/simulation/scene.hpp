@@ -27,6 +27,9 @@ struct AnalysisOptions {
   StructureBackend structure_backend = StructureBackend::kFiniteElements;
   int modal_modes = 0;
   double modal_cutoff_hz = 0.0;
+  // Modal with vehicles: the dropped modes' static flexibility at the rails
+  // (StructureOperatorOptions::modal_static_correction).
+  bool modal_static_correction = true;
   ContactOptions contact;
   int max_newton_iterations = 50;
   // Newton stops when |residual| / |static wheel loads| <= tol (eq. 25).

@@ -94,6 +94,7 @@ StructureOperatorOptions structure_operator_options(const Scene& scene) {
   options.modal_modes = scene.analysis.modal_modes;
   options.modal_cutoff_hz = scene.analysis.modal_cutoff_hz;
   options.rail_flexibility = !scene.train.is_moving_forces();
+  options.modal_static_correction = scene.analysis.modal_static_correction;
   return options;
 }
 
@@ -249,6 +250,9 @@ Result Simulation::run() const {
     sum.fidelity.modal_cutoff_hz = an.modal_modes > 0 ? std::numeric_limits<double>::quiet_NaN()
                                    : an.modal_cutoff_hz > 0.0 ? an.modal_cutoff_hz
                                                               : kDefaultModalCutoffHz;
+    // As the step applies it: not on the rigid path (condensed_step_solver).
+    sum.fidelity.static_correction = op_->rail_residual_flexibility() != nullptr && !layout.contacts.empty() &&
+                                     !layout.contacts.front().law->is_constraint();
   }
   sum.fidelity.vehicle_dofs = layout.num_vehicle_dofs;
   sum.fidelity.contacts = static_cast<int>(layout.contacts.size());

@@ -112,9 +112,18 @@ StaticState static_equilibrium(const Scene& scene, const TrainLayout& layout, do
   // The track substructure is exact for the FE operator (it inverts K);
   // the modal one's flexibility is that of its modes.
   const bool fe = !op.coordinates(s).modal();
-  const DenseMatrix F = dofs.empty()   ? DenseMatrix()
-                        : fe ? substructured_flexibility(op, s.K(), s, dofs, *ws)
-                             : op.flexibility_block(dofs, *ws);
+  DenseMatrix F = dofs.empty()   ? DenseMatrix()
+                  : fe ? substructured_flexibility(op, s.K(), s, dofs, *ws)
+                       : op.flexibility_block(dofs, *ws);
+  // The modes' static correction (rail_residual_flexibility()) makes the
+  // modal flexibility the exact one at the rail DOFs, as the run's contact
+  // sees it; not on the rigid path, whose run leaves it out.
+  const DenseMatrix* residual = op.rail_residual_flexibility();
+  if (residual && !layout.contacts.empty() && !layout.contacts.front().law->is_constraint())
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      for (std::size_t j = 0; j < dofs.size(); ++j)
+        F(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) +=
+            (*residual)(op.rail_index(dofs[i]), op.rail_index(dofs[j]));
   const auto local = [&](int d) { return std::find(dofs.begin(), dofs.end(), d) - dofs.begin(); };
   DenseMatrix As = DenseMatrix::Zero(nc, nc);
   for (Eigen::Index c = 0; c < nc; ++c)

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "solver/modal_analysis.hpp"
 #include "core/input_error.hpp"
+#include "solver/residual_flexibility.hpp"
 
 namespace railvsi {
 namespace {
@@ -39,8 +39,17 @@ ModalResult modes_up_to(const StructureModel& s, const ModalBasisOptions& o) {
 ModalBasis::ModalBasis(std::shared_ptr<const StructureModel> structure, const ModalBasisOptions& options)
     : structure_(std::move(structure)), max_frequency_hz_(options.max_frequency_hz) {
   if (!(options.max_frequency_hz > 0.0)) throw InputError("", "modal cut-off frequency must be > 0");
+  set_modes(modes_up_to(*structure_, options));
+}
+
+ModalBasis::ModalBasis(std::shared_ptr<const StructureModel> structure, const ModalResult& modes)
+    : structure_(std::move(structure)),
+      max_frequency_hz_(modes.frequencies_hz.empty() ? 0.0 : modes.frequencies_hz.back()) {
+  set_modes(modes);
+}
+
+void ModalBasis::set_modes(const ModalResult& modes) {
   const StructureModel& s = *structure_;
-  const ModalResult modes = modes_up_to(s, options);
   const auto n = static_cast<Eigen::Index>(modes.frequencies_hz.size());
   const DenseMatrix& Phi = modes.shapes;
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -76,6 +85,15 @@ const double* ModalBasis::row(int dof) const {
   if (dof < 0) return zero_row_.data();
   const int r = rail_row_[static_cast<std::size_t>(dof)];
   return r < 0 ? zero_row_.data() : rail_shapes_.col(r).data();
+}
+
+const DenseMatrix& ModalBasis::rail_residual_flexibility() const {
+  std::call_once(residual_once_, [this] {
+    const auto nr = static_cast<Eigen::Index>(structure_->rail_dofs().size());
+    // The rail DOFs are the first columns of the kept rows.
+    residual_ = residual_flexibility(static_rail_flexibility(*structure_), rail_shapes_.leftCols(nr), omega_);
+  });
+  return residual_;
 }
 
 std::size_t ModalBasis::memory_bytes() const {

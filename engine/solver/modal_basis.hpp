@@ -4,10 +4,12 @@
 // frequencies, modal damping ratios, and the mode shapes where runs read
 // them: at the rail DOFs (for the loads) and at the output points.
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "core/types.hpp"
 #include "model/structure_model.hpp"
+#include "solver/modal_analysis.hpp"
 
 namespace railvsi {
 
@@ -23,6 +25,10 @@ class ModalBasis {
   // Lanczos on K, M (modal_analysis). Throws InputError when the modes
   // cannot be computed.
   ModalBasis(std::shared_ptr<const StructureModel> structure, const ModalBasisOptions& options);
+  // Modes computed elsewhere (mass-normalised shapes, one column per mode,
+  // ascending frequencies), e.g. all of a small model's from a dense
+  // eigensolver; the cut-off is the highest frequency.
+  ModalBasis(std::shared_ptr<const StructureModel> structure, const ModalResult& modes);
 
   const StructureModel& structure() const { return *structure_; }
   int num_modes() const { return static_cast<int>(omega_.size()); }
@@ -40,10 +46,18 @@ class ModalBasis {
   const DenseMatrix& kept_rows() const { return rail_shapes_; }
   // Shapes at the output points, one row per point.
   const DenseMatrix& at_outputs() const { return at_outputs_; }
-  // What the basis holds in memory (the structure it shares excepted).
+  // What the basis holds in memory (the structure it shares excepted, and
+  // the residual flexibility: its operators count that).
   std::size_t memory_bytes() const;
+  // The static flexibility of the modes left out, at the rail DOFs
+  // (StructureModel::rail_dofs() order; residual_flexibility.hpp). Computed
+  // at the first call (a factor of K and the rail columns of its inverse),
+  // then shared by every operator on this basis, for every dt; safe to call
+  // from several threads. Throws InputError when K cannot be factorized.
+  const DenseMatrix& rail_residual_flexibility() const;
 
  private:
+  void set_modes(const ModalResult& modes);
   std::shared_ptr<const StructureModel> structure_;
   double max_frequency_hz_ = 0.0;
   std::vector<double> omega_, zeta_;
@@ -52,6 +66,9 @@ class ModalBasis {
   DenseMatrix rail_shapes_;    // row-major in effect: one row per kept DOF (stored transposed)
   std::vector<double> zero_row_;
   DenseMatrix at_outputs_;
+  // A cache filled once, not state: the basis stays immutable in meaning.
+  mutable std::once_flag residual_once_;
+  mutable DenseMatrix residual_;
 };
 
 }  // namespace railvsi

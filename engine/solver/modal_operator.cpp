@@ -30,6 +30,12 @@ ModalOperator::ModalOperator(std::shared_ptr<const ModalBasis> basis, const Effe
   }
   factorization_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (options.rail_flexibility) compute_rail_flexibility(model);
+  if (options.static_correction) {
+    const auto t0 = std::chrono::steady_clock::now();
+    index_rail_dofs(model);
+    residual_ = &basis_->rail_residual_flexibility();
+    flexibility_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
 }
 
 Status ModalOperator::solve(const Vector& b, Vector& x, SolveWorkspace&) const {
@@ -53,8 +59,9 @@ DenseMatrix ModalOperator::inverse_block(const std::vector<int>& rows, const std
 
 std::string ModalOperator::backend_name() const {
   const auto& w = basis_->omega_rad_s();
-  return fmt::format("modal ({} modes up to {:.4g} Hz, HHT)", basis_->num_modes(),
-                     w.empty() ? 0.0 : w.back() / (2.0 * std::numbers::pi));
+  return fmt::format("modal ({} modes up to {:.4g} Hz, HHT{})", basis_->num_modes(),
+                     w.empty() ? 0.0 : w.back() / (2.0 * std::numbers::pi),
+                     residual_ ? ", static correction" : "");
 }
 
 StructureCoordinates ModalOperator::coordinates(const StructureModel& model) const {
@@ -66,11 +73,12 @@ StructureCoordinates ModalOperator::coordinates(const StructureModel& model) con
 
 std::shared_ptr<const StructureOperator> ModalOperator::static_operator(const StructureModel&) const {
   return std::make_shared<const ModalOperator>(basis_, EffectiveMatrixFactors{0.0, 0.0, 1.0},
-                                               ModalOperatorOptions{false});
+                                               ModalOperatorOptions{false, residual_ != nullptr});
 }
 
 std::size_t ModalOperator::memory_bytes() const {
-  return static_cast<std::size_t>(basis_->kept_rows().size() + rail_flexibility_.size() + d_.size()) *
+  const Eigen::Index residual = residual_ ? residual_->size() : 0;
+  return static_cast<std::size_t>(basis_->kept_rows().size() + rail_flexibility_.size() + d_.size() + residual) *
          sizeof(double);
 }
 

@@ -6,9 +6,10 @@
 // coupled consistently by the condensed direct method: K_bar is diagonal,
 // K_bar^-1 = D, and the rail flexibility is A = Phi_r D Phi_r^T (Phi_r: the
 // rows of the modes at the rail DOFs). What it gives up against the FE
-// backend: the modes above the cut-off (also their static part: the static
-// flexibility under a wheel is that of the kept modes), and the coupling
-// terms of a non-proportional damping matrix.
+// backend: the modes above the cut-off, and the coupling terms of a
+// non-proportional damping matrix. With the static correction (default),
+// the dropped modes keep their static part at the rail DOFs: the contact
+// sees A + R (rail_residual_flexibility(); README "The modal structure").
 #include <memory>
 
 #include "solver/modal_basis.hpp"
@@ -18,6 +19,11 @@ namespace railvsi {
 
 struct ModalOperatorOptions {
   bool rail_flexibility = true;
+  // The residual static flexibility of the dropped modes at the rail DOFs
+  // (ModalBasis::rail_residual_flexibility(): a factor of K, once per
+  // basis). The factory asks for it with the rail flexibility only (a
+  // multibody train); static_operator() inherits it.
+  bool static_correction = true;
 };
 
 class ModalOperator final : public StructureOperator {
@@ -37,9 +43,11 @@ class ModalOperator final : public StructureOperator {
   std::shared_ptr<const StructureOperator> static_operator(const StructureModel& model) const override;
   std::size_t memory_bytes() const override;
   const ModalBasis& basis() const { return *basis_; }
+  const DenseMatrix* rail_residual_flexibility() const override { return residual_; }
 
  private:
   std::shared_ptr<const ModalBasis> basis_;
+  const DenseMatrix* residual_ = nullptr;  // the basis's, or null
   Vector d_;  // K_bar^-1, diagonal
 };
 

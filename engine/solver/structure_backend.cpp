@@ -35,7 +35,9 @@ std::shared_ptr<const StructureOperator> make_structure_operator(std::shared_ptr
       if (basis->structure().num_dofs() != model->num_dofs())
         throw InputError("/structure", "the modal basis was computed for another structure");
       return std::make_shared<const ModalOperator>(std::move(basis), factors,
-                                                   ModalOperatorOptions{options.rail_flexibility});
+                                                   ModalOperatorOptions{options.rail_flexibility,
+                                                                        options.rail_flexibility &&
+                                                                            options.modal_static_correction});
     }
   }
   throw InputError("/analysis/structure", "unknown structure backend");

@@ -22,6 +22,9 @@ struct StructureOperatorOptions {
   int modal_modes = 0;
   double modal_cutoff_hz = 0.0;
   bool rail_flexibility = true;
+  // Modal, with rail_flexibility: add the static flexibility of the dropped
+  // modes at the rail DOFs to the contact's (ModalOperatorOptions).
+  bool modal_static_correction = true;
   int flexibility_block_columns = 64;  // FE: right-hand sides per blocked solve
   // FE: order the rail DOFs last when this adds at most this fraction of
   // the factor's nonzeros, for one solve per step (rail_suffix.hpp); 0: never.

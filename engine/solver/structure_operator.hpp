@@ -75,6 +75,14 @@ class StructureOperator {
   // Rail flexibility (K_bar^-1 at the rail DOFs of the model), computed once
   // when the operator is built with rail flexibility requested.
   const DenseMatrix& rail_flexibility() const { return rail_flexibility_; }
+  // The static flexibility at the rail DOFs (rail_flexibility()'s order)
+  // that the operator's coordinates leave out, or null when they leave
+  // none out (FE) or it is not wanted: the modal backend's dropped modes
+  // (residual_flexibility.hpp). The rail displacement is the coordinates'
+  // part plus this times the load on the rail DOFs at the same instant: a
+  // quasi-static part, without velocity or acceleration of its own and
+  // independent of dt (no 1 + alpha: K_bar's HHT shift is the kept modes').
+  virtual const DenseMatrix* rail_residual_flexibility() const { return nullptr; }
   // Index of a structure DOF in rail_flexibility(), -1 if not a rail DOF.
   int rail_index(int dof) const { return rail_index_[static_cast<std::size_t>(dof)]; }
   const EffectiveMatrixFactors& factors() const { return factors_; }

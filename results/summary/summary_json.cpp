@@ -93,6 +93,7 @@ ordered_json fidelity_json(const FidelityRecord& s) {
           {"dt_s", number(s.dt_s)},
           {"modes", s.modes},
           {"modal_cutoff_hz", s.modes > 0 ? number(s.modal_cutoff_hz) : ordered_json(nullptr)},
+          {"static_correction", s.modes > 0 ? ordered_json(s.static_correction) : ordered_json(nullptr)},
           {"reasons", s.reasons},
           {"ignores", ignores_json(s.ignores)},
           {"escalation", s.escalation.empty() ? ordered_json(nullptr) : ordered_json(s.escalation)}};

@@ -37,10 +37,12 @@ std::string structure_model_hash(const StructureModel& structure) {
 std::string operator_key(const std::string& structure_hash, const AnalysisOptions& analysis, bool rail_flexibility) {
   // Hex floats: exact, so equal doubles and only equal doubles share a key.
   // A modal operator is another operator: its backend and modes are part of
-  // the key (FE keys are unchanged).
+  // the key (FE keys are unchanged), and so is a static correction turned
+  // off (the default's keys are unchanged).
   const std::string modal = analysis.structure_backend == StructureBackend::kModal
-                                ? fmt::format("|modal|modes={}|cutoff={:a}", analysis.modal_modes,
-                                              analysis.modal_cutoff_hz)
+                                ? fmt::format("|modal|modes={}|cutoff={:a}{}", analysis.modal_modes,
+                                              analysis.modal_cutoff_hz,
+                                              analysis.modal_static_correction ? "" : "|no-static-correction")
                                 : std::string();
   return sha256_hex(fmt::format("railvsi operator v1|{}|dt={:a}|alpha={:a}|beta={:a}|gamma={:a}|flex={}{}",
                                 structure_hash, analysis.dt_s, analysis.hht.alpha, analysis.hht.beta,

@@ -216,6 +216,10 @@ void BM_SeedScaleKhstModal(benchmark::State& state, const std::string& entry) {
       scene.analysis.modal_cutoff_hz = std::atof(entry.c_str());
     else
       scene.analysis.modal_modes = std::atoi(entry.c_str());
+    // RAILVSI_SEED_STATIC_CORRECTION=0: the modes without the dropped
+    // modes' static flexibility at the rails (its cost is in "operator").
+    const char* correction = std::getenv("RAILVSI_SEED_STATIC_CORRECTION");
+    scene.analysis.modal_static_correction = !(correction && std::string(correction) == "0");
     StructureOperatorOptions mo;
     mo.structure_backend = StructureBackend::kModal;
     mo.modal_modes = scene.analysis.modal_modes;
@@ -245,6 +249,7 @@ void BM_SeedScaleKhstModal(benchmark::State& state, const std::string& entry) {
   const double acc_filtered = max_filtered_acceleration(r.histories, s.dt_s, cutoff_hz);
   state.counters["dofs"] = s.fidelity.structure_dofs;
   state.counters["modes"] = basis->num_modes();
+  state.counters["static_correction"] = s.fidelity.static_correction ? 1 : 0;
   state.counters["f_max_Hz"] = basis->omega_rad_s().back() / (2.0 * std::numbers::pi);
   state.counters["f_cut_Hz"] = cutoff_hz;
   state.counters["modes_s"] = modes.wall_s;

@@ -39,9 +39,8 @@ inline std::shared_ptr<const Irregularity> cosine_dip(double x0_m, double length
   return std::make_shared<const Irregularity>(x, r, "cosine dip");
 }
 
-// Two 10 m spans with ballasted track, one ICE3 coach fully on the approach
-// at t = 0, a dip on the first span deep enough to lift the wheels at speed.
-inline Scene small_viaduct_with_dip(double speed_kmh, double dip_depth_m) {
+// Two 10 m spans with ballasted track (24 m approach, 6 m exit).
+inline Bridge2dOptions small_viaduct_options() {
   Bridge2dOptions b;
   b.spans_m = {10.0, 10.0};
   b.deck_EI_Nm2 = 1.0e10;
@@ -52,8 +51,14 @@ inline Scene small_viaduct_with_dip(double speed_kmh, double dip_depth_m) {
   t.approach_m = 24.0;
   t.exit_m = 6.0;
   b.track = t;
+  return b;
+}
+
+// The small viaduct, one ICE3 coach fully on the approach at t = 0, a dip
+// on the first span deep enough to lift the wheels at speed.
+inline Scene small_viaduct_with_dip(double speed_kmh, double dip_depth_m) {
   Scene s;
-  s.structure = make_bridge_2d(b);
+  s.structure = make_bridge_2d(small_viaduct_options());
   s.train.name = "one coach";
   s.train.vehicles.push_back({make_car_2d(ice3_coach()), 0.0});
   s.speed_mps = speed_kmh / 3.6;
