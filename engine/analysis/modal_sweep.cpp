@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -76,6 +78,7 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
         for (int j = 0; j < 4; ++j) c[j] = coef[j];
       }
     }
+    tabulate_train_load(rail);
     rails_.push_back(std::move(rail));
   }
   twist_ = make_deck_twist_gauge(s, rail_lines);
@@ -89,66 +92,189 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
   }
 }
 
-void ModalSweep::modal_load(double x, double* p, ModalSweepWorkspace& ws) const {
-  const auto n = static_cast<std::size_t>(n_modes_);
+void ModalSweep::tabulate_train_load(Rail& rail) const {
   const auto width = static_cast<std::size_t>(width_);
-  std::fill_n(p, width, 0.0);
-  const std::size_t axles = offsets_.size();
+  std::vector<double>& b = rail.breaks;
+  b.clear();
+  b.reserve(rail.x_m.size() * offsets_.size());
+  for (double offset : offsets_)
+    for (double node : rail.x_m) b.push_back(node + offset);
+  std::sort(b.begin(), b.end());
+  b.erase(std::unique(b.begin(), b.end()), b.end());
+  const std::size_t n_pieces = b.size() - 1;
+  rail.pieces.assign(n_pieces * width * 4, 0.0);
+  for (std::size_t i = 0; i < n_pieces; ++i) {
+    // Inside the piece no axle is on a node: its midpoint places them all.
+    const double mid = 0.5 * (b[i] + b[i + 1]);
+    double* d = rail.pieces.data() + i * width * 4;
+    for (std::size_t a = 0; a < offsets_.size(); ++a) {
+      const double xa = mid - offsets_[a];
+      if (!(xa > rail.start_m && xa < rail.end_m)) continue;
+      const auto above = std::upper_bound(rail.x_m.begin(), rail.x_m.end(), xa);
+      const auto e = static_cast<std::size_t>(above - rail.x_m.begin()) - 1;
+      // xi = alpha + beta u on this piece: the axle's cubic in xi, shifted
+      // to the piece's start and scaled to u (Taylor at alpha).
+      const double h = rail.x_m[e + 1] - rail.x_m[e];
+      const double alpha = (b[i] - offsets_[a] - rail.x_m[e]) / h, beta = 1.0 / h;
+      const double load = loads_N_[a];
+      const double* c = rail.cubic.data() + e * width * 4;
+      for (std::size_t k = 0; k < width; ++k, c += 4) {
+        d[4 * k + 0] += load * (((c[3] * alpha + c[2]) * alpha + c[1]) * alpha + c[0]);
+        d[4 * k + 1] += load * ((3.0 * c[3] * alpha + 2.0 * c[2]) * alpha + c[1]) * beta;
+        d[4 * k + 2] += load * (3.0 * c[3] * alpha + c[2]) * beta * beta;
+        d[4 * k + 3] += load * c[3] * beta * beta * beta;
+      }
+    }
+  }
+}
+
+void ModalSweep::modal_load(double x, double* p, std::size_t stride, std::size_t* piece,
+                            ModalSweepWorkspace& ws) const {
+  const auto width = static_cast<std::size_t>(width_);
+  for (std::size_t k = 0; k < width; ++k) p[k * stride] = 0.0;
   for (std::size_t r = 0; r < rails_.size(); ++r) {
     const Rail& rail = rails_[r];
-    // The axles on the rail have offsets in [x - end, x - start]: the
-    // bisection bounds lower_bound(x - end), upper_bound(x - start), moved
-    // forward since x only grows.
-    std::size_t& first = ws.first[r];
-    std::size_t& last = ws.last[r];
-    while (first < axles && offsets_[first] < x - rail.end_m) ++first;
-    if (last < first) last = first;
-    while (last < axles && offsets_[last] <= x - rail.start_m) ++last;
-    const std::size_t nodes = rail.x_m.size();
-    for (std::size_t a = first; a < last; ++a) {
-      const double xa = x - offsets_[a];
-      if (!(xa >= rail.start_m && xa <= rail.end_m)) continue;  // as RailLine::covers
-      // The element whose nodes bracket xa (the last one at the end), as
-      // RailLine::locate finds it by bisection.
-      std::size_t& i = ws.element[r * axles + a];
-      while (i + 2 < nodes && xa >= rail.x_m[i + 1]) ++i;
-      const double xi = (xa - rail.x_m[i]) / (rail.x_m[i + 1] - rail.x_m[i]);
-      const double load = loads_N_[a];
-      const double* c = rail.cubic.data() + i * width * 4;
-      // On a node the forms are evaluated exactly (a shear cut there may
-      // exclude the load); inside an element, by their cubics.
-      const std::size_t cubic_columns = (sections_ && xi == 0.0) ? n : width;
-      for (std::size_t k = 0; k < cubic_columns; ++k, c += 4)
-        p[k] += load * (((c[3] * xi + c[2]) * xi + c[1]) * xi + c[0]);
-      if (cubic_columns < width) {
-        std::fill(ws.form_values.begin(), ws.form_values.end(), 0.0);
-        sections_->statics().add_form_values(rail.line, xa, share_ * load, ws.form_values);
-        for (std::size_t f = 0; f < ws.form_values.size(); ++f) p[n + f] += ws.form_values[f];
-      }
+    const std::vector<double>& b = rail.breaks;
+    // Before the first breakpoint no axle has reached the rail; past the
+    // last every axle has left it.
+    if (b.size() < 2 || x < b.front() || x > b.back()) continue;
+    std::size_t& i = piece[r * stride];
+    while (i + 2 < b.size() && x >= b[i + 1]) ++i;
+    const double u = x - b[i];
+    if (u == 0.0 || x == b.back()) {
+      add_axle_loads(rail, x, p, stride, ws);
+      continue;
+    }
+    const double* d = rail.pieces.data() + i * width * 4;
+    for (std::size_t k = 0; k < width; ++k, d += 4) p[k * stride] += ((d[3] * u + d[2]) * u + d[1]) * u + d[0];
+  }
+}
+
+void ModalSweep::add_axle_loads(const Rail& rail, double x, double* p, std::size_t stride,
+                                ModalSweepWorkspace& ws) const {
+  const auto n = static_cast<std::size_t>(n_modes_);
+  const auto width = static_cast<std::size_t>(width_);
+  const std::size_t nodes = rail.x_m.size();
+  for (std::size_t a = 0; a < offsets_.size(); ++a) {
+    const double xa = x - offsets_[a];
+    if (!(xa >= rail.start_m && xa <= rail.end_m)) continue;  // as RailLine::covers
+    // The element whose nodes bracket xa (the last one at the end), as RailLine::locate.
+    const auto above = std::upper_bound(rail.x_m.begin(), rail.x_m.end(), xa);
+    const std::size_t i = std::min(static_cast<std::size_t>(above - rail.x_m.begin()), nodes - 1) - 1;
+    const double xi = (xa - rail.x_m[i]) / (rail.x_m[i + 1] - rail.x_m[i]);
+    const double load = loads_N_[a];
+    const double* c = rail.cubic.data() + i * width * 4;
+    // On a node the forms are evaluated exactly (a shear cut there may
+    // exclude the load); inside an element, by their cubics.
+    const std::size_t cubic_columns = (sections_ && xi == 0.0) ? n : width;
+    for (std::size_t k = 0; k < cubic_columns; ++k, c += 4)
+      p[k * stride] += load * (((c[3] * xi + c[2]) * xi + c[1]) * xi + c[0]);
+    if (cubic_columns < width) {
+      std::fill(ws.form_values.begin(), ws.form_values.end(), 0.0);
+      sections_->statics().add_form_values(rail.line, xa, share_ * load, ws.form_values);
+      for (std::size_t f = 0; f < ws.form_values.size(); ++f) p[(n + f) * stride] += ws.form_values[f];
     }
   }
 }
 
 ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws,
                               bool keep_acceleration, Histories* histories, int history_stride) const {
+  const SweepLane lane{x0_m, speed_mps, n_steps};
+  ModalSweepRun out;
+  run_lanes<1>(&lane, 1, &out, ws, keep_acceleration, histories, history_stride);
+  return out;
+}
+
+std::vector<ModalSweepRun> ModalSweep::run_group(const std::vector<SweepLane>& lanes, ModalSweepWorkspace& ws,
+                                                 bool keep_acceleration) const {
+  if (lanes.size() > static_cast<std::size_t>(kSweepLanes))
+    throw std::invalid_argument("ModalSweep::run_group: more runs than lanes");
+  std::vector<ModalSweepRun> out(lanes.size());
+  if (lanes.size() == 1) run_lanes<1>(lanes.data(), 1, out.data(), ws, keep_acceleration, nullptr, 1);
+  else if (!lanes.empty())
+    run_lanes<kSweepLanes>(lanes.data(), static_cast<int>(lanes.size()), out.data(), ws, keep_acceleration, nullptr, 1);
+  return out;
+}
+
+namespace {
+
+// The lanes of a group as one value: a double for one lane, a vector of
+// four doubles (GCC's vector extension: element-wise IEEE arithmetic, the
+// same bits as four scalars) for four.
+template <int L>
+struct LaneValue {
+  using type = double;
+};
+template <>
+struct LaneValue<4> {
+  // Read and written in place in the workspace's doubles: no alignment
+  // beyond a double's is assumed, and it may alias them.
+  using type = double __attribute__((vector_size(4 * sizeof(double)), aligned(alignof(double)), may_alias));
+};
+static_assert(kSweepLanes == 4, "a group is one vector of four doubles");
+
+template <class V>
+[[gnu::always_inline]] inline double& lane_of(V& v, std::size_t l) {
+  if constexpr (std::is_same_v<V, double>) return v;
+  else return reinterpret_cast<double*>(&v)[l];
+}
+template <class V>
+[[gnu::always_inline]] inline double lane_of(const V& v, std::size_t l) {
+  if constexpr (std::is_same_v<V, double>) return v;
+  else return reinterpret_cast<const double*>(&v)[l];
+}
+
+// max(m, |x|) as std::max(m, std::abs(x)) for each lane: (m < |x|) ? |x| : m.
+template <class V>
+[[gnu::always_inline]] inline void raise_max_abs(V& m, const V& x) {
+  if constexpr (std::is_same_v<V, double>) {
+    m = std::max(m, std::abs(x));
+  } else {
+    const V ax = x < 0.0 ? -x : x;  // |-0.0| = -0.0 here, which max never keeps over 0.0
+    m = m < ax ? ax : m;
+  }
+}
+
+}  // namespace
+
+template <int L>
+void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
+                           bool keep_acceleration, Histories* histories, int history_stride) const {
+  using V = typename LaneValue<L>::type;
+  constexpr auto lanes_n = static_cast<std::size_t>(L);
   const auto n = static_cast<std::size_t>(n_modes_);
-  for (auto* v : {&ws.p, &ws.p_next}) v->assign(static_cast<std::size_t>(width_), 0.0);
-  for (auto* v : {&ws.q, &ws.qd, &ws.qdd}) v->assign(n, 0.0);
+  const auto width = static_cast<std::size_t>(width_);
+  for (auto* v : {&ws.p, &ws.p_next}) v->assign(width * lanes_n, 0.0);
+  for (auto* v : {&ws.q, &ws.qd, &ws.qdd}) v->assign(n * lanes_n, 0.0);
+  ws.lane_p.assign(width, 0.0);
+  for (auto* v : {&ws.lane_q, &ws.lane_qd, &ws.lane_qdd}) v->assign(n, 0.0);
   ws.form_values.assign(sections_ ? static_cast<std::size_t>(sections_->num_forms()) : 0, 0.0);
-  ws.element.assign(rails_.size() * offsets_.size(), 0);
-  ws.first.assign(rails_.size(), 0);
-  ws.last.assign(rails_.size(), 0);
+  ws.piece.assign(rails_.size() * lanes_n, 0);
   const StructureModel& s = basis_.structure();
   const DenseMatrix& Phi_out = basis_.at_outputs();
   const std::size_t np = s.outputs().size();
-  ModalSweepRun out;
-  out.max_abs_displacement_m.assign(np, 0.0);
-  out.max_abs_acceleration_mps2.assign(np, 0.0);
-  if (sections_) out.sections.emplace(sections_->forms());
-  if (twist_.available()) out.max_abs_twist_m = 0.0;
-  if (keep_acceleration) {
-    ws.acceleration.resize(np);
-    for (auto& a : ws.acceleration) a.resize(static_cast<std::size_t>(n_steps) + 1);
+  // Idle lanes (l >= count) repeat lane 0 and record nothing.
+  std::array<SweepLane, L> lane;
+  std::array<long, L> last_step{};  // a lane records steps 0..last_step
+  long steps = 0;
+  for (int l = 0; l < L; ++l) {
+    lane[static_cast<std::size_t>(l)] = lanes[l < count ? l : 0];
+    last_step[static_cast<std::size_t>(l)] = l < count ? lanes[l].n_steps : -1;
+    steps = std::max(steps, last_step[static_cast<std::size_t>(l)]);
+  }
+  // The maxima of every lane as vectors (an idle lane's are never read).
+  std::vector<double> maxima(2 * np * lanes_n, 0.0);
+  V* max_u = reinterpret_cast<V*>(maxima.data());
+  V* max_a = max_u + np;
+  for (int l = 0; l < count; ++l) {
+    ModalSweepRun& o = out[l];  // freshly made by the caller
+    if (sections_) o.sections.emplace(sections_->forms());
+    if (twist_.available()) o.max_abs_twist_m = 0.0;
+    if (keep_acceleration) {
+      auto& acc = ws.acceleration[static_cast<std::size_t>(l)];
+      acc.resize(np);
+      for (auto& a : acc) a.resize(static_cast<std::size_t>(lanes[l].n_steps) + 1);
+    }
   }
   const int stride = std::max(1, history_stride);
   if (histories) {
@@ -157,81 +283,189 @@ ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, Modal
     for (const OutputPoint& o : s.outputs()) h.point_names.push_back(o.name);
     h.deck_displacement_m.assign(np, {});
     h.deck_acceleration_mps2.assign(np, {});
-    const auto samples = static_cast<std::size_t>(n_steps / stride + 2);
+    const auto samples = static_cast<std::size_t>(lanes[0].n_steps / stride + 2);
     h.t_s.reserve(samples);
     for (std::size_t i = 0; i < np; ++i) {
       h.deck_displacement_m[i].reserve(samples);
       h.deck_acceleration_mps2[i].reserve(samples);
     }
   }
-  // Deck response at the output points from the modal coordinates; the
-  // maxima see every step, the histories every stride.
+  // The lanes' loads (width columns) and modal state (n modes), one V each.
+  static_assert(sizeof(V) == lanes_n * sizeof(double));
+  V* p = reinterpret_cast<V*>(ws.p.data());
+  V* p_next = reinterpret_cast<V*>(ws.p_next.data());
+  V* q = reinterpret_cast<V*>(ws.q.data());
+  V* qd = reinterpret_cast<V*>(ws.qd.data());
+  V* qdd = reinterpret_cast<V*>(ws.qdd.data());
+  const auto running = [&](long step, std::size_t l) { return step <= last_step[l]; };
+  // The output and twist rows of the modes, each value in every lane
+  // (loaded as vectors: no scalar broadcast in the loop).
+  std::vector<double> rows_in_lanes((np + static_cast<std::size_t>(twist_modes_.rows())) * n * lanes_n);
+  for (std::size_t i = 0; i < np + static_cast<std::size_t>(twist_modes_.rows()); ++i)
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto row = static_cast<Eigen::Index>(i), col = static_cast<Eigen::Index>(k);
+      const double v = i < np ? Phi_out(row, col) : twist_modes_(row - static_cast<Eigen::Index>(np), col);
+      for (std::size_t l = 0; l < lanes_n; ++l) rows_in_lanes[(i * n + k) * lanes_n + l] = v;
+    }
+  const V* phi_rows = reinterpret_cast<const V*>(rows_in_lanes.data());
+  // Deck response at the output points from the modal coordinates of the
+  // lanes still running at `step`; the maxima see every step, the
+  // histories (lane 0 alone) every stride.
   const auto record = [&](long step, double t, bool store) {
+    bool all = true;
+    for (std::size_t l = 0; l < lanes_n; ++l) all = all && (running(step, l) || l >= static_cast<std::size_t>(count));
     if (store) histories->t_s.push_back(t);
     for (std::size_t i = 0; i < np; ++i) {
-      const auto row = static_cast<Eigen::Index>(i);
-      double u = 0.0, a = 0.0;
+      V u{}, a{};
+
       for (std::size_t k = 0; k < n; ++k) {
-        u += Phi_out(row, static_cast<Eigen::Index>(k)) * ws.q[k];
-        a += Phi_out(row, static_cast<Eigen::Index>(k)) * ws.qdd[k];
+        const V phi = phi_rows[i * n + k];
+        u += phi * q[k];
+        a += phi * qdd[k];
       }
-      out.max_abs_displacement_m[i] = std::max(out.max_abs_displacement_m[i], std::abs(u));
-      out.max_abs_acceleration_mps2[i] = std::max(out.max_abs_acceleration_mps2[i], std::abs(a));
-      if (keep_acceleration) ws.acceleration[i][static_cast<std::size_t>(step)] = a;
+      if (all) {
+        raise_max_abs(max_u[i], u);
+        raise_max_abs(max_a[i], a);
+      } else {
+        for (std::size_t l = 0; l < lanes_n; ++l) {
+          if (!running(step, l)) continue;
+          double& mu = lane_of(max_u[i], l);
+          double& ma = lane_of(max_a[i], l);
+          mu = std::max(mu, std::abs(lane_of(u, l)));
+          ma = std::max(ma, std::abs(lane_of(a, l)));
+        }
+      }
+      if (keep_acceleration)
+        for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
+          if (running(step, l)) ws.acceleration[l][i][static_cast<std::size_t>(step)] = lane_of(a, l);
       if (!store) continue;
-      histories->deck_displacement_m[i].push_back(u);
-      histories->deck_acceleration_mps2[i].push_back(a);
+      histories->deck_displacement_m[i].push_back(lane_of(u, 0));
+      histories->deck_acceleration_mps2[i].push_back(lane_of(a, 0));
     }
     for (Eigen::Index b = 0; b < twist_modes_.rows(); ++b) {
-      double t = 0.0;
-      for (std::size_t k = 0; k < n; ++k) t += twist_modes_(b, static_cast<Eigen::Index>(k)) * ws.q[k];
-      if (std::abs(t) > *out.max_abs_twist_m || (step == 0 && b == 0)) {
-        out.max_abs_twist_m = std::abs(t);
-        out.twist_x_m = twist_.x_m[static_cast<std::size_t>(b)];
+      V t_b{};
+      for (std::size_t k = 0; k < n; ++k) t_b += phi_rows[(np + static_cast<std::size_t>(b)) * n + k] * q[k];
+      for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l) {
+        if (!running(step, l)) continue;
+        ModalSweepRun& o = out[l];
+        const double tl = lane_of(t_b, l);
+        if (std::abs(tl) > *o.max_abs_twist_m || (step == 0 && b == 0)) {
+          o.max_abs_twist_m = std::abs(tl);
+          o.twist_x_m = twist_.x_m[static_cast<std::size_t>(b)];
+        }
       }
+    }
+    if (!sections_) return;
+    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l) {
+      if (!running(step, l)) continue;
+      for (std::size_t k = 0; k < width; ++k) ws.lane_p[k] = lane_of(p[k], l);
+      for (std::size_t k = 0; k < n; ++k) {
+        ws.lane_q[k] = lane_of(q[k], l);
+        ws.lane_qd[k] = lane_of(qd[k], l);
+        ws.lane_qdd[k] = lane_of(qdd[k], l);
+      }
+      record_sections(ws, *out[l].sections);
     }
   };
 
   // Start from the static modal response under the loads at t = 0, as the
   // FE rung starts from the static equilibrium.
-  modal_load(x0_m, ws.p.data(), ws);
-  for (std::size_t k = 0; k < n; ++k) {
-    ws.q[k] = ws.p[k] * inverse_omega2_[k];
-  }
+  for (std::size_t l = 0; l < lanes_n; ++l)
+    modal_load(lane[l].x0_m, ws.p.data() + l, lanes_n, ws.piece.data() + l, ws);
+  for (std::size_t k = 0; k < n; ++k) q[k] = p[k] * inverse_omega2_[k];
   record(0, 0.0, histories != nullptr);
-  if (sections_) record_sections(ws.p.data(), ws, *out.sections);
-  double* q = ws.q.data();
-  double* qd = ws.qd.data();
-  double* qdd = ws.qdd.data();
-  double* p = ws.p.data();
-  double* p_next = ws.p_next.data();
-  for (long step = 0; step < n_steps; ++step) {
+  const std::size_t n_rails = rails_.size();
+  for (long step = 0; step < steps; ++step) {
     const double t_new = static_cast<double>(step + 1) * dt_s_;
-    modal_load(x0_m + speed_mps * t_new, p_next, ws);
+    // The loads of each lane still running: one cubic per column from the
+    // train's table (modal_load, inline for the usual case: the position
+    // strictly inside a piece).
+    double* pn = ws.p_next.data();
+    for (std::size_t l = 0; l < lanes_n; ++l) {
+      if (step >= last_step[l]) continue;
+      const double x = lane[l].x0_m + lane[l].speed_mps * t_new;
+      bool inline_ok = true;
+      for (std::size_t r = 0; r < n_rails && inline_ok; ++r) {
+        const std::vector<double>& b = rails_[r].breaks;
+        std::size_t& i = ws.piece[r * lanes_n + l];
+        if (b.size() < 2 || x < b.front() || x >= b.back()) inline_ok = false;
+        else {
+          while (x >= b[i + 1]) ++i;  // x < b.back(): stops at the last piece
+          inline_ok = x != b[i];
+        }
+      }
+      if (!inline_ok) {
+        modal_load(x, pn + l, lanes_n, ws.piece.data() + l, ws);
+        continue;
+      }
+      for (std::size_t r = 0; r < n_rails; ++r) {
+        const std::size_t i = ws.piece[r * lanes_n + l];
+        const double u = x - rails_[r].breaks[i];
+        const double* d = rails_[r].pieces.data() + i * width * 4;
+        // The first rail's loads are the sum's first terms (0 + v == v, bit for bit).
+        if (r == 0)
+          for (std::size_t k = 0; k < width; ++k, d += 4) pn[k * lanes_n + l] = ((d[3] * u + d[2]) * u + d[1]) * u + d[0];
+        else
+          for (std::size_t k = 0; k < width; ++k, d += 4) pn[k * lanes_n + l] += ((d[3] * u + d[2]) * u + d[1]) * u + d[0];
+      }
+    }
     bool finite = true;
     for (std::size_t k = 0; k < n; ++k) {
-      qdd[k] = steps_[k].advance(q[k], qd[k], p[k], p_next[k], dt_s_);
-      finite = finite && std::isfinite(q[k]);
+      // ModalStep::advance, lane by lane.
+      const ModalStep& m = steps_[k];
+      const V change = p_next[k] - p[k];
+      const V load_q = m.g0[0] * p[k] + m.g1_per_dt[0] * change;
+      const V load_qd = m.g0[1] * p[k] + m.g1_per_dt[1] * change;
+      const V q1 = (m.phi[0][0] * q[k] + m.phi[0][1] * qd[k]) + load_q;
+      const V qd1 = (m.phi[1][0] * q[k] + m.phi[1][1] * qd[k]) + load_qd;
+      q[k] = q1;
+      qd[k] = qd1;
+      qdd[k] = p_next[k] - 2.0 * m.zeta * m.omega * qd1 - m.omega * m.omega * q1;
+      const V zero = q1 * 0.0;  // 0 when finite, NaN otherwise
+      for (std::size_t l = 0; l < lanes_n; ++l) finite = finite && lane_of(zero, l) == 0.0;
     }
     std::swap(p, p_next);
-    if (!finite) {
-      out.status = {StatusCode::kDiverged, fmt::format("step {}: non-finite modal coordinates", step + 1)};
-      break;
+    std::swap(ws.p, ws.p_next);
+    for (std::size_t l = 0; l < lanes_n; ++l) {
+      if (step >= last_step[l]) continue;
+      bool lane_finite = true;
+      if (!finite)
+        for (std::size_t k = 0; k < n; ++k) lane_finite = lane_finite && std::isfinite(lane_of(q[k], l));
+      if (lane_finite) {
+        if (l < static_cast<std::size_t>(count)) out[l].steps = step + 1;
+        continue;
+      }
+      if (l < static_cast<std::size_t>(count))
+        out[l].status = {StatusCode::kDiverged, fmt::format("step {}: non-finite modal coordinates", step + 1)};
+      last_step[l] = step;  // records nothing more
     }
-    out.steps = step + 1;
-    const bool store = histories != nullptr && ((step + 1) % stride == 0 || step + 1 == n_steps);
+    const bool store = histories != nullptr && last_step[0] > step &&
+                       ((step + 1) % stride == 0 || step + 1 == lanes[0].n_steps);
     record(step + 1, t_new, store);
-    if (sections_) record_sections(p, ws, *out.sections);
   }
-  return out;
+  for (int l = 0; l < count; ++l) {
+    ModalSweepRun& o = out[l];
+    o.max_abs_displacement_m.resize(np);
+    o.max_abs_acceleration_mps2.resize(np);
+    for (std::size_t i = 0; i < np; ++i) {
+      o.max_abs_displacement_m[i] = lane_of(max_u[i], static_cast<std::size_t>(l));
+      o.max_abs_acceleration_mps2[i] = lane_of(max_a[i], static_cast<std::size_t>(l));
+    }
+  }
 }
 
-void ModalSweep::record_sections(const double* p, ModalSweepWorkspace& ws, SectionEnvelope& envelope) const {
+template void ModalSweep::run_lanes<1>(const SweepLane*, int, ModalSweepRun*, ModalSweepWorkspace&, bool, Histories*,
+                                       int) const;
+template void ModalSweep::run_lanes<kSweepLanes>(const SweepLane*, int, ModalSweepRun*, ModalSweepWorkspace&, bool,
+                                                 Histories*, int) const;
+
+void ModalSweep::record_sections(ModalSweepWorkspace& ws, SectionEnvelope& envelope) const {
   const auto n = static_cast<std::size_t>(n_modes_);
   // The exact static value under the loads (the sweep's last columns of p)
   // plus the modes' dynamic part.
-  for (std::size_t f = 0; f < ws.form_values.size(); ++f) ws.form_values[f] = p[n + f];
-  sections_->add_dynamic_part(ws.q.data(), ws.qd.data(), ws.qdd.data(), p, ws.form_values.data());
+  for (std::size_t f = 0; f < ws.form_values.size(); ++f) ws.form_values[f] = ws.lane_p[n + f];
+  sections_->add_dynamic_part(ws.lane_q.data(), ws.lane_qd.data(), ws.lane_qdd.data(), ws.lane_p.data(),
+                              ws.form_values.data());
   envelope.update(ws.form_values);
 }
 

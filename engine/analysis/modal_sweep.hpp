@@ -4,16 +4,22 @@
 // modal steps, the axles sorted by offset, the mode shapes at the four DOFs
 // of every rail element, contiguous) and what one speed needs (a workspace
 // the caller keeps between runs, so a sweep allocates nothing per step).
-// Axles are located incrementally: each moves forward along its rail, so
-// its element only ever advances; the set of axles on a rail at each step
-// and their elements are those of a bisection over the offsets and
-// RailLine::locate. Within an element the modes under an axle are the
-// cubic Hermite interpolation of its end values (as RailLine's weights),
-// stored as the cubic's coefficients in xi and summed by Horner's rule. A
-// run gives the same bits whether it is the first of a sweep or alone.
+// Within an element the modes under an axle are the cubic Hermite
+// interpolation of its end values (as RailLine's weights). All axles move
+// together, so the modal load of the whole train is a function of one
+// position s, that of the first axle: between two positions where some
+// axle crosses a node (or a rail end) the set of axles on the rail and
+// their elements do not change, and the load is one cubic in s, the sum of
+// the axles' cubics. The train's load is tabulated once per sweep as those
+// cubics, and a step evaluates one cubic per mode (Horner's rule) however
+// many axles are on the span; the piece only ever advances. At a
+// breakpoint itself (an axle exactly on a node or a rail end) the axles
+// are summed one by one, as RailLine::locate places them. A run gives the
+// same bits whether it is the first of a sweep or alone.
 // With section forces (a beam deck), the influence line of each section
 // form rides along as one more column of the same cubics, so the exact
 // static part costs what one more mode costs per axle.
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -28,16 +34,29 @@
 
 namespace railvsi {
 
+// Speeds a sweep runs together, one per lane: their recurrences are
+// independent, so the processor overlaps them (and the compiler may put
+// them in one vector register); each lane's arithmetic is the same as
+// when it runs alone, so a run gives the same bits in a group or alone.
+inline constexpr int kSweepLanes = 4;
+
+// One run of a group: first axle at x0_m at t = 0, moving at speed_mps >= 0, n_steps steps.
+struct SweepLane {
+  double x0_m = 0.0, speed_mps = 0.0;
+  long n_steps = 0;
+};
+
 // What one run reuses from the previous one (sized on first use).
 struct ModalSweepWorkspace {
-  // p, p_next: the modal loads, then (with section forces) the static
-  // value of each form under the loads.
-  std::vector<double> p, p_next, q, qd, qdd, form_values;
-  // Deck acceleration at every step (n_steps + 1 samples) per output point,
-  // for the code filter; kept only when asked.
-  std::vector<std::vector<double>> acceleration;
-  std::vector<std::size_t> element;      // per (rail, axle): element under it
-  std::vector<std::size_t> first, last;  // per rail: axles on it, [first, last) by offset
+  // Lane-minor: p[column * lanes + lane]. p, p_next: the modal loads,
+  // then (with section forces) the static value of each form under them.
+  std::vector<double> p, p_next, q, qd, qdd;
+  // One lane's loads and modal state, for its section forms.
+  std::vector<double> lane_p, lane_q, lane_qd, lane_qdd, form_values;
+  // Deck acceleration at every step (n_steps + 1 samples), per lane and
+  // output point, for the code filter; kept only when asked.
+  std::array<std::vector<std::vector<double>>, kSweepLanes> acceleration;
+  std::vector<std::size_t> piece;  // per rail and lane: the piece of its train load the first axle is on
 };
 
 struct ModalSweepRun {
@@ -62,10 +81,14 @@ class ModalSweep {
 
   // First axle at x0_m at t = 0, moving at speed_mps >= 0, for n_steps steps
   // from the static modal response. Keeps the deck acceleration of every
-  // step in ws.acceleration when keep_acceleration; fills histories (every
-  // history_stride-th step and the last) when not null.
+  // step in ws.acceleration[0] when keep_acceleration; fills histories
+  // (every history_stride-th step and the last) when not null.
   ModalSweepRun run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws, bool keep_acceleration,
                     Histories* histories = nullptr, int history_stride = 1) const;
+  // Up to kSweepLanes runs at once (no histories); run i keeps its deck
+  // acceleration in ws.acceleration[i]. Each gives the bits run() gives.
+  std::vector<ModalSweepRun> run_group(const std::vector<SweepLane>& lanes, ModalSweepWorkspace& ws,
+                                       bool keep_acceleration) const;
 
   const ModalBasis& basis() const { return basis_; }
   int num_modes() const { return n_modes_; }
@@ -86,12 +109,26 @@ class ModalSweep {
     // (a cubic inside an element; at its first node a load may be excluded
     // from a shear cut, which the exact evaluation handles).
     std::vector<double> cubic;
+    // The train's load on this rail against the first axle's position s:
+    // piece i covers [breaks[i], breaks[i+1]) and holds, per column, the
+    // cubic in u = s - breaks[i]: pieces[(i * width + column) * 4 + power].
+    std::vector<double> breaks, pieces;
   };
-  // p = Phi^T f for the first axle at x, then the static form values;
-  // x never decreases between calls.
-  void modal_load(double x, double* p, ModalSweepWorkspace& ws) const;
-  // Section form values at the step (p: loads and static values at it).
-  void record_sections(const double* p, ModalSweepWorkspace& ws, SectionEnvelope& envelope) const;
+  // Tabulates the train's load on `rail` (its cubics built).
+  void tabulate_train_load(Rail& rail) const;
+  // p[column * stride] = Phi^T f for the first axle at x, then the static
+  // form values; piece[r * stride]: where the last call left rail r (x
+  // never decreases between calls with the same pieces).
+  void modal_load(double x, double* p, std::size_t stride, std::size_t* piece, ModalSweepWorkspace& ws) const;
+  // The same for one rail, axle by axle (at a breakpoint of its table).
+  void add_axle_loads(const Rail& rail, double x, double* p, std::size_t stride, ModalSweepWorkspace& ws) const;
+  // The runs of one group, L lanes (lanes[i] for i < count, the rest idle).
+  template <int L>
+  void run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
+                 bool keep_acceleration, Histories* histories, int history_stride) const;
+  // Section form values of one lane at its step (ws.lane_*: its loads,
+  // static values and modal state).
+  void record_sections(ModalSweepWorkspace& ws, SectionEnvelope& envelope) const;
 
   const ModalBasis& basis_;
   int n_modes_ = 0;

@@ -20,7 +20,7 @@ ModalStep make_modal_step(double omega, double zeta, double dt) {
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) s.phi[i][j] = E(i, j);
     s.g0[i] = E(i, 2);
-    s.g1[i] = E(i, 3);
+    s.g1_per_dt[i] = E(i, 3) / dt;
   }
   return s;
 }

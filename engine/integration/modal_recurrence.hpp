@@ -13,18 +13,22 @@
 namespace railvsi {
 
 struct ModalStep {
-  // [q, q']_{n+1} = Phi [q, q']_n + G0 p_n + G1 (p_{n+1} - p_n) / dt
+  // [q, q']_{n+1} = Phi [q, q']_n + G0 p_n + G1 (p_{n+1} - p_n) / dt;
+  // g1_per_dt = G1 / dt (the step's length folded in once).
   double phi[2][2] = {{1.0, 0.0}, {0.0, 1.0}};
   double g0[2] = {0.0, 0.0};
-  double g1[2] = {0.0, 0.0};
+  double g1_per_dt[2] = {0.0, 0.0};
   double omega = 0.0, zeta = 0.0;
 
   // One step; returns the acceleration at the end of the step, exact from
-  // the equation itself.
-  double advance(double& q, double& qd, double p_n, double p_next, double dt) const {
-    const double rate = (p_next - p_n) / dt;
-    const double q1 = phi[0][0] * q + phi[0][1] * qd + g0[0] * p_n + g1[0] * rate;
-    const double qd1 = phi[1][0] * q + phi[1][1] * qd + g0[1] * p_n + g1[1] * rate;
+  // the equation itself. The load's part does not depend on the state, so
+  // it is summed first: the state's own chain is one product and two sums.
+  double advance(double& q, double& qd, double p_n, double p_next) const {
+    const double change = p_next - p_n;
+    const double load_q = g0[0] * p_n + g1_per_dt[0] * change;
+    const double load_qd = g0[1] * p_n + g1_per_dt[1] * change;
+    const double q1 = (phi[0][0] * q + phi[0][1] * qd) + load_q;
+    const double qd1 = (phi[1][0] * q + phi[1][1] * qd) + load_qd;
     q = q1;
     qd = qd1;
     return p_next - 2.0 * zeta * omega * qd1 - omega * omega * q1;

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <mutex>
+#include <optional>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -245,6 +248,24 @@ SchemaValidator::SchemaValidator(std::string_view schema_name) : impl_(std::make
   valijson::SchemaParser parser(valijson::SchemaParser::kDraft7);
   parser.populateSchema(valijson::adapters::NlohmannJsonAdapter(root->second), impl_->schema, fetch,
                         free_document);
+}
+
+const SchemaValidator& shared_schema_validator(std::string_view schema_name) {
+  struct Slot {
+    std::once_flag built;
+    std::optional<SchemaValidator> validator;
+  };
+  const std::span<const EmbeddedSchema> schemas = embedded_schemas();
+  // One slot per embedded schema, each filled once (call_once: threads that
+  // ask at the same time wait for the one that builds it).
+  static const std::unique_ptr<Slot[]> slots = std::make_unique<Slot[]>(schemas.size());
+  for (std::size_t i = 0; i < schemas.size(); ++i) {
+    if (schemas[i].name != schema_name) continue;
+    Slot& slot = slots[i];
+    std::call_once(slot.built, [&] { slot.validator.emplace(schema_name); });
+    return *slot.validator;
+  }
+  throw std::logic_error(fmt::format("schema {} is not compiled into this binary", schema_name));
 }
 
 SchemaValidator::~SchemaValidator() = default;

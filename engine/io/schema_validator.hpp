@@ -34,13 +34,19 @@ class SchemaValidator {
   std::unique_ptr<Impl> impl_;
 };
 
+// The validator of an embedded schema, built on first use and then shared
+// by every caller and thread of the process: it never changes once built
+// (validate() is const), and building one parses every embedded schema,
+// which costs more than validating a scene.
+const SchemaValidator& shared_schema_validator(std::string_view schema_name);
+
 // The steps every document goes through: validate `doc` against its schema,
 // then build(); errors of build() are placed in `file` unless they already
 // name another file (a train of the library, a map of an imported model).
 template <class Build>
 auto parse_validated(const nlohmann::json& doc, std::string_view schema_name, const std::string& file,
                      Build&& build) -> decltype(build()) {
-  SchemaValidator(schema_name).validate(doc, file);
+  shared_schema_validator(schema_name).validate(doc, file);
   try {
     return build();
   } catch (const InputError& e) {

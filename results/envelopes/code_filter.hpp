@@ -27,6 +27,7 @@
 // code frequency) would halve a mode at f3 when f3 sets f_cut. An FFT brick
 // wall truncates exactly at f_cut but rings (Gibbs) across the whole record;
 // this filter's impulse response decays exponentially.
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -56,11 +57,19 @@ class CodeFilter {
  public:
   CodeFilter(double dt_s, double cutoff_hz);
   double max_abs_filtered(const std::vector<double>& signal, std::vector<double>& workspace) const;
+  // The same for up to kLanes signals at once, their passes run side by
+  // side (independent recursions the processor overlaps): maxima[i] ==
+  // max_abs_filtered(*signals[i]) bit for bit. workspaces: one per signal.
+  static constexpr int kLanes = 4;
+  void max_abs_filtered(const std::vector<const std::vector<double>*>& signals, double* maxima,
+                        std::array<std::vector<double>, kLanes>& workspaces) const;
 
  private:
   friend std::vector<double> code_low_pass(const std::vector<double>&, double, double);
   // The padded, filtered signal in workspace; returns the padding.
   std::size_t filter_into(const std::vector<double>& signal, std::vector<double>& x) const;
+  // The signal with its reflected ends in x; returns the padding.
+  std::size_t pad_into(const std::vector<double>& signal, std::vector<double>& x) const;
   bool pass_through_ = false;  // cut-off at or above Nyquist
   double b_[4][3] = {}, a_[4][2] = {};
   std::size_t pad_ = 0;        // before clamping to the signal length

@@ -33,7 +33,7 @@ double fundamental_hz(const StructureModel& structure) { return scheduler::deck_
 // every train in short, the speeds, and the HSLM resonance speeds within
 // the study's speed range.
 ordered_json study_report(const nlohmann::json& doc, const std::filesystem::path& file, int modes) {
-  SchemaValidator("study.schema.json").validate(doc, file.string());
+  shared_schema_validator("study.schema.json").validate(doc, file.string());
   // The given speeds and the steps of a line_speed_kmh range (its speeds
   // around the resonances are listed with the resonance speeds below).
   std::vector<double> speeds;

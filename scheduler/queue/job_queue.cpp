@@ -1,7 +1,9 @@
 #include "queue/job_queue.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -94,26 +96,31 @@ std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, 
   Transaction tx(db_);
   std::optional<ClaimedJob> first = claim_in_transaction(preferred_key);
   if (first) {
-    // Modal moving-force jobs of the same structure, dt and train run in
-    // one pass; every job of the batch is leased like a single claim.
+    // Modal moving-force jobs of the same structure and dt run in one
+    // pass per train; every job of the batch is leased like a single claim.
     if (first->rung == kBatchedRung && max_jobs > 1) {
       // One statement claims the rest, as claim_row each.
       const double now = unix_now_s();
       Statement s = db_.prepare(
           "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker = ?, lease_expires = ?, started_at = ? "
-          "WHERE id IN (SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? AND train = ? AND rung = ? "
-          "LIMIT ?) RETURNING id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts, rung");
+          "WHERE id IN (SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? AND rung = ? "
+          "ORDER BY train, irregularity, speed_kmh LIMIT ?) RETURNING id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts, rung");
       s.bind(1, worker_)
           .bind(2, now + lease_s_)
           .bind(3, now)
           .bind(4, first->operator_key)
-          .bind(5, first->train)
-          .bind(6, first->rung)
-          .bind(7, static_cast<std::int64_t>(max_jobs - 1));
+          .bind(5, first->rung)
+          .bind(6, static_cast<std::int64_t>(max_jobs - 1));
       batch.push_back(std::move(*first));
       while (s.step())
         batch.push_back(ClaimedJob{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5), s.real(6),
                                    s.real(7), static_cast<int>(s.int64(8)), s.text(9)});
+      // RETURNING follows no order: the runner wants each train's speeds
+      // together and in order (one pass per train, neighbouring speeds
+      // side by side).
+      std::stable_sort(batch.begin(), batch.end(), [](const ClaimedJob& a, const ClaimedJob& b) {
+        return std::tie(a.train, a.irregularity, a.speed_kmh) < std::tie(b.train, b.irregularity, b.speed_kmh);
+      });
     } else {
       batch.push_back(std::move(*first));
     }

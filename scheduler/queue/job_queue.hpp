@@ -87,7 +87,8 @@ class JobQueue {
   std::optional<ClaimedJob> claim(const std::string& preferred_key = {});
   // One claim as above and, when that job is on kBatchedRung, up to
   // max_jobs - 1 more queued jobs of the same operator key (structure, dt)
-  // and train, all in one transaction, each leased as a single claim:
+  // and rung, all in one transaction, each leased as a single claim, in
+  // order of train, profile and speed:
   // complete_batch stores them in one transaction; a worker that dies
   // leaves them all to expire and return.
   std::vector<ClaimedJob> claim_batch(const std::string& preferred_key, std::size_t max_jobs);

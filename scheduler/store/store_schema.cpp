@@ -161,6 +161,12 @@ CREATE TABLE price_rows (
   PRIMARY KEY (study_id, job_id, run, quantity)
 ) WITHOUT ROWID;
 )sql"},
+      {"jobs_claim indexes (state, operator_key, rung, train): a batch claim (the queued jobs of one structure "
+       "and rung) reads its rows from the index, in order of train, instead of every queued row of the structure",
+       R"sql(
+DROP INDEX jobs_claim;
+CREATE INDEX jobs_claim ON jobs (state, operator_key, rung, train);
+)sql"},
   };
   return all;
 }

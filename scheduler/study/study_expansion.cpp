@@ -191,7 +191,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   // scenes, and the check below would resolve them against it a second time.
   const std::filesystem::path base_dir =
       (study_dir.empty() ? std::filesystem::current_path() : std::filesystem::absolute(study_dir)).lexically_normal();
-  SchemaValidator("study.schema.json").validate(doc, file);
+  shared_schema_validator("study.schema.json").validate(doc, file);
   const bool dt_given = doc.at("analysis").contains("dt_s");
   const std::size_t max_jobs = options.allow_large ? SIZE_MAX : options.max_jobs;
 

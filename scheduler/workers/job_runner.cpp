@@ -141,32 +141,62 @@ std::unique_ptr<ModalPass> make_modal_pass(const ClaimedJob& job, Scene scene, S
   return pass;
 }
 
-// One modal job on its pass: the run, its maxima and filtered acceleration
-// from the workspace, the envelopes.
-void run_on_pass(ModalPass& pass, const Scene& scene, const ClaimedJob& job, ModalSweepWorkspace& ws,
-                 std::vector<double>& filter_ws, JobOutcome& out) {
+// Modal jobs of one pass run together, up to kSweepLanes speeds in one
+// group: the run of each (the same bits as alone), its maxima and filtered
+// acceleration from the workspace, its envelopes.
+using FilterWorkspace = std::array<std::vector<double>, CodeFilter::kLanes>;
+static_assert(CodeFilter::kLanes >= kSweepLanes, "a group's signals are filtered together");
+
+struct GroupMember {
+  std::size_t job = 0;  // index in the batch
+  Scene scene;
+  long n_steps = 0;
+};
+
+void run_group_on_pass(ModalPass& pass, const std::vector<GroupMember>& group, const std::vector<ClaimedJob>& jobs,
+                       ModalSweepWorkspace& ws, FilterWorkspace& filter_ws, std::vector<JobOutcome>& outcomes) {
   const auto start = Clock::now();
-  const long n_steps = modal_run_steps(scene);
-  const ModalSweepRun run = pass.sweep->run(modal_run_start_x_m(scene), scene.speed_mps, n_steps, ws, true);
-  RunSummary summary;
-  fill_modal_summary(*pass.sweep, run, summary);
-  if (pass.fidelity_text.empty()) {
-    record_rung(scene, pass.plan, pass.plan.rung, summary);
-    pass.fidelity_text = fidelity_json(summary.fidelity).dump();
-  }
-  out.loop_s = seconds_since(start);
-  std::vector<double> filtered;
+  std::vector<SweepLane> lanes;
+  for (const GroupMember& m : group) lanes.push_back({modal_run_start_x_m(m.scene), m.scene.speed_mps, m.n_steps});
+  const std::vector<ModalSweepRun> runs = pass.sweep->run_group(lanes, ws, true);
+  // The filtered acceleration of each output point, the group's signals
+  // filtered side by side; a run that stopped early filters what it computed.
+  std::vector<std::vector<double>> filtered(group.size());
   if (pass.filter) {
-    // A run that stopped early filters what it computed.
-    for (auto& a : ws.acceleration) {
-      a.resize(static_cast<std::size_t>(run.steps) + 1);
-      filtered.push_back(pass.filter->max_abs_filtered(a, filter_ws));
+    const std::size_t points = ws.acceleration[0].size();
+    for (std::size_t g = 0; g < group.size(); ++g)
+      for (auto& a : ws.acceleration[g]) a.resize(static_cast<std::size_t>(runs[g].steps) + 1);
+    std::vector<const std::vector<double>*> signals(group.size());
+    std::vector<double> maxima(group.size());
+    for (std::size_t i = 0; i < points; ++i) {
+      for (std::size_t g = 0; g < group.size(); ++g) signals[g] = &ws.acceleration[g][i];
+      pass.filter->max_abs_filtered(signals, maxima.data(), filter_ws);
+      for (std::size_t g = 0; g < group.size(); ++g) filtered[g].push_back(maxima[g]);
     }
   }
-  summary.wall_s = seconds_since(start);
-  const JobEnvelopes envelopes = compute_envelopes(run.status, summary, scene.analysis.dt_s, job.cutoff_hz,
-                                                   pass.filter ? &filtered : nullptr, pass.obstacle);
-  store_run(summary, envelopes, run.status.message(), out, &pass.fidelity_text);
+  // The group's time, shared by its jobs in proportion to their steps.
+  const double loop_s = seconds_since(start);
+  double total_steps = 0.0;
+  for (const GroupMember& m : group) total_steps += static_cast<double>(std::max(1L, m.n_steps));
+  for (std::size_t g = 0; g < group.size(); ++g) {
+    const auto job_start = Clock::now();
+    const Scene& scene = group[g].scene;
+    const ClaimedJob& job = jobs[group[g].job];
+    JobOutcome& out = outcomes[group[g].job];
+    const ModalSweepRun& run = runs[g];
+    RunSummary summary;
+    fill_modal_summary(*pass.sweep, run, summary);
+    if (pass.fidelity_text.empty()) {
+      record_rung(scene, pass.plan, pass.plan.rung, summary);
+      pass.fidelity_text = fidelity_json(summary.fidelity).dump();
+    }
+    out.loop_s = loop_s * static_cast<double>(std::max(1L, group[g].n_steps)) / total_steps;
+    summary.wall_s = out.loop_s + seconds_since(job_start);
+    const JobEnvelopes envelopes = compute_envelopes(run.status, summary, scene.analysis.dt_s, job.cutoff_hz,
+                                                     pass.filter ? &filtered[g] : nullptr, pass.obstacle);
+    store_run(summary, envelopes, run.status.message(), out, &pass.fidelity_text);
+    out.wall_s += summary.wall_s;
+  }
 }
 
 std::vector<JobOutcome> run_modal_jobs(const std::vector<ClaimedJob>& jobs, FactorizationCache& cache,
@@ -174,8 +204,8 @@ std::vector<JobOutcome> run_modal_jobs(const std::vector<ClaimedJob>& jobs, Fact
   std::vector<JobOutcome> outcomes(jobs.size());
   std::unique_ptr<ModalPass> pass;
   ModalSweepWorkspace ws;
-  std::vector<double> filter_ws;
-  for (std::size_t i = 0; i < jobs.size(); ++i) {
+  FilterWorkspace filter_ws;
+  for (std::size_t i = 0; i < jobs.size();) {
     const auto start = Clock::now();
     JobOutcome& out = outcomes[i];
     try {
@@ -190,19 +220,39 @@ std::vector<JobOutcome> run_modal_jobs(const std::vector<ClaimedJob>& jobs, Fact
         }();
         if (parsed.second.rung.name() != kBatchedRung) {
           out = run_job(jobs[i], cache);  // not modal after all (an edited scene): alone
+          ++i;
           continue;
         }
         pass.reset();
         pass = make_modal_pass(jobs[i], std::move(parsed.first), std::move(parsed.second), cache, out);
         scene = pass->scene;
         out.setup_s = seconds_since(start);
+        out.wall_s = out.setup_s;
       }
-      run_on_pass(*pass, *scene, jobs[i], ws, filter_ws, out);
+      // This job and the next ones on the same pass, one per lane; a job
+      // whose own setup fails ends the group and then fails alone.
+      std::vector<GroupMember> group;
+      group.push_back({i, std::move(*scene), 0});
+      group.back().n_steps = modal_run_steps(group.back().scene);
+      for (std::size_t j = i + 1; j < jobs.size() && group.size() < static_cast<std::size_t>(kSweepLanes); ++j) {
+        std::optional<Scene> next = same_scene_at_speed(*pass, jobs[j]);
+        if (!next) break;
+        long n_steps = 0;
+        try {
+          n_steps = modal_run_steps(*next);
+        } catch (const InputError&) {
+          break;
+        }
+        group.push_back({j, std::move(*next), n_steps});
+      }
+      run_group_on_pass(*pass, group, jobs, ws, filter_ws, outcomes);
+      i = group.back().job + 1;
     } catch (const InputError& e) {
       invalid_input(e, out);
+      out.wall_s = seconds_since(start);
       pass.reset();
+      ++i;
     }
-    out.wall_s = seconds_since(start);
   }
   return outcomes;
 }

@@ -77,7 +77,7 @@ void compare(const Span& span, int step_kmh) {
     for (int v = 100; v <= 400; v += step_kmh) {
       s.speed_mps = v / 3.6;
       const ModalSweepRun run = sweep.run(modal_run_start_x_m(s), s.speed_mps, modal_run_steps(s), ws, true);
-      acc_p = std::max(acc_p, filter.max_abs_filtered(ws.acceleration[0], fws));
+      acc_p = std::max(acc_p, filter.max_abs_filtered(ws.acceleration[0][0], fws));
       disp_p = std::max(disp_p, run.max_abs_displacement_m[0]);
     }
     planner_s += cpu_s() - t0;

@@ -30,7 +30,7 @@ TEST(ModalRecurrence, FreeVibrationIsExactAtAnyStep) {
     double q = 1.0, qd = 0.0;
     const double wd = w * std::sqrt(1 - zeta * zeta);
     for (int n = 1; n <= 50; ++n) {
-      s.advance(q, qd, 0.0, 0.0, dt);
+      s.advance(q, qd, 0.0, 0.0);
       const double t = n * dt;
       const double exact = std::exp(-zeta * w * t) * (std::cos(wd * t) + zeta * w / wd * std::sin(wd * t));
       EXPECT_NEAR(q, exact, 1e-12) << "zeta " << zeta << " step " << n;
@@ -44,7 +44,7 @@ TEST(ModalRecurrence, RampLoadIsExact) {
   const ModalStep s = make_modal_step(w, 0.0, dt);
   double q = 0.0, qd = 0.0;
   for (int n = 1; n <= 40; ++n) {
-    const double a = s.advance(q, qd, r * (n - 1) * dt, r * n * dt, dt);
+    const double a = s.advance(q, qd, r * (n - 1) * dt, r * n * dt);
     const double t = n * dt;
     EXPECT_NEAR(q, r / (w * w) * (t - std::sin(w * t) / w), 1e-13);
     EXPECT_NEAR(a, r / w * std::sin(w * t), 1e-10);

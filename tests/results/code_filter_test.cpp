@@ -3,6 +3,7 @@
 // the bilinear transform, written here independently of the filter code.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -127,6 +128,41 @@ TEST(CodeFilter, RejectsANonPositiveStepOrCutoff) {
   const std::vector<double> x{0.0, 1.0};
   EXPECT_THROW(code_low_pass(x, 0.0, 30.0), std::invalid_argument);
   EXPECT_THROW(code_low_pass(x, kDt, -1.0), std::invalid_argument);
+}
+
+// Signals filtered side by side (one lane each, as a batch of speeds
+// filters its runs) give each the bits it has alone: different lengths, a
+// signal too short to filter, a NaN that must come through, an idle lane.
+TEST(CodeFilter, SignalsFilteredSideBySideGiveTheBitsOfEachAlone) {
+  const double dt = 9.66e-4;
+  const CodeFilter filter(dt, 30.0);
+  const auto wave = [&](std::size_t n, double f_hz, double phase) {
+    std::vector<double> x(n);
+    for (std::size_t k = 0; k < n; ++k)
+      x[k] = std::sin(2 * kPi * f_hz * dt * k + phase) + 0.3 * std::sin(2 * kPi * 70.0 * dt * k);
+    return x;
+  };
+  std::vector<double> with_nan = wave(900, 9.0, 0.2);
+  with_nan[450] = std::nan("");
+  const std::vector<std::vector<std::vector<double>>> groups = {
+      {wave(7001, 5.0, 0.1), wave(6500, 12.0, 1.0), wave(7189, 27.0, 2.0), wave(5000, 3.0, 0.4)},
+      {wave(1, 5.0, 0.0), wave(2, 5.0, 0.5), with_nan},
+      {wave(300, 20.0, 0.0)},
+  };
+  std::array<std::vector<double>, CodeFilter::kLanes> workspaces;
+  std::vector<double> alone_ws;
+  for (const auto& group : groups) {
+    std::vector<const std::vector<double>*> signals;
+    for (const auto& g : group) signals.push_back(&g);
+    double maxima[CodeFilter::kLanes];
+    filter.max_abs_filtered(signals, maxima, workspaces);
+    for (std::size_t l = 0; l < group.size(); ++l) {
+      const double alone = filter.max_abs_filtered(group[l], alone_ws);
+      if (std::isnan(alone)) EXPECT_TRUE(std::isnan(maxima[l])) << l;
+      else EXPECT_EQ(maxima[l], alone) << "lane " << l << " of " << group.size();
+    }
+  }
+  EXPECT_TRUE(std::isnan(filter.max_abs_filtered(with_nan, alone_ws)));
 }
 
 }  // namespace
