@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -80,6 +81,23 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
     }
     tabulate_train_load(rail);
     rails_.push_back(std::move(rail));
+  }
+  if (sections_) {
+    // Forms the envelope reads signed (support reactions) and as |value|.
+    const SectionForms& forms = sections_->forms();
+    std::vector<bool> as_abs(forms.forms.size(), false);
+    form_signed_.assign(forms.forms.size(), false);
+    const auto mark = [](std::vector<bool>& used, int f) {
+      if (f >= 0) used[static_cast<std::size_t>(f)] = true;
+    };
+    for (const SectionForms::Point& point : forms.points)
+      for (int f : {point.moment_left, point.moment_right, point.shear_left, point.shear_right}) mark(as_abs, f);
+    for (const SectionForms::Support& support : forms.supports) {
+      mark(form_signed_, support.reaction);
+      for (int f : support.rotations) mark(as_abs, f);
+    }
+    forms_fold_ = true;
+    for (std::size_t f = 0; f < as_abs.size(); ++f) forms_fold_ = forms_fold_ && !(as_abs[f] && form_signed_[f]);
   }
   twist_ = make_deck_twist_gauge(s, rail_lines);
   if (twist_.available()) {
@@ -246,8 +264,7 @@ void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out
   const auto width = static_cast<std::size_t>(width_);
   for (auto* v : {&ws.p, &ws.p_next}) v->assign(width * lanes_n, 0.0);
   for (auto* v : {&ws.q, &ws.qd, &ws.qdd}) v->assign(n * lanes_n, 0.0);
-  ws.lane_p.assign(width, 0.0);
-  for (auto* v : {&ws.lane_q, &ws.lane_qd, &ws.lane_qdd}) v->assign(n, 0.0);
+  ws.lane_values.assign((width - n) * lanes_n, 0.0);
   ws.form_values.assign(sections_ ? static_cast<std::size_t>(sections_->num_forms()) : 0, 0.0);
   ws.piece.assign(rails_.size() * lanes_n, 0);
   const StructureModel& s = basis_.structure();
@@ -308,6 +325,17 @@ void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out
       for (std::size_t l = 0; l < lanes_n; ++l) rows_in_lanes[(i * n + k) * lanes_n + l] = v;
     }
   const V* phi_rows = reinterpret_cast<const V*>(rows_in_lanes.data());
+  // The section envelope takes the largest |value| of some forms and the
+  // largest value of others over the steps: with each form's two maxima
+  // kept over the run (every lane at once), it is updated once at the end
+  // with the same result (a maximum is exact in any order).
+  const std::size_t n_forms = width - n;
+  const bool fold_forms = sections_ && forms_fold_;
+  std::vector<double> form_maxima(2 * n_forms * lanes_n, 0.0);
+  V* max_abs_form = reinterpret_cast<V*>(form_maxima.data());
+  V* max_form = max_abs_form + n_forms;
+  for (std::size_t i = n_forms * lanes_n; i < form_maxima.size(); ++i)
+    form_maxima[i] = -std::numeric_limits<double>::infinity();
   // Deck response at the output points from the modal coordinates of the
   // lanes still running at `step`; the maxima see every step, the
   // histories (lane 0 alone) every stride.
@@ -356,15 +384,32 @@ void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out
       }
     }
     if (!sections_) return;
-    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l) {
-      if (!running(step, l)) continue;
-      for (std::size_t k = 0; k < width; ++k) ws.lane_p[k] = lane_of(p[k], l);
-      for (std::size_t k = 0; k < n; ++k) {
-        ws.lane_q[k] = lane_of(q[k], l);
-        ws.lane_qd[k] = lane_of(qd[k], l);
-        ws.lane_qdd[k] = lane_of(qdd[k], l);
+    // The exact static value of each form under the loads (the last
+    // columns of p) plus the modes' dynamic part, every lane at once.
+    const std::size_t nf = width - n;
+    V* values = reinterpret_cast<V*>(ws.lane_values.data());
+    for (std::size_t f = 0; f < nf; ++f) values[f] = p[n + f];
+    sections_->add_dynamic_part_of<V>(q, qd, qdd, p, values);
+    if (!fold_forms) {
+      for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l) {
+        if (!running(step, l)) continue;
+        for (std::size_t f = 0; f < nf; ++f) ws.form_values[f] = lane_of(values[f], l);
+        out[l].sections->update(ws.form_values);
       }
-      record_sections(ws, *out[l].sections);
+      return;
+    }
+    for (std::size_t f = 0; f < nf; ++f) {
+      if (all) {
+        raise_max_abs(max_abs_form[f], values[f]);
+        max_form[f] = max_form[f] < values[f] ? values[f] : max_form[f];
+        continue;
+      }
+      for (std::size_t l = 0; l < lanes_n; ++l) {
+        if (!running(step, l)) continue;
+        const double v = lane_of(values[f], l);
+        lane_of(max_abs_form[f], l) = std::max(lane_of(max_abs_form[f], l), std::abs(v));
+        lane_of(max_form[f], l) = std::max(lane_of(max_form[f], l), v);
+      }
     }
   };
 
@@ -445,6 +490,11 @@ void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out
   }
   for (int l = 0; l < count; ++l) {
     ModalSweepRun& o = out[l];
+    if (fold_forms) {
+      for (std::size_t f = 0; f < n_forms; ++f)
+        ws.form_values[f] = lane_of(form_signed_[f] ? max_form[f] : max_abs_form[f], static_cast<std::size_t>(l));
+      o.sections->update(ws.form_values);
+    }
     o.max_abs_displacement_m.resize(np);
     o.max_abs_acceleration_mps2.resize(np);
     for (std::size_t i = 0; i < np; ++i) {
@@ -458,15 +508,5 @@ template void ModalSweep::run_lanes<1>(const SweepLane*, int, ModalSweepRun*, Mo
                                        int) const;
 template void ModalSweep::run_lanes<kSweepLanes>(const SweepLane*, int, ModalSweepRun*, ModalSweepWorkspace&, bool,
                                                  Histories*, int) const;
-
-void ModalSweep::record_sections(ModalSweepWorkspace& ws, SectionEnvelope& envelope) const {
-  const auto n = static_cast<std::size_t>(n_modes_);
-  // The exact static value under the loads (the sweep's last columns of p)
-  // plus the modes' dynamic part.
-  for (std::size_t f = 0; f < ws.form_values.size(); ++f) ws.form_values[f] = ws.lane_p[n + f];
-  sections_->add_dynamic_part(ws.lane_q.data(), ws.lane_qd.data(), ws.lane_qdd.data(), ws.lane_p.data(),
-                              ws.form_values.data());
-  envelope.update(ws.form_values);
-}
 
 }  // namespace railvsi

@@ -51,8 +51,8 @@ struct ModalSweepWorkspace {
   // Lane-minor: p[column * lanes + lane]. p, p_next: the modal loads,
   // then (with section forces) the static value of each form under them.
   std::vector<double> p, p_next, q, qd, qdd;
-  // One lane's loads and modal state, for its section forms.
-  std::vector<double> lane_p, lane_q, lane_qd, lane_qdd, form_values;
+  // The section forms' values of every lane (lane-minor), and of one.
+  std::vector<double> lane_values, form_values;
   // Deck acceleration at every step (n_steps + 1 samples), per lane and
   // output point, for the code filter; kept only when asked.
   std::array<std::vector<std::vector<double>>, kSweepLanes> acceleration;
@@ -126,15 +126,17 @@ class ModalSweep {
   template <int L>
   void run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
                  bool keep_acceleration, Histories* histories, int history_stride) const;
-  // Section form values of one lane at its step (ws.lane_*: its loads,
-  // static values and modal state).
-  void record_sections(ModalSweepWorkspace& ws, SectionEnvelope& envelope) const;
 
   const ModalBasis& basis_;
   int n_modes_ = 0;
   int width_ = 0;  // columns of the cubics: modes, then section forms
   double dt_s_ = 0.0;
   std::shared_ptr<const ModalSectionForces> sections_;
+  // Per section form: read signed by the envelope (a support reaction);
+  // forms_fold_: no form is read both signed and as |value|, so the
+  // envelope can be folded from each form's maxima at the end of a run.
+  std::vector<bool> form_signed_;
+  bool forms_fold_ = false;
   // The twist of each base as a row over the modes (the gauge's forms
   // applied to the mode shapes at the rail DOFs): t = row . q.
   DeckTwistGauge twist_;

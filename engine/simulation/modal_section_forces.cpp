@@ -26,21 +26,6 @@ ModalSectionForces::ModalSectionForces(const ModalBasis& basis, const std::vecto
   }
 }
 
-void ModalSectionForces::add_dynamic_part(const double* q, const double* qd, const double* qdd, const double* p,
-                                          double* values) const {
-  const auto n = inverse_omega2_.size();
-  const auto nf = static_cast<std::size_t>(num_forms());
-  const double* on_u = on_u_.data();  // column-major: nf x n
-  const double* on_v = on_v_.data();
-  const double* on_a = on_a_.data();
-  for (std::size_t k = 0; k < n; ++k) {
-    // The mode's dynamic part on u: q - p / omega^2.
-    const double du = q[k] - p[k] * inverse_omega2_[k], v = qd[k], a = qdd[k];
-    const std::size_t col = k * nf;
-    for (std::size_t f = 0; f < nf; ++f) values[f] += on_u[col + f] * du + on_v[col + f] * v + on_a[col + f] * a;
-  }
-}
-
 std::size_t ModalSectionForces::memory_bytes() const {
   return sizeof(*this) + statics_.memory_bytes() +
          (inverse_omega2_.size() + 3 * static_cast<std::size_t>(on_u_.size())) * sizeof(double);

@@ -38,7 +38,25 @@ class ModalSectionForces {
   // from statics()) += the modes' dynamic part of the state q, qd, qdd
   // under the modal loads p of the same loads (num_modes each).
   void add_dynamic_part(const double* q, const double* qd, const double* qdd, const double* p,
-                        double* values) const;
+                        double* values) const {
+    add_dynamic_part_of<double>(q, qd, qdd, p, values);
+  }
+  // The same for T a double or a vector of doubles (GCC's vector
+  // extension: several runs side by side, each with the arithmetic of one).
+  template <class T>
+  void add_dynamic_part_of(const T* q, const T* qd, const T* qdd, const T* p, T* values) const {
+    const auto n = inverse_omega2_.size();
+    const auto nf = static_cast<std::size_t>(num_forms());
+    const double* on_u = on_u_.data();  // column-major: nf x n
+    const double* on_v = on_v_.data();
+    const double* on_a = on_a_.data();
+    for (std::size_t k = 0; k < n; ++k) {
+      // The mode's dynamic part on u: q - p / omega^2.
+      const T du = q[k] - p[k] * inverse_omega2_[k], v = qd[k], a = qdd[k];
+      const std::size_t col = k * nf;
+      for (std::size_t f = 0; f < nf; ++f) values[f] += on_u[col + f] * du + on_v[col + f] * v + on_a[col + f] * a;
+    }
+  }
   // The influence vectors (one per form, the size of the model) and the
   // matrices; the factor of K is not kept.
   std::size_t memory_bytes() const;

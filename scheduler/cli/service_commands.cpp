@@ -51,7 +51,7 @@ void add_work_options(CLI::App* command, ServiceArgs& a) {
       ->capture_default_str()
       ->check(finite_in(1.0, 86400.0));
   command->add_option("--batch", a.batch,
-                      "Modal moving-force jobs of one structure and train claimed, run and stored together "
+                      "Modal moving-force jobs of one structure (and time step) claimed, run and stored together "
                       "(1: one by one; the results are the same bits)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));

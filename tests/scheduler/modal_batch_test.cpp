@@ -1,5 +1,5 @@
 // Batched sweeps on the modal moving-force rung: the planner puts HSLM-like
-// studies on it, a worker claims the jobs of one structure and train as a
+// studies on it, a worker claims the jobs of one structure (all its trains) as a
 // batch and stores them in one transaction, and every job's envelopes are
 // the same bits as when it runs alone, or through `vsi simulate`'s path
 // (histories, then the filter). A worker killed in the middle of a batched
