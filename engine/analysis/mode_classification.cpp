@@ -19,12 +19,14 @@ struct Segment {
   double start_m, end_m;
 };
 
-bool spans_known(const StructureInfo& info) { return info.support_x_m.size() >= 2 && !info.deck_line.x_m.empty(); }
+bool spans_known(const StructureInfo& info) { return info.support_x_m.size() >= 2; }
 
-// Vertical displacement of the deck at interior points of each span.
+// Vertical displacement of the deck at interior points of each span: on
+// the deck's own line when the model has one (a beam deck), else on the
+// first rail (a 3D deck or an imported model, where the rail follows the deck).
 std::vector<std::vector<double>> deck_samples(const StructureModel& s, const Vector& shape) {
   const StructureInfo& info = s.info();
-  const RailLine& line = spans_known(info) ? info.deck_line : s.rails().front();
+  const RailLine& line = !info.deck_line.x_m.empty() ? info.deck_line : s.rails().front();
   std::vector<Segment> segments;
   if (spans_known(info)) {
     for (std::size_t i = 0; i + 1 < info.support_x_m.size(); ++i)

@@ -140,6 +140,7 @@ Labelled labelled(const StructureModel& model, ExportFormat format) {
     map["bridge_start_m"] = info.bridge_start_m;
     map["bridge_end_m"] = info.bridge_end_m;
   }
+  if (info.support_x_m.size() >= 2) map["supports_x_m"] = info.support_x_m;
   return out;
 }
 
@@ -173,6 +174,7 @@ nlohmann::ordered_json structure_map_json(const StructureModel& model) {
     map["bridge_start_m"] = info.bridge_start_m;
     map["bridge_end_m"] = info.bridge_end_m;
   }
+  if (info.support_x_m.size() >= 2) map["supports_x_m"] = info.support_x_m;
   return map;
 }
 

@@ -190,6 +190,7 @@ struct StructureMap {
   std::vector<std::string> notes, warnings;
   std::map<int, std::string> rail_dof_names;  // for the mass check's message
   double bridge_start_m = 0.0, bridge_end_m = 0.0;
+  std::vector<double> supports_x_m;  // empty: not given
 };
 
 class MapReader {
@@ -208,8 +209,22 @@ class MapReader {
         map.outputs.push_back(output_point(doc_.at("output_points")[p], child_path("/output_points", p), map));
     }
     read_track(map);
-    map.bridge_start_m = doc_.value("bridge_start_m", map.rails.front().x_m.front());
-    map.bridge_end_m = doc_.value("bridge_end_m", map.rails.front().x_m.back());
+    const RailLine& first = map.rails.front();
+    if (doc_.contains("supports_x_m")) {
+      map.supports_x_m = doc_.at("supports_x_m").get<std::vector<double>>();
+      for (std::size_t i = 0; i < map.supports_x_m.size(); ++i) {
+        const double x = map.supports_x_m[i];
+        const std::string at = child_path("/supports_x_m", i);
+        if (!std::isfinite(x) || !first.covers(x))
+          throw InputError(at, fmt::format("{} m is not on rail line '{}' ({} to {} m)", x, first.name,
+                                           first.x_m.front(), first.x_m.back()));
+        if (i > 0 && !(x > map.supports_x_m[i - 1]))
+          throw InputError(at, fmt::format("supports must increase: {} m after {} m", x, map.supports_x_m[i - 1]));
+      }
+    }
+    const bool supports = !map.supports_x_m.empty();
+    map.bridge_start_m = doc_.value("bridge_start_m", supports ? map.supports_x_m.front() : first.x_m.front());
+    map.bridge_end_m = doc_.value("bridge_end_m", supports ? map.supports_x_m.back() : first.x_m.back());
     if (!(map.bridge_end_m > map.bridge_start_m))
       throw InputError("/bridge_end_m", fmt::format("must be greater than bridge_start_m ({})", map.bridge_start_m));
     const double length_m = map.rails.front().x_m.back() - map.rails.front().x_m.front();
@@ -442,6 +457,7 @@ std::shared_ptr<const StructureModel> import_structure(const json& s, const json
   info.source = "import";
   info.bridge_start_m = map.bridge_start_m;
   info.bridge_end_m = map.bridge_end_m;
+  info.support_x_m = std::move(map.supports_x_m);
   info.track_dof_list = std::move(map.track);
   info.track_dofs = static_cast<int>(info.track_dof_list.size());
   info.deck_dofs = static_cast<int>(m.K.rows()) - info.track_dofs;

@@ -19,7 +19,14 @@ DeckFrequencies deck_frequencies(const StructureModel& structure) {
     const ModeType type = classify_mode(structure, modes.shapes.col(static_cast<Eigen::Index>(k)));
     if (!type.deck) continue;
     if (f.f0_hz == 0.0) f.f0_hz = modes.frequencies_hz[k];
-    const int half_waves = type.half_waves.empty() ? 0 : *std::max_element(type.half_waves.begin(), type.half_waves.end());
+    // A span's third bending mode: at least 3 half-waves in every span
+    // that moves (a span at rest counts 0 and is left out). The fewest, not
+    // the most: on a 3D deck a torsion or plate mode can show a few
+    // half-waves in a span that hardly moves vertically, and taking it for
+    // f3 would lower the code frequency (the unsafe side).
+    int half_waves = 0;
+    for (const int h : type.half_waves)
+      if (h > 0) half_waves = half_waves == 0 ? h : std::min(half_waves, h);
     if (half_waves >= 3) {
       f.f3_hz = modes.frequencies_hz[k];
       break;

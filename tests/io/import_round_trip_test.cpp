@@ -3,6 +3,8 @@
 // bridge (simply supported 50.1 m span, EI 1.7955e12 N*m^2, 69 t/m, with
 // track) and the 3D deck at about 5,000 DOFs. And vsi inspect tells the
 // track's modes from the deck's when the map names the track.
+#include <fstream>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -102,6 +104,30 @@ TEST_F(ImportRoundTrip, Deck3dRunsBitIdenticallyInEveryFormat) {
 // named by node (Harwell-Boeing + mapping) and by equation (Matrix Market):
 // the same modes, typed alike. Without the track in the map every mode
 // counts as deck (how vsi inspect read an import before).
+// The map carries the supports of a multi-span deck (supports_x_m), so an
+// imported deck is read span by span as the generated one: its first modes
+// bend each span in one half-wave. Read as one span along the bridge, the
+// three spans' first mode looked like a third bending mode.
+TEST_F(ImportRoundTrip, Deck3dSupportsTravelWithTheMapAndItsSpansAreReadAsSpans) {
+  Deck3dOptions o;
+  o.spans_m = {25.0, 25.0, 25.0};
+  o.approach_m = 20.0;
+  o.exit_m = 20.0;
+  o.mesh = Deck3dMesh{{25, 25, 25}, 4, 2};
+  const auto model = make_deck_3d(o).model;
+  const auto scene = export_scene(*model, ExportFormat::kMatrixMarket, 0.1, true);
+  const json map = json::parse(std::ifstream(dir_ / "mtx" / "map.json"));
+  EXPECT_EQ(map["supports_x_m"], json({0.0, 25.0, 50.0, 75.0}));
+  const VsiRun run = vsi("inspect '" + scene.string() + "' --modes 3 --format json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json report = json::parse(run.out);
+  const auto& modes = report["modal_analysis"]["modes"];
+  ASSERT_EQ(modes.size(), 3u) << report["modal_analysis"].dump();
+  for (const auto& m : modes)
+    EXPECT_NE(m["type"].get<std::string>().find("1 half-wave in each of spans"), std::string::npos)
+        << m.dump();
+}
+
 TEST_F(ImportRoundTrip, InspectTellsTrackFromDeckOnAnImportedStructure) {
   const auto model = make_bridge_2d(ttb_like());
   const auto inspect = [&](const std::filesystem::path& scene) {
