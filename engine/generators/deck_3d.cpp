@@ -129,10 +129,27 @@ struct SectionGrid {
   long soffit_nodes() const { return std::count(used[0].begin(), used[0].begin() + ny + 1, 1); }
 };
 
-// Nodes of the end (diaphragm) elements: stations 0, 1, nx - 1, nx.
-bool end_station(int i, int nx) { return i <= 1 || i >= nx - 1; }
-bool end_element(int i, int nx) { return i == 0 || i == nx - 1; }
-long end_stations(int nx) { return std::min(4, nx + 1); }
+// The diaphragm elements of a span of nx elements: the two end ones and,
+// for a box with intermediate diaphragms, the element holding each x =
+// L m / (n + 1). Only a box's diaphragms differ from the rest of the deck.
+std::vector<char> diaphragm_elements(const Deck3dOptions& o, int nx) {
+  std::vector<char> d(static_cast<std::size_t>(nx), 0);
+  d.front() = d.back() = 1;
+  const int n = o.box ? o.box->intermediate_diaphragms : 0;
+  for (int m = 1; m <= n; ++m) {
+    const int e = std::clamp(static_cast<int>(std::floor(static_cast<double>(nx) * m / (n + 1))), 0, nx - 1);
+    d[static_cast<std::size_t>(e)] = 1;
+  }
+  return d;
+}
+// Stations (element ends) that are a node of some diaphragm element.
+long diaphragm_stations(const std::vector<char>& elements) {
+  long n = 0;
+  const auto nx = static_cast<long>(elements.size());
+  for (long i = 0; i <= nx; ++i)
+    n += (i > 0 && elements[static_cast<std::size_t>(i - 1)]) || (i < nx && elements[static_cast<std::size_t>(i)]);
+  return n;
+}
 
 SectionGrid section_grid(const Deck3dOptions& o, int ny, int nz) {
   SectionGrid s;
@@ -206,6 +223,9 @@ struct SpanGrid {
   double x0_m = 0.0, length_m = 0.0;
   int nx = 0, ny = 0, nz = 0;
   int first_node = 0;
+  std::vector<char> diaphragm;  // per element (diaphragm_elements)
+  bool diaphragm_element(int i) const { return diaphragm[static_cast<std::size_t>(i)] != 0; }
+  bool diaphragm_station(int i) const { return (i > 0 && diaphragm_element(i - 1)) || (i < nx && diaphragm_element(i)); }
   int node(int i, int j, int k) const { return first_node + i + (nx + 1) * (j + (ny + 1) * k); }
   int num_nodes() const { return (nx + 1) * (ny + 1) * (nz + 1); }
   // Only for nodes of the section (a box's void has none).
@@ -255,7 +275,7 @@ void append_span_columns(const SpanGrid& g, const std::array<std::vector<const M
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < g.ny; ++j)
       for (int i = 0; i < g.nx; ++i) {
-        const Matrix24* Ke_cell = cell_K[end_element(i, g.nx)][static_cast<std::size_t>(j + g.ny * k)];
+        const Matrix24* Ke_cell = cell_K[g.diaphragm_element(i)][static_cast<std::size_t>(j + g.ny * k)];
         if (Ke_cell == nullptr) continue;
         const Matrix24& Ke = *Ke_cell;
         for (int a = 0; a < 8; ++a) {
@@ -344,6 +364,8 @@ void check_box_girder(const BoxGirderSection& b) {
   if (!(b.top_thickness_m + b.bottom_thickness_m < b.depth_m))
     throw InputError("/depth_m", fmt::format("{} m leaves no web between the slabs ({} m + {} m thick)", b.depth_m,
                                              b.top_thickness_m, b.bottom_thickness_m));
+  if (b.intermediate_diaphragms < 0 || b.intermediate_diaphragms > 100)
+    throw InputError("/intermediate_diaphragms", fmt::format("{} diaphragms per span: give 0 to 100", b.intermediate_diaphragms));
 }
 
 DeckSectionProperties deck_section_properties(const Deck3dOptions& o) {
@@ -388,7 +410,7 @@ long deck_3d_dofs(const Deck3dOptions& o, const Deck3dMesh& m) {
   long n = rail_dofs(o);
   const SectionGrid s = section_grid(o, m.ny, m.nz);
   for (const int nx : m.nx)
-    n += 3L * ((nx + 1) * s.nodes(false) + end_stations(nx) * (s.nodes(true) - s.nodes(false))) -
+    n += 3L * ((nx + 1) * s.nodes(false) + diaphragm_stations(diaphragm_elements(o, nx)) * (s.nodes(true) - s.nodes(false))) -
          fixed_dofs_per_span(s);
   return n;
 }
@@ -449,7 +471,7 @@ Deck3d make_deck_3d(const Deck3dOptions& o) {
   double x0 = 0.0;
   int first_node = 0, next_dof = 0;
   for (std::size_t s = 0; s < o.spans_m.size(); ++s) {
-    SpanGrid g{x0, o.spans_m[s], mesh.nx[s], mesh.ny, mesh.nz, first_node};
+    SpanGrid g{x0, o.spans_m[s], mesh.nx[s], mesh.ny, mesh.nz, first_node, diaphragm_elements(o, mesh.nx[s])};
     for (int k = 0; k <= g.nz; ++k)
       for (int j = 0; j <= g.ny; ++j)
         for (int i = 0; i <= g.nx; ++i) {
@@ -458,7 +480,7 @@ Deck3d make_deck_3d(const Deck3dOptions& o) {
           std::array<int, 3> dofs{};
           for (int c = 0; c < 3; ++c)
             dofs[static_cast<std::size_t>(c)] =
-                (!section.node(j, k, end_station(i, g.nx)) || g.fixed(i, j, k, c)) ? -1 : next_dof++;
+                (!section.node(j, k, g.diaphragm_station(i)) || g.fixed(i, j, k, c)) ? -1 : next_dof++;
           out.node_dofs.push_back(dofs);
         }
     grids.push_back(g);
@@ -497,7 +519,7 @@ Deck3d make_deck_3d(const Deck3dOptions& o) {
       for (int k = 0; k < g.nz; ++k)
         for (int j = 0; j < g.ny; ++j)
           for (int i = 0; i < g.nx; ++i)
-            if (section.cell(j, k, end_element(i, g.nx)))
+            if (section.cell(j, k, g.diaphragm_element(i)))
               for (int a = 0; a < 8; ++a)
                 node_mass[static_cast<std::size_t>(g.node(i + (a & 1), j + ((a >> 1) & 1), k + (a >> 2)) -
                                                    g.first_node)] +=

@@ -43,6 +43,11 @@ struct BoxGirderSection {
   double bottom_thickness_m = 0.25;
   double web_thickness_m = 0.4;
   double depth_m = 2.0;  // soffit to top of the top slab
+  // Solid diaphragms inside each span besides the end ones, evenly spaced
+  // (at L m / (n + 1)), each one element long: they hold the cell's shape
+  // against racking, which lowers the torsion frequency of a box without
+  // them.
+  int intermediate_diaphragms = 0;
 };
 
 struct Deck3dOptions {

@@ -20,6 +20,7 @@ void apply_deck_section_document(const nlohmann::json& doc, const std::string& f
     b.bottom_thickness_m = doc.at("bottom_thickness_m").get<double>();
     b.web_thickness_m = doc.at("web_thickness_m").get<double>();
     b.depth_m = doc.at("depth_m").get<double>();
+    b.intermediate_diaphragms = doc.value("intermediate_diaphragms", 0);
     check_box_girder(b);  // the relations between the keys
     o.box = b;
     return o;
