@@ -142,12 +142,14 @@ std::vector<char> diaphragm_elements(const Deck3dOptions& o, int nx) {
   }
   return d;
 }
-// Stations (element ends) that are a node of some diaphragm element.
+// Station i (an element end) is a node of a diaphragm element.
+bool is_diaphragm_station(const std::vector<char>& elements, int i) {
+  const auto nx = static_cast<int>(elements.size());
+  return (i > 0 && elements[static_cast<std::size_t>(i - 1)]) || (i < nx && elements[static_cast<std::size_t>(i)]);
+}
 long diaphragm_stations(const std::vector<char>& elements) {
   long n = 0;
-  const auto nx = static_cast<long>(elements.size());
-  for (long i = 0; i <= nx; ++i)
-    n += (i > 0 && elements[static_cast<std::size_t>(i - 1)]) || (i < nx && elements[static_cast<std::size_t>(i)]);
+  for (int i = 0; i <= static_cast<int>(elements.size()); ++i) n += is_diaphragm_station(elements, i);
   return n;
 }
 
@@ -225,7 +227,7 @@ struct SpanGrid {
   int first_node = 0;
   std::vector<char> diaphragm;  // per element (diaphragm_elements)
   bool diaphragm_element(int i) const { return diaphragm[static_cast<std::size_t>(i)] != 0; }
-  bool diaphragm_station(int i) const { return (i > 0 && diaphragm_element(i - 1)) || (i < nx && diaphragm_element(i)); }
+  bool diaphragm_station(int i) const { return is_diaphragm_station(diaphragm, i); }
   int node(int i, int j, int k) const { return first_node + i + (nx + 1) * (j + (ny + 1) * k); }
   int num_nodes() const { return (nx + 1) * (ny + 1) * (nz + 1); }
   // Only for nodes of the section (a box's void has none).

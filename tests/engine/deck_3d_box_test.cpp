@@ -237,8 +237,11 @@ TEST(Deck3dBox, IntermediateDiaphragmsRaiseTheTorsionFrequencyTowardsStVenant) {
   double added = 0.0;
   for (const double x : {0.25, 0.5, 0.75}) added += diaphragm_kg * std::pow(std::sin(std::numbers::pi * x), 2);
   const double rayleigh = std::sqrt(modal_kg / (modal_kg + added));
-  EXPECT_NEAR(*with.bending_hz / *without.bending_hz, 1.0 - 0.042, 0.005);
-  EXPECT_NEAR(rayleigh, 1.0 - 0.049, 0.005) << "the mass-only estimate the comment quotes";
+  // Measured -4.2 % against the mass-only estimate's -4.9 %: above it (the
+  // diaphragms stiffen too) and within 1 % of it.
+  const double drop = *with.bending_hz / *without.bending_hz;
+  EXPECT_GT(drop, rayleigh) << drop << " against " << rayleigh;
+  EXPECT_NEAR(drop, rayleigh, 0.01) << drop << " against " << rayleigh;
 }
 
 TEST(Deck3dBox, RejectsABoxWithoutAVoidOrAWeb) {
