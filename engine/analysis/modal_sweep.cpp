@@ -195,25 +195,6 @@ void ModalSweep::add_axle_loads(const Rail& rail, double x, double* p, std::size
   }
 }
 
-ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws,
-                              bool keep_acceleration, Histories* histories, int history_stride) const {
-  const SweepLane lane{x0_m, speed_mps, n_steps};
-  ModalSweepRun out;
-  run_lanes<1>(&lane, 1, &out, ws, keep_acceleration, histories, history_stride);
-  return out;
-}
-
-std::vector<ModalSweepRun> ModalSweep::run_group(const std::vector<SweepLane>& lanes, ModalSweepWorkspace& ws,
-                                                 bool keep_acceleration) const {
-  if (lanes.size() > static_cast<std::size_t>(kSweepLanes))
-    throw std::invalid_argument("ModalSweep::run_group: more runs than lanes");
-  std::vector<ModalSweepRun> out(lanes.size());
-  if (lanes.size() == 1) run_lanes<1>(lanes.data(), 1, out.data(), ws, keep_acceleration, nullptr, 1);
-  else if (!lanes.empty())
-    run_lanes<kSweepLanes>(lanes.data(), static_cast<int>(lanes.size()), out.data(), ws, keep_acceleration, nullptr, 1);
-  return out;
-}
-
 namespace {
 
 // The lanes of a group as one value: a double for one lane, a vector of
@@ -256,13 +237,13 @@ template <class V>
 }  // namespace
 
 template <int L>
-void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
+[[gnu::always_inline]] inline void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
                            bool keep_acceleration, Histories* histories, int history_stride) const {
   using V = typename LaneValue<L>::type;
   constexpr auto lanes_n = static_cast<std::size_t>(L);
   const auto n = static_cast<std::size_t>(n_modes_);
   const auto width = static_cast<std::size_t>(width_);
-  for (auto* v : {&ws.p, &ws.p_next}) v->assign(width * lanes_n, 0.0);
+  ws.p.assign(width * lanes_n, 0.0);
   for (auto* v : {&ws.q, &ws.qd, &ws.qdd}) v->assign(n * lanes_n, 0.0);
   ws.lane_values.assign((width - n) * lanes_n, 0.0);
   ws.form_values.assign(sections_ ? static_cast<std::size_t>(sections_->num_forms()) : 0, 0.0);
@@ -310,7 +291,6 @@ void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out
   // The lanes' loads (width columns) and modal state (n modes), one V each.
   static_assert(sizeof(V) == lanes_n * sizeof(double));
   V* p = reinterpret_cast<V*>(ws.p.data());
-  V* p_next = reinterpret_cast<V*>(ws.p_next.data());
   V* q = reinterpret_cast<V*>(ws.q.data());
   V* qd = reinterpret_cast<V*>(ws.qd.data());
   V* qdd = reinterpret_cast<V*>(ws.qdd.data());
@@ -339,9 +319,17 @@ void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out
   // Deck response at the output points from the modal coordinates of the
   // lanes still running at `step`; the maxima see every step, the
   // histories (lane 0 alone) every stride.
-  const auto record = [&](long step, double t, bool store) {
-    bool all = true;
-    for (std::size_t l = 0; l < lanes_n; ++l) all = all && (running(step, l) || l >= static_cast<std::size_t>(count));
+  // Every lane of the group records steps 0..all_until (until a lane
+  // diverges, the shortest run's length).
+  long all_until = steps;
+  for (int l = 0; l < count; ++l) all_until = std::min(all_until, last_step[static_cast<std::size_t>(l)]);
+  // Where each lane keeps the deck acceleration of each output point.
+  std::vector<double*> acceleration_of(keep_acceleration ? np * lanes_n : 0, nullptr);
+  for (std::size_t i = 0; i < acceleration_of.size() / lanes_n; ++i)
+    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
+      acceleration_of[i * lanes_n + l] = ws.acceleration[l][i].data();
+  const auto record = [&](long step, double t, bool store) __attribute__((always_inline)) {
+    const bool all = step <= all_until;
     if (store) histories->t_s.push_back(t);
     for (std::size_t i = 0; i < np; ++i) {
       V u{}, a{};
@@ -365,7 +353,7 @@ void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out
       }
       if (keep_acceleration)
         for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
-          if (running(step, l)) ws.acceleration[l][i][static_cast<std::size_t>(step)] = lane_of(a, l);
+          if (all || running(step, l)) acceleration_of[i * lanes_n + l][static_cast<std::size_t>(step)] = lane_of(a, l);
       if (!store) continue;
       histories->deck_displacement_m[i].push_back(lane_of(u, 0));
       histories->deck_acceleration_mps2[i].push_back(lane_of(a, 0));
@@ -420,41 +408,57 @@ void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out
   for (std::size_t k = 0; k < n; ++k) q[k] = p[k] * inverse_omega2_[k];
   record(0, 0.0, histories != nullptr);
   const std::size_t n_rails = rails_.size();
-  for (long step = 0; step < steps; ++step) {
-    const double t_new = static_cast<double>(step + 1) * dt_s_;
-    // The loads of each lane still running: one cubic per column from the
-    // train's table (modal_load, inline for the usual case: the position
-    // strictly inside a piece).
-    double* pn = ws.p_next.data();
+  // The loads of a chunk of steps are evaluated first, lane by lane, into
+  // ws.chunk (row per step: width columns of every lane): those cubics do
+  // not wait for each other, while the recurrence that follows is one chain
+  // per lane. Each value is the same expression as when it is evaluated in
+  // its step.
+  constexpr long kChunkSteps = 64;
+  const std::size_t row = width * lanes_n;
+  ws.chunk.assign(static_cast<std::size_t>(kChunkSteps) * row, 0.0);
+  for (long first = 0; first < steps; first += kChunkSteps) {
+    const long end = std::min(steps, first + kChunkSteps);
     for (std::size_t l = 0; l < lanes_n; ++l) {
-      if (step >= last_step[l]) continue;
-      const double x = lane[l].x0_m + lane[l].speed_mps * t_new;
-      bool inline_ok = true;
-      for (std::size_t r = 0; r < n_rails && inline_ok; ++r) {
-        const std::vector<double>& b = rails_[r].breaks;
-        std::size_t& i = ws.piece[r * lanes_n + l];
-        if (b.size() < 2 || x < b.front() || x >= b.back()) inline_ok = false;
-        else {
-          while (x >= b[i + 1]) ++i;  // x < b.back(): stops at the last piece
-          inline_ok = x != b[i];
+      // A lane that has ended (or idles) gets zero loads: finite, unread.
+      const long own_end = std::min(end, std::max(first, last_step[l]));
+      for (long step = own_end; step < end; ++step)
+        for (std::size_t k = 0; k < width; ++k) ws.chunk[static_cast<std::size_t>(step - first) * row + k * lanes_n + l] = 0.0;
+      for (long step = first; step < own_end; ++step) {
+        // One cubic per column from the train's table (modal_load for a
+        // position on a breakpoint or off the table).
+        double* pn = ws.chunk.data() + static_cast<std::size_t>(step - first) * row + l;
+        const double x = lane[l].x0_m + lane[l].speed_mps * (static_cast<double>(step + 1) * dt_s_);
+        bool inline_ok = true;
+        for (std::size_t r = 0; r < n_rails && inline_ok; ++r) {
+          const std::vector<double>& b = rails_[r].breaks;
+          std::size_t& i = ws.piece[r * lanes_n + l];
+          if (b.size() < 2 || x < b.front() || x >= b.back()) inline_ok = false;
+          else {
+            while (x >= b[i + 1]) ++i;  // x < b.back(): stops at the last piece
+            inline_ok = x != b[i];
+          }
+        }
+        if (!inline_ok) {
+          modal_load(x, pn, lanes_n, ws.piece.data() + l, ws);
+          continue;
+        }
+        for (std::size_t r = 0; r < n_rails; ++r) {
+          const std::size_t i = ws.piece[r * lanes_n + l];
+          const double u = x - rails_[r].breaks[i];
+          const double* d = rails_[r].pieces.data() + i * width * 4;
+          // The first rail's loads are the sum's first terms (0 + v == v, bit for bit).
+          if (r == 0)
+            for (std::size_t k = 0; k < width; ++k, d += 4) pn[k * lanes_n] = ((d[3] * u + d[2]) * u + d[1]) * u + d[0];
+          else
+            for (std::size_t k = 0; k < width; ++k, d += 4) pn[k * lanes_n] += ((d[3] * u + d[2]) * u + d[1]) * u + d[0];
         }
       }
-      if (!inline_ok) {
-        modal_load(x, pn + l, lanes_n, ws.piece.data() + l, ws);
-        continue;
-      }
-      for (std::size_t r = 0; r < n_rails; ++r) {
-        const std::size_t i = ws.piece[r * lanes_n + l];
-        const double u = x - rails_[r].breaks[i];
-        const double* d = rails_[r].pieces.data() + i * width * 4;
-        // The first rail's loads are the sum's first terms (0 + v == v, bit for bit).
-        if (r == 0)
-          for (std::size_t k = 0; k < width; ++k, d += 4) pn[k * lanes_n + l] = ((d[3] * u + d[2]) * u + d[1]) * u + d[0];
-        else
-          for (std::size_t k = 0; k < width; ++k, d += 4) pn[k * lanes_n + l] += ((d[3] * u + d[2]) * u + d[1]) * u + d[0];
-      }
     }
+  for (long step = first; step < end; ++step) {
+    const double t_new = static_cast<double>(step + 1) * dt_s_;
+    V* const p_next = reinterpret_cast<V*>(ws.chunk.data() + static_cast<std::size_t>(step - first) * row);
     bool finite = true;
+    V zero{};
     for (std::size_t k = 0; k < n; ++k) {
       // ModalStep::advance, lane by lane.
       const ModalStep& m = steps_[k];
@@ -466,30 +470,33 @@ void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out
       q[k] = q1;
       qd[k] = qd1;
       qdd[k] = p_next[k] - 2.0 * m.zeta * m.omega * qd1 - m.omega * m.omega * q1;
-      const V zero = q1 * 0.0;  // 0 when finite, NaN otherwise
-      for (std::size_t l = 0; l < lanes_n; ++l) finite = finite && lane_of(zero, l) == 0.0;
+      zero += q1 * 0.0;  // stays 0 while finite, NaN otherwise
     }
-    std::swap(p, p_next);
-    std::swap(ws.p, ws.p_next);
-    for (std::size_t l = 0; l < lanes_n; ++l) {
+    for (std::size_t l = 0; l < lanes_n; ++l) finite = finite && lane_of(zero, l) == 0.0;
+    p = p_next;
+    // A lane whose coordinates are no longer finite ends here (the lanes
+    // that run on record their steps, last_step[l], at the end).
+    for (std::size_t l = 0; l < lanes_n && !finite; ++l) {
       if (step >= last_step[l]) continue;
       bool lane_finite = true;
-      if (!finite)
-        for (std::size_t k = 0; k < n; ++k) lane_finite = lane_finite && std::isfinite(lane_of(q[k], l));
-      if (lane_finite) {
-        if (l < static_cast<std::size_t>(count)) out[l].steps = step + 1;
-        continue;
-      }
+      for (std::size_t k = 0; k < n; ++k) lane_finite = lane_finite && std::isfinite(lane_of(q[k], l));
+      if (lane_finite) continue;
       if (l < static_cast<std::size_t>(count))
         out[l].status = {StatusCode::kDiverged, fmt::format("step {}: non-finite modal coordinates", step + 1)};
       last_step[l] = step;  // records nothing more
+      all_until = std::min(all_until, step);
     }
     const bool store = histories != nullptr && last_step[0] > step &&
                        ((step + 1) % stride == 0 || step + 1 == lanes[0].n_steps);
     record(step + 1, t_new, store);
   }
+    // The chunk is refilled next: the last loads move out of it.
+    std::copy(reinterpret_cast<const double*>(p), reinterpret_cast<const double*>(p) + row, ws.p.data());
+    p = reinterpret_cast<V*>(ws.p.data());
+  }
   for (int l = 0; l < count; ++l) {
     ModalSweepRun& o = out[l];
+    o.steps = last_step[static_cast<std::size_t>(l)];
     if (fold_forms) {
       for (std::size_t f = 0; f < n_forms; ++f)
         ws.form_values[f] = lane_of(form_signed_[f] ? max_form[f] : max_abs_form[f], static_cast<std::size_t>(l));
@@ -504,9 +511,40 @@ void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out
   }
 }
 
-template void ModalSweep::run_lanes<1>(const SweepLane*, int, ModalSweepRun*, ModalSweepWorkspace&, bool, Histories*,
-                                       int) const;
-template void ModalSweep::run_lanes<kSweepLanes>(const SweepLane*, int, ModalSweepRun*, ModalSweepWorkspace&, bool,
-                                                 Histories*, int) const;
+void ModalSweep::run_four_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
+                                bool keep_acceleration) const {
+  run_lanes<kSweepLanes>(lanes, count, out, ws, keep_acceleration, nullptr, 1);
+}
+
+// The same code for a processor with AVX2: a vector of four doubles is one
+// register and one instruction. No FMA: each product is rounded before its
+// sum, as in the baseline code, so the bits are the same.
+__attribute__((target("avx2"))) void ModalSweep::run_four_lanes_avx2(const SweepLane* lanes, int count,
+                                                                      ModalSweepRun* out, ModalSweepWorkspace& ws,
+                                                                      bool keep_acceleration) const {
+  run_lanes<kSweepLanes>(lanes, count, out, ws, keep_acceleration, nullptr, 1);
+}
+
+ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws,
+                              bool keep_acceleration, Histories* histories, int history_stride) const {
+  const SweepLane lane{x0_m, speed_mps, n_steps};
+  ModalSweepRun out;
+  run_lanes<1>(&lane, 1, &out, ws, keep_acceleration, histories, history_stride);
+  return out;
+}
+
+std::vector<ModalSweepRun> ModalSweep::run_group(const std::vector<SweepLane>& lanes, ModalSweepWorkspace& ws,
+                                                 bool keep_acceleration, LaneCode code) const {
+  if (lanes.size() > static_cast<std::size_t>(kSweepLanes))
+    throw std::invalid_argument("ModalSweep::run_group: more runs than lanes");
+  std::vector<ModalSweepRun> out(lanes.size());
+  // The processor's features are read once.
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  const int count = static_cast<int>(lanes.size());
+  if (count == 1) run_lanes<1>(lanes.data(), 1, out.data(), ws, keep_acceleration, nullptr, 1);
+  else if (count > 1 && avx2 && code == LaneCode::kFastest) run_four_lanes_avx2(lanes.data(), count, out.data(), ws, keep_acceleration);
+  else if (count > 1) run_four_lanes(lanes.data(), count, out.data(), ws, keep_acceleration);
+  return out;
+}
 
 }  // namespace railvsi

@@ -48,9 +48,11 @@ struct SweepLane {
 
 // What one run reuses from the previous one (sized on first use).
 struct ModalSweepWorkspace {
-  // Lane-minor: p[column * lanes + lane]. p, p_next: the modal loads,
+  // Lane-minor: p[column * lanes + lane]. p: the modal loads,
   // then (with section forces) the static value of each form under them.
-  std::vector<double> p, p_next, q, qd, qdd;
+  std::vector<double> p, q, qd, qdd;
+  // The loads of a chunk of steps, evaluated before their recurrence.
+  std::vector<double> chunk;
   // The section forms' values of every lane (lane-minor), and of one.
   std::vector<double> lane_values, form_values;
   // Deck acceleration at every step (n_steps + 1 samples), per lane and
@@ -85,10 +87,13 @@ class ModalSweep {
   // (every history_stride-th step and the last) when not null.
   ModalSweepRun run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws, bool keep_acceleration,
                     Histories* histories = nullptr, int history_stride = 1) const;
+  // Which machine code runs a group: the fastest this processor has, or
+  // the portable one (both give the same bits; tests compare them).
+  enum class LaneCode { kFastest, kPortable };
   // Up to kSweepLanes runs at once (no histories); run i keeps its deck
   // acceleration in ws.acceleration[i]. Each gives the bits run() gives.
   std::vector<ModalSweepRun> run_group(const std::vector<SweepLane>& lanes, ModalSweepWorkspace& ws,
-                                       bool keep_acceleration) const;
+                                       bool keep_acceleration, LaneCode code = LaneCode::kFastest) const;
 
   const ModalBasis& basis() const { return basis_; }
   int num_modes() const { return n_modes_; }
@@ -123,6 +128,12 @@ class ModalSweep {
   // The same for one rail, axle by axle (at a breakpoint of its table).
   void add_axle_loads(const Rail& rail, double x, double* p, std::size_t stride, ModalSweepWorkspace& ws) const;
   // The runs of one group, L lanes (lanes[i] for i < count, the rest idle).
+  // Inlined into run() and into the two functions below, one for the
+  // baseline processor and one for AVX2 (the same bits).
+  void run_four_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
+                      bool keep_acceleration) const;
+  void run_four_lanes_avx2(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
+                           bool keep_acceleration) const;
   template <int L>
   void run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
                  bool keep_acceleration, Histories* histories, int history_stride) const;

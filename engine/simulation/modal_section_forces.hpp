@@ -44,7 +44,7 @@ class ModalSectionForces {
   // The same for T a double or a vector of doubles (GCC's vector
   // extension: several runs side by side, each with the arithmetic of one).
   template <class T>
-  void add_dynamic_part_of(const T* q, const T* qd, const T* qdd, const T* p, T* values) const {
+  [[gnu::always_inline]] void add_dynamic_part_of(const T* q, const T* qd, const T* qdd, const T* p, T* values) const {
     const auto n = inverse_omega2_.size();
     const auto nf = static_cast<std::size_t>(num_forms());
     const double* on_u = on_u_.data();  // column-major: nf x n

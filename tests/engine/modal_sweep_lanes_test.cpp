@@ -64,17 +64,21 @@ void expect_same_bits(const ModalSweepRun& grouped, const std::vector<std::vecto
   }
 }
 
-// Runs `lanes` as one group and one by one; every number must be the same bits.
+// Runs `lanes` as one group (in the fastest and in the portable machine
+// code) and one by one; every number must be the same bits.
 void check_group(const ModalSweep& sweep, const std::vector<SweepLane>& lanes, std::size_t points) {
-  ModalSweepWorkspace group_ws, alone_ws;
-  const std::vector<ModalSweepRun> grouped = sweep.run_group(lanes, group_ws, true);
-  ASSERT_EQ(grouped.size(), lanes.size());
-  for (std::size_t l = 0; l < lanes.size(); ++l) {
-    SCOPED_TRACE("lane " + std::to_string(l));
-    const ModalSweepRun alone = sweep.run(lanes[l].x0_m, lanes[l].speed_mps, lanes[l].n_steps, alone_ws, true);
-    ASSERT_TRUE(alone.status.ok()) << alone.status.message();
-    EXPECT_EQ(alone.steps, lanes[l].n_steps);
-    expect_same_bits(grouped[l], group_ws.acceleration[l], alone, alone_ws.acceleration[0], points);
+  for (const auto code : {ModalSweep::LaneCode::kFastest, ModalSweep::LaneCode::kPortable}) {
+    SCOPED_TRACE(code == ModalSweep::LaneCode::kFastest ? "fastest code" : "portable code");
+    ModalSweepWorkspace group_ws, alone_ws;
+    const std::vector<ModalSweepRun> grouped = sweep.run_group(lanes, group_ws, true, code);
+    ASSERT_EQ(grouped.size(), lanes.size());
+    for (std::size_t l = 0; l < lanes.size(); ++l) {
+      SCOPED_TRACE("lane " + std::to_string(l));
+      const ModalSweepRun alone = sweep.run(lanes[l].x0_m, lanes[l].speed_mps, lanes[l].n_steps, alone_ws, true);
+      ASSERT_TRUE(alone.status.ok()) << alone.status.message();
+      EXPECT_EQ(alone.steps, lanes[l].n_steps);
+      expect_same_bits(grouped[l], group_ws.acceleration[l], alone, alone_ws.acceleration[0], points);
+    }
   }
 }
 
