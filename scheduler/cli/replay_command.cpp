@@ -1,4 +1,4 @@
-// vsi replay: run a stored job again from its scene (jobs.scene, file names
+// vsi replay: run a stored job again from its scene (job_scenes.scene, file names
 // absolute), with the job's own code cut-off, so that its histories and
 // summary reconcile with the envelopes the study stored.
 #include <iostream>
