@@ -44,7 +44,7 @@ int simulate_command(const SimulateArgs& args);
 // run is ok, else 1.
 int run_scene(Scene scene, const std::string& file_for_errors, std::optional<double> cutoff_hz,
               const std::optional<std::string>& histories_dir, bool allow_large = false);
-// Runs a stored job again from jobs.scene (vsi replay).
+// Runs a stored job again from job_scenes.scene (vsi replay).
 int replay_command(const ReplayArgs& args);
 int validate_command(const std::string& file);
 // Exit 1 when the modal analysis of a scene's structure fails.

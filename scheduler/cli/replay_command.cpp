@@ -1,4 +1,4 @@
-// vsi replay: run a stored job again from its scene (jobs.scene, file names
+// vsi replay: run a stored job again from its scene (job_scenes.scene, file names
 // absolute), with the job's own code cut-off, so that its histories and
 // summary reconcile with the envelopes the study stored.
 #include <iostream>
@@ -22,7 +22,7 @@ int replay_command(const ReplayArgs& args) {
   }
   const auto db = open_store(args.db);
   scheduler::Statement s =
-      db->prepare("SELECT id, scene, cutoff_hz FROM jobs WHERE substr(id, 1, ?) = ? ORDER BY id LIMIT 2");
+      db->prepare("SELECT id, scene, cutoff_hz FROM job_records WHERE substr(id, 1, ?) = ? ORDER BY id LIMIT 2");
   s.bind(1, static_cast<std::int64_t>(args.job_id.size())).bind(2, args.job_id);
   if (!s.step()) {
     std::cerr << "error: no job " << args.job_id << " in " << scheduler::terminal_safe(db->file()) << '\n';

@@ -2,6 +2,12 @@
 
 #include <cstring>
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <cpuid.h>
+#include <immintrin.h>
+#define RAILVSI_SHA_NI 1
+#endif
+
 namespace railvsi::scheduler {
 namespace {
 
@@ -17,12 +23,80 @@ constexpr std::array<std::uint32_t, 64> kRound = {
 
 constexpr std::uint32_t rotr(std::uint32_t x, int n) { return (x >> n) | (x << (32 - n)); }
 
+#ifdef RAILVSI_SHA_NI
+bool cpu_has_sha_ni() {
+  unsigned a = 0, b = 0, c = 0, d = 0;
+  if (__get_cpuid(1, &a, &b, &c, &d) == 0) return false;
+  const bool ssse3_sse41 = (c & (1u << 9)) != 0 && (c & (1u << 19)) != 0;
+  if (__get_cpuid_count(7, 0, &a, &b, &c, &d) == 0) return false;
+  return ssse3_sse41 && (b & (1u << 29)) != 0;  // CPUID.7.0:EBX bit 29: SHA extensions
+}
+
+// One block with the SHA extensions (Intel, "New Instructions Supporting
+// the Secure Hash Algorithm on Intel Architecture Processors", 2013): the
+// state is held as (A,B,E,F) and (C,D,G,H); sha256rnds2 does two rounds,
+// sha256msg1/msg2 the message schedule of FIPS 180-4 6.2.2 four words at a
+// time: W[t..t+3] = msg2(msg1(W[t-16..], W[t-12..]) + W[t-7..t-4], W[t-4..]).
+__attribute__((target("sha,sse4.1,ssse3"))) void compress_sha_ni(std::uint32_t* state, const std::uint8_t* block) {
+  const __m128i byte_swap = _mm_set_epi64x(0x0c0d0e0f08090a0bLL, 0x0405060700010203LL);
+  __m128i dcba = _mm_loadu_si128(reinterpret_cast<const __m128i*>(state));
+  __m128i hgfe = _mm_loadu_si128(reinterpret_cast<const __m128i*>(state + 4));
+  const __m128i cdab = _mm_shuffle_epi32(dcba, 0xB1);
+  const __m128i efgh = _mm_shuffle_epi32(hgfe, 0x1B);
+  __m128i abef = _mm_alignr_epi8(cdab, efgh, 8);
+  __m128i cdgh = _mm_blend_epi16(efgh, cdab, 0xF0);
+  const __m128i abef_in = abef, cdgh_in = cdgh;
+  __m128i w[4];
+  for (int i = 0; i < 16; ++i) {
+    __m128i& wi = w[i % 4];
+    if (i < 4) {
+      wi = _mm_shuffle_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(block + 16 * i)), byte_swap);
+    } else {
+      // wi holds W[4(i-4)..]; w[(i+1)%4] W[4(i-3)..]; w[(i+2)%4] W[4(i-2)..]; w[(i+3)%4] W[4(i-1)..].
+      const __m128i& w1 = w[(i + 3) % 4];
+      const __m128i& w2 = w[(i + 2) % 4];
+      wi = _mm_sha256msg1_epu32(wi, w[(i + 1) % 4]);
+      wi = _mm_add_epi32(wi, _mm_alignr_epi8(w1, w2, 4));
+      wi = _mm_sha256msg2_epu32(wi, w1);
+    }
+    __m128i m = _mm_add_epi32(wi, _mm_loadu_si128(reinterpret_cast<const __m128i*>(kRound.data() + 4 * i)));
+    cdgh = _mm_sha256rnds2_epu32(cdgh, abef, m);
+    m = _mm_shuffle_epi32(m, 0x0E);
+    abef = _mm_sha256rnds2_epu32(abef, cdgh, m);
+  }
+  abef = _mm_add_epi32(abef, abef_in);
+  cdgh = _mm_add_epi32(cdgh, cdgh_in);
+  const __m128i feba = _mm_shuffle_epi32(abef, 0x1B);
+  const __m128i dchg = _mm_shuffle_epi32(cdgh, 0xB1);
+  dcba = _mm_blend_epi16(feba, dchg, 0xF0);
+  hgfe = _mm_alignr_epi8(dchg, feba, 8);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(state), dcba);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(state + 4), hgfe);
+}
+#endif
+
 }  // namespace
 
-Sha256::Sha256()
-    : h_{0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a, 0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19} {}
+bool Sha256::cpu_instructions() {
+#ifdef RAILVSI_SHA_NI
+  static const bool has = cpu_has_sha_ni();  // a fact of the machine, computed once
+  return has;
+#else
+  return false;
+#endif
+}
+
+Sha256::Sha256(Engine engine)
+    : h_{0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a, 0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19},
+      use_cpu_(engine == Engine::kAuto && cpu_instructions()) {}
 
 void Sha256::compress(const std::uint8_t* block) {
+#ifdef RAILVSI_SHA_NI
+  if (use_cpu_) {
+    compress_sha_ni(h_.data(), block);
+    return;
+  }
+#endif
   std::array<std::uint32_t, 64> w{};
   for (int t = 0; t < 16; ++t)
     w[t] = (std::uint32_t{block[4 * t]} << 24) | (std::uint32_t{block[4 * t + 1]} << 16) |

@@ -11,7 +11,13 @@ namespace railvsi::scheduler {
 
 class Sha256 {
  public:
-  Sha256();
+  // kAuto uses the CPU's SHA instructions (x86 SHA extensions) when it has
+  // them, else the portable code; kPortable always the portable code (the
+  // tests compare the two). Both give the same digest.
+  enum class Engine { kAuto, kPortable };
+  explicit Sha256(Engine engine = Engine::kAuto);
+  // Whether kAuto uses the CPU's SHA instructions on this machine.
+  static bool cpu_instructions();
   Sha256& update(std::string_view bytes);
   Sha256& update(const void* data, std::size_t size);
   // The digest; the object must not be updated afterwards.
@@ -24,6 +30,7 @@ class Sha256 {
   std::array<std::uint8_t, 64> buffer_{};
   std::size_t buffered_ = 0;
   std::uint64_t total_bytes_ = 0;
+  bool use_cpu_ = false;
 };
 
 std::string sha256_hex(std::string_view bytes);

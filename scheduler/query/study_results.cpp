@@ -61,7 +61,7 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
       "CASE WHEN json_extract(j.scene, '$.irregularity.seed') IS NOT NULL "
       "THEN json_remove(json_extract(j.scene, '$.irregularity'), '$.seed') END, "
       "json_extract(j.scene, '$.irregularity.spectrum'), json_extract(j.scene, '$.structure.variant') "
-      "FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+      "FROM study_jobs sj JOIN job_records j ON j.id = sj.job_id "
       "WHERE {} ORDER BY sj.position",
       kFilter));
   bind_filter(s, filter);
@@ -159,7 +159,7 @@ std::optional<std::string> filter_error(Database& db, const QueryFilter& f) {
 }
 
 Scene load_job_scene(Database& db, const std::string& job_id) {
-  Statement s = db.prepare("SELECT scene FROM jobs WHERE id = ?");
+  Statement s = db.prepare("SELECT scene FROM job_scenes WHERE job_id = ?");
   if (!s.bind(1, job_id).step()) throw std::runtime_error("job " + job_id + " is not in the database");
   const std::string name = "job " + job_id.substr(0, 12);
   return parse_scene(parse_json_text(s.text(0), name), "/", name);

@@ -62,7 +62,7 @@ struct StudyInfo {
 // Throws std::runtime_error when the study is not in the database.
 StudyInfo study_info(Database& db, const std::string& study_id);
 std::vector<JobResult> study_results(Database& db, const QueryFilter& filter);
-// A stored job's scene, loaded as the worker loaded it (jobs.scene).
+// A stored job's scene, loaded as the worker loaded it (job_scenes.scene).
 // Throws std::runtime_error when the job is not in the database.
 Scene load_job_scene(Database& db, const std::string& job_id);
 

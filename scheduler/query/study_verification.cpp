@@ -29,7 +29,7 @@ struct StoredJob {
 
 StoredJob stored_job(Database& db, const std::string& id) {
   Statement s = db.prepare(
-      "SELECT scene, train, irregularity, coalesce(rung, ''), speed_kmh, dt_s, cutoff_hz FROM jobs WHERE id = ?");
+      "SELECT scene, train, irregularity, coalesce(rung, ''), speed_kmh, dt_s, cutoff_hz FROM job_records WHERE id = ?");
   if (!s.bind(1, id).step()) throw std::runtime_error("job " + id + " is not in the database");
   return {s.text(0), s.text(1), s.text(2), s.text(3), s.real(4), s.real(5), s.real(6)};
 }

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "core/sha256.hpp"
 #include "core/unix_time.hpp"
 
 namespace railvsi::scheduler {
@@ -37,23 +38,26 @@ SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts)
 std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_attempts, double now) {
   std::size_t new_jobs = 0;
   Statement insert_job = db.prepare(
-      "INSERT OR IGNORE INTO jobs (id, scene, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
-      "cutoff_hz, max_attempts, enqueued_at, rung) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "INSERT OR IGNORE INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
+      "cutoff_hz, max_attempts, enqueued_at, rung) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  // The scene lives apart from the jobs row, which claims and completions rewrite.
+  Statement insert_scene = db.prepare("INSERT OR IGNORE INTO job_scenes (job_id, scene) VALUES (?, ?)");
   for (const JobSpec& j : jobs) {
     insert_job.bind(1, j.id)
-        .bind(2, j.scene)
-        .bind(3, j.train)
-        .bind(4, j.speed_kmh)
-        .bind(5, j.irregularity)
-        .bind(6, j.operator_key)
-        .bind(7, j.dt_s)
-        .bind(8, j.dt_reason)
-        .bind(9, j.cutoff_hz)
-        .bind(10, max_attempts)
-        .bind(11, now)
-        .bind(12, j.rung.empty() ? SqlValue(Null{}) : SqlValue(j.rung))
+        .bind(2, j.train)
+        .bind(3, j.speed_kmh)
+        .bind(4, j.irregularity)
+        .bind(5, j.operator_key)
+        .bind(6, j.dt_s)
+        .bind(7, j.dt_reason)
+        .bind(8, j.cutoff_hz)
+        .bind(9, max_attempts)
+        .bind(10, now)
+        .bind(11, j.rung.empty() ? SqlValue(Null{}) : SqlValue(j.rung))
         .run();
-    new_jobs += static_cast<std::size_t>(db.changes());
+    const auto added = static_cast<std::size_t>(db.changes());
+    new_jobs += added;
+    if (added > 0) insert_scene.bind(1, j.id).bind(2, j.scene).run();
   }
   return new_jobs;
 }
@@ -83,8 +87,8 @@ std::optional<ClaimedJob> JobQueue::claim_row(const std::string& id, double now_
       .bind(4, id)
       .run();
   Statement s = db_.prepare(
-      "SELECT id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts, coalesce(rung, '') "
-      "FROM jobs WHERE id = ?");
+      "SELECT j.id, s.scene, j.operator_key, j.train, j.irregularity, j.speed_kmh, j.dt_s, j.cutoff_hz, j.attempts, "
+      "coalesce(j.rung, '') FROM jobs j JOIN job_scenes s ON s.job_id = j.id WHERE j.id = ?");
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
   return ClaimedJob{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5), s.real(6), s.real(7),
@@ -104,7 +108,8 @@ std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, 
       Statement s = db_.prepare(
           "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker = ?, lease_expires = ?, started_at = ? "
           "WHERE id IN (SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? AND rung = ? "
-          "ORDER BY train, irregularity, speed_kmh LIMIT ?) RETURNING id, scene, operator_key, train, irregularity, speed_kmh, dt_s, cutoff_hz, attempts, rung");
+          "ORDER BY train, irregularity, speed_kmh LIMIT ?) RETURNING id, operator_key, train, irregularity, speed_kmh, dt_s, "
+          "cutoff_hz, attempts, rung");
       s.bind(1, worker_)
           .bind(2, now + lease_s_)
           .bind(3, now)
@@ -113,8 +118,15 @@ std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, 
           .bind(6, static_cast<std::int64_t>(max_jobs - 1));
       batch.push_back(std::move(*first));
       while (s.step())
-        batch.push_back(ClaimedJob{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5), s.real(6),
-                                   s.real(7), static_cast<int>(s.int64(8)), s.text(9)});
+        batch.push_back(ClaimedJob{s.text(0), {}, s.text(1), s.text(2), s.text(3), s.real(4), s.real(5), s.real(6),
+                                   static_cast<int>(s.int64(7)), s.text(8)});
+      Statement scene = db_.prepare("SELECT scene FROM job_scenes WHERE job_id = ?");
+      for (std::size_t k = 1; k < batch.size(); ++k) {
+        scene.reset();
+        if (!scene.bind(1, batch[k].id).step())
+          throw std::runtime_error(fmt::format("job {} has no scene in job_scenes", batch[k].id));
+        batch[k].scene = scene.text(0);
+      }
       // RETURNING follows no order: the runner wants each train's speeds
       // together and in order (one pass per train, neighbouring speeds
       // side by side).
@@ -203,8 +215,9 @@ struct CompleteStatements {
   explicit CompleteStatements(Database& db)
       : owner(db.prepare("SELECT state, worker FROM jobs WHERE id = ?")),
         insert(db.prepare("INSERT INTO envelopes (job_id, quantity, location, value) VALUES (?, ?, ?, ?)")),
+        fidelity(db.prepare("INSERT OR IGNORE INTO fidelity_records (id, record) VALUES (?, ?)")),
         update(db.prepare(
-            "UPDATE jobs SET state = ?, status = ?, error = ?, fidelity = ?, steps = ?, wall_s = ?, loop_s = ?, "
+            "UPDATE jobs SET state = ?, status = ?, error = ?, fidelity_id = ?, steps = ?, wall_s = ?, loop_s = ?, "
             "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ?, warnings = ? WHERE id = ?")),
         // WHERE true: SQLite's upsert after INSERT ... SELECT needs a WHERE clause.
         stats(db.prepare(
@@ -213,7 +226,9 @@ struct CompleteStatements {
             "ON CONFLICT (study_id) DO UPDATE SET jobs = jobs + 1, "
             "factorizations = factorizations + excluded.factorizations, hits = hits + excluded.hits, "
             "factorization_s = factorization_s + excluded.factorization_s, evictions = evictions + excluded.evictions")) {}
-  Statement owner, insert, update, stats;
+  Statement owner, insert, fidelity, update, stats;
+  // The last fidelity record stored and its id: the jobs of a batch share one.
+  std::string fidelity_text, fidelity_id;
 };
 
 // complete() of one job with prepared statements; false when the job is no longer `worker`'s.
@@ -254,10 +269,16 @@ bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::s
       st.insert.run();
     }
   }
+  // Fidelity records are stored once, by content (SHA-256 of the text).
+  if (st.fidelity_id.empty() || st.fidelity_text != outcome.fidelity) {
+    st.fidelity_text = outcome.fidelity;
+    st.fidelity_id = sha256_hex(outcome.fidelity);
+    st.fidelity.bind(1, st.fidelity_id).bind(2, st.fidelity_text).run();
+  }
   st.update.bind(1, outcome.ok ? "done" : "failed")
       .bind(2, outcome.status)
       .bind(3, outcome.ok ? SqlValue(Null{}) : SqlValue(outcome.error))
-      .bind(4, outcome.fidelity)
+      .bind(4, st.fidelity_id)
       .bind(5, static_cast<std::int64_t>(outcome.steps))
       .bind(6, outcome.wall_s)
       .bind(7, outcome.loop_s)

@@ -80,6 +80,9 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
   std::vector<std::string> rest(columns.begin() + 1, columns.end());
   std::vector<std::string> from_source;
   for (const auto& c : rest) from_source.push_back("s." + c);
+  // Fidelity records (keyed by content) before the jobs rows that refer to them.
+  target.exec("INSERT OR IGNORE INTO main.fidelity_records (id, record) SELECT id, record FROM src.fidelity_records "
+              "WHERE id IN (SELECT fidelity_id FROM src.jobs WHERE id IN temp.merge_take)");
   target.exec("DELETE FROM main.envelopes WHERE job_id IN temp.merge_take");
   target.exec(fmt::format("UPDATE main.jobs SET ({}) = (SELECT {} FROM src.jobs s WHERE s.id = main.jobs.id) "
                           "WHERE id IN temp.merge_take",
@@ -91,6 +94,9 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
   // a lease of a worker on another machine.
   target.exec("UPDATE main.jobs SET state = 'queued', worker = NULL, lease_expires = NULL "
               "WHERE state = 'running' AND id IN temp.merge_take");
+  // A taken job's scene, new to the target (after its jobs row: it refers to it).
+  target.exec("INSERT OR IGNORE INTO main.job_scenes (job_id, scene) SELECT job_id, scene FROM src.job_scenes "
+              "WHERE job_id IN temp.merge_take");
   target.exec("INSERT INTO main.envelopes (job_id, quantity, location, value) SELECT job_id, quantity, location, value "
               "FROM src.envelopes WHERE job_id IN temp.merge_take");
   target.prepare("INSERT OR IGNORE INTO main.study_jobs (study_id, job_id, position) "

@@ -41,7 +41,7 @@ int model_dofs(const Scene& scene) {
 
 std::vector<ShardJob> estimate_study_jobs(Database& db, const std::string& study_id) {
   Statement s = db.prepare(
-      "SELECT j.id, j.operator_key, j.train, j.speed_kmh, j.scene FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+      "SELECT j.id, j.operator_key, j.train, j.speed_kmh, j.scene FROM study_jobs sj JOIN job_records j ON j.id = sj.job_id "
       "WHERE sj.study_id = ? ORDER BY sj.position");
   s.bind(1, study_id);
   std::map<std::pair<std::string, std::string>, Scene> scenes;  // (operator key, train) -> a scene of the group
@@ -118,11 +118,13 @@ void copy_shard(Database& source, const std::string& study_id, const std::vector
       .run();
   source.prepare("INSERT INTO dst.cache_stats (study_id) VALUES (?)").bind(1, study_id).run();
   // The definition of each job; its state starts afresh (queued).
-  source.prepare("INSERT INTO dst.jobs (id, scene, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
-                 "cutoff_hz, max_attempts, enqueued_at) SELECT id, scene, train, speed_kmh, irregularity, operator_key, "
+  source.prepare("INSERT INTO dst.jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
+                 "cutoff_hz, max_attempts, enqueued_at) SELECT id, train, speed_kmh, irregularity, operator_key, "
                  "dt_s, dt_reason, cutoff_hz, max_attempts, ? FROM main.jobs WHERE id IN temp.shard_job_ids")
       .bind(1, unix_now_s())
       .run();
+  source.exec("INSERT INTO dst.job_scenes (job_id, scene) SELECT job_id, scene FROM main.job_scenes "
+              "WHERE job_id IN temp.shard_job_ids");
   source.prepare("INSERT INTO dst.study_jobs (study_id, job_id, position) SELECT study_id, job_id, position "
                  "FROM main.study_jobs WHERE study_id = ? AND job_id IN temp.shard_job_ids")
       .bind(1, study_id)

@@ -41,6 +41,11 @@ const Invariant kInvariants[] = {
      "studies with more jobs linked than they have"},
     {"SELECT count(*) FROM jobs WHERE attempts > max_attempts OR attempts < 0",
      "jobs with more attempts than allowed"},
+    {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM job_scenes s WHERE s.job_id = j.id)",
+     "jobs without a scene"},
+    {"SELECT count(*) FROM jobs j WHERE fidelity_id IS NOT NULL "
+     "AND NOT EXISTS (SELECT 1 FROM fidelity_records f WHERE f.id = j.fidelity_id)",
+     "jobs whose fidelity record is missing"},
 };
 
 }  // namespace

@@ -1,5 +1,10 @@
 #include "store/store_schema.hpp"
 
+#include <sqlite3.h>
+
+#include <string_view>
+
+#include "core/sha256.hpp"
 #include "core/unix_time.hpp"
 
 #include <stdexcept>
@@ -167,8 +172,48 @@ CREATE TABLE price_rows (
 DROP INDEX jobs_claim;
 CREATE INDEX jobs_claim ON jobs (state, operator_key, rung, train);
 )sql"},
+      {"job_scenes and fidelity_records: the scene (written once) and the fidelity record (one per rung and "
+       "structure, shared by its jobs) out of the jobs rows, so that claims and completions rewrite small rows; "
+       "view job_records: jobs with their scene and fidelity as before",
+       R"sql(
+CREATE TABLE job_scenes (
+  job_id TEXT PRIMARY KEY REFERENCES jobs (id),
+  scene  TEXT NOT NULL                -- canonical scene JSON (what the worker runs); its SHA-256 is job_id
+);
+INSERT INTO job_scenes (job_id, scene) SELECT id, scene FROM jobs ORDER BY rowid;
+CREATE TABLE fidelity_records (
+  id     TEXT PRIMARY KEY,            -- SHA-256 of record
+  record TEXT NOT NULL                -- JSON: model, contact law, solver path, DOFs, HHT parameters, modes, ...
+) WITHOUT ROWID;
+INSERT OR IGNORE INTO fidelity_records (id, record)
+  SELECT vsi_sha256(fidelity), fidelity FROM jobs WHERE fidelity IS NOT NULL;
+-- NULL before the run. No REFERENCES clause: a foreign key on a column that
+-- each completion sets makes SQLite keep a statement journal per UPDATE,
+-- which cost more than the rest of the completion; the queue writes the
+-- record first in the same transaction, and vsi check verifies it.
+ALTER TABLE jobs ADD COLUMN fidelity_id TEXT;
+UPDATE jobs SET fidelity_id = vsi_sha256(fidelity) WHERE fidelity IS NOT NULL;
+ALTER TABLE jobs DROP COLUMN scene;     -- SQLite >= 3.35
+ALTER TABLE jobs DROP COLUMN fidelity;
+CREATE VIEW job_records AS
+  SELECT j.*, s.scene, f.record AS fidelity
+  FROM jobs j LEFT JOIN job_scenes s ON s.job_id = j.id LEFT JOIN fidelity_records f ON f.id = j.fidelity_id;
+)sql"},
   };
   return all;
+}
+
+// vsi_sha256(text): the hex SHA-256 of a text (NULL for NULL), for
+// migrations that key rows by content.
+void sha256_function(sqlite3_context* context, int, sqlite3_value** args) {
+  if (sqlite3_value_type(args[0]) == SQLITE_NULL) {
+    sqlite3_result_null(context);
+    return;
+  }
+  const auto* text = reinterpret_cast<const char*>(sqlite3_value_text(args[0]));
+  const std::string hex =
+      sha256_hex(std::string_view(text, static_cast<std::size_t>(sqlite3_value_bytes(args[0]))));
+  sqlite3_result_text(context, hex.data(), static_cast<int>(hex.size()), SQLITE_TRANSIENT);
 }
 
 int user_version(Database& db) {
@@ -191,11 +236,16 @@ void require_current_schema(Database& db) {
                                        db.file(), version, kStoreSchemaVersion));
 }
 
-void migrate(Database& db) {
+void migrate(Database& db, int up_to_version) {
   static_assert(kStoreSchemaVersion > 0);
   if (migrations().size() != static_cast<std::size_t>(kStoreSchemaVersion))
     throw std::logic_error("kStoreSchemaVersion does not match the migrations");
-  if (user_version(db) == kStoreSchemaVersion) return;
+  if (up_to_version < 1 || up_to_version > kStoreSchemaVersion) throw std::logic_error("migrate: no such version");
+  if (user_version(db) >= up_to_version && user_version(db) <= kStoreSchemaVersion) return;
+  if (const int rc = sqlite3_create_function_v2(db.handle(), "vsi_sha256", 1, SQLITE_UTF8 | SQLITE_DETERMINISTIC,
+                                                nullptr, sha256_function, nullptr, nullptr, nullptr);
+      rc != SQLITE_OK)
+    throw SqliteError(rc, "sqlite: cannot register vsi_sha256");
   Transaction tx(db);
   const int version = user_version(db);  // again, under the write lock
   if (version > kStoreSchemaVersion)
@@ -204,7 +254,7 @@ void migrate(Database& db) {
   if (version == 0)
     db.exec("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER PRIMARY KEY, applied_at REAL NOT NULL, "
             "description TEXT NOT NULL)");
-  for (int v = version; v < kStoreSchemaVersion; ++v) {
+  for (int v = version; v < up_to_version; ++v) {
     const Migration& m = migrations()[static_cast<std::size_t>(v)];
     db.exec(m.sql);
     db.prepare("INSERT INTO schema_version (version, applied_at, description) VALUES (?, ?, ?)")

@@ -6,12 +6,13 @@
 
 namespace railvsi::scheduler {
 
-inline constexpr int kStoreSchemaVersion = 7;
+inline constexpr int kStoreSchemaVersion = 8;
 
 // Applies the missing migrations in one BEGIN IMMEDIATE transaction (safe
 // when several workers open a new file at once). Throws SqliteError, or
-// std::runtime_error for a file written by a newer vsi.
-void migrate(Database& db);
+// std::runtime_error for a file written by a newer vsi. up_to_version
+// (tests of a migration) stops at an older version.
+void migrate(Database& db, int up_to_version = kStoreSchemaVersion);
 
 // For a read-only connection, which cannot migrate: throws
 // std::runtime_error unless the file has this vsi's schema version.

@@ -359,6 +359,8 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     const std::size_t i = n % trains.size();
     const StructureVariant& variant = variants[n / trains.size()];
     const TrainFacts& f = facts[n];
+    std::string modal_key;
+    double modal_key_dt_s = 0.0;
     for (double speed_kmh : f.speeds_kmh) {
       Scene at_speed = f.first_scene;
       at_speed.speed_mps = speed_kmh / 3.6;
@@ -369,9 +371,15 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
       on_rung.rung = f.plan.rung;
       on_rung.modal_cutoff_hz = f.plan.modal_cutoff_hz;
       apply_rung_structure(on_rung, at_speed.analysis);
-      const std::string key =
-          f.plan.rung.exact_modal() ? modal_operator_key(f.structure_hash, *f.structure, f.plan.modal_cutoff_hz, dt.dt_s)
-                : operator_key(f.structure_hash, at_speed.analysis, f.rail_flexibility);
+      // The modal key hashes the rail lines and outputs: computed once per
+      // train and dt (one dt for all its speeds on the exact modal rung).
+      if (f.plan.rung.exact_modal() && !(modal_key_dt_s == dt.dt_s && !modal_key.empty())) {
+        modal_key = modal_operator_key(f.structure_hash, *f.structure, f.plan.modal_cutoff_hz, dt.dt_s);
+        modal_key_dt_s = dt.dt_s;
+      }
+      const std::string key = f.plan.rung.exact_modal()
+                                  ? modal_key
+                                  : operator_key(f.structure_hash, at_speed.analysis, f.rail_flexibility);
       for (const Profile& p : profiles) {
         JobSpec job;
         json scene = scene_doc(variant, trains[i], speed_kmh, p.value, dt.dt_s);

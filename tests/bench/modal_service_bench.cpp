@@ -96,7 +96,7 @@ void measure(const json& doc, const char* label) {
   {
     Database db(db_file.string());
     Statement s = db.prepare("SELECT count(*), total(wall_s), total(loop_s), total(steps), total(factorization_s), "
-                             "min(rung), max(fidelity) FROM jobs WHERE state = 'done'");
+                             "min(rung), max(fidelity) FROM job_records WHERE state = 'done'");
     s.step();
     jobs = s.int64(0);
     job_wall_s = s.real(1);

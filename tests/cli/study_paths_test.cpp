@@ -57,7 +57,7 @@ TEST_F(StudyPaths, SubmitFromTheParentDirectoryFindsImportedMatricesAndProfiles)
   const VsiRun worked = vsi_in("d3", "work --db ../r.sqlite --threads 1");
   EXPECT_EQ(worked.exit_code, 0) << worked.err;
   const std::string sql = "sqlite3 '" + (dir_ / "r.sqlite").string() +
-                          "' \"SELECT count(*) FROM jobs WHERE state = 'done' AND instr(scene, '" +
+                          "' \"SELECT count(*) FROM job_records WHERE state = 'done' AND instr(scene, '" +
                           (dir_ / "d3" / "K.mtx").string() + "') > 0 AND instr(scene, '" +
                           (dir_ / "d3" / "prof.csv").string() + "') > 0\" > '" + (dir_ / "count.txt").string() + "'";
   ASSERT_EQ(std::system(sql.c_str()), 0);
@@ -72,7 +72,7 @@ TEST_F(StudyPaths, RunFromTheStudysDirectoryStoresAbsoluteNamesAndFinishes) {
   EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
   EXPECT_NE(run.out.find("2 jobs shown"), std::string::npos) << run.out;
   const std::string sql = "sqlite3 '" + (dir_ / "r.sqlite").string() +
-                          "' \"SELECT count(*) FROM jobs WHERE state = 'done' AND instr(scene, '\\\"" +
+                          "' \"SELECT count(*) FROM job_records WHERE state = 'done' AND instr(scene, '\\\"" +
                           (dir_ / "d3" / "prof.csv").string() + "\\\"') > 0\" > '" +
                           (dir_ / "count.txt").string() + "'";
   ASSERT_EQ(std::system(sql.c_str()), 0);

@@ -60,7 +60,7 @@ class ModalBatches : public ServiceTest {
     std::string out;
     Statement e = db.prepare("SELECT job_id, quantity, location, value FROM envelopes ORDER BY job_id, quantity, location");
     while (e.step()) out += fmt::format("{}|{}|{}|{:a}\n", e.text(0), e.text(1), e.text(2), e.is_null(3) ? -1.0 : e.real(3));
-    Statement j = db.prepare("SELECT id, state, status, fidelity, steps, warnings, rung FROM jobs ORDER BY id");
+    Statement j = db.prepare("SELECT id, state, status, fidelity, steps, warnings, rung FROM job_records ORDER BY id");
     while (j.step())
       out += fmt::format("{}|{}|{}|{}|{}|{}|{}\n", j.text(0), j.text(1), j.text(2), j.text(3), j.int64(4), j.text(5),
                          j.text(6));
@@ -102,7 +102,7 @@ TEST_F(ModalBatches, PlannerPutsMovingForceStudiesOnTheModalRungAndRecordsWhy) {
   // One basis for the structure: built once, every other job a cache hit.
   EXPECT_EQ(count_rows(db, "SELECT factorizations FROM cache_stats"), 1);
   EXPECT_EQ(count_rows(db, "SELECT hits FROM cache_stats"), 25);
-  Statement s = db.prepare("SELECT fidelity, dt_s, dt_reason FROM jobs LIMIT 1");
+  Statement s = db.prepare("SELECT fidelity, dt_s, dt_reason FROM job_records LIMIT 1");
   ASSERT_TRUE(s.step());
   const json f = json::parse(s.text(0));
   EXPECT_EQ(f["rung"], "moving_forces/modal");
@@ -138,7 +138,7 @@ TEST_F(ModalBatches, BatchedJobEqualsTheHistoriesPathOfSimulate) {
   // those: the same bits.
   const std::string db_file = run_study(modal_study(), "one.sqlite", 256);
   Database db(db_file);
-  Statement s = db.prepare("SELECT id, scene, cutoff_hz FROM jobs WHERE speed_kmh = 260 AND train = 'two axles'");
+  Statement s = db.prepare("SELECT id, scene, cutoff_hz FROM job_records WHERE speed_kmh = 260 AND train = 'two axles'");
   ASSERT_TRUE(s.step());
   const Scene scene = parse_scene(json::parse(s.text(1)), "/", "job");
   ModalBasisOptions o;

@@ -1,5 +1,5 @@
 // The histories of a study case reconcile with its envelopes: vsi replay
-// runs a stored job again from jobs.scene and writes deck.csv with the
+// runs a stored job again from job_scenes.scene and writes deck.csv with the
 // first axle's x, the evaluation window and the filtered deck acceleration,
 // whose maximum inside the window is the envelope the study stored. vsi
 // simulate reports where each maximum happened and reads a scene from

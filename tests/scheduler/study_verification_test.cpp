@@ -132,7 +132,7 @@ TEST_F(StudyVerification, LeavesTheEnvelopesUntouchedAndAddsEstimatesEqualToInde
   json scene;
   {
     Database db(db_, OpenMode::kExisting);
-    Statement s = db.prepare("SELECT scene FROM jobs WHERE id = ?");
+    Statement s = db.prepare("SELECT scene FROM job_records WHERE id = ?");
     ASSERT_TRUE(s.bind(1, gov).step());
     scene = json::parse(s.text(0));
   }
