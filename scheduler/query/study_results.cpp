@@ -88,8 +88,8 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     jobs.push_back(std::move(r));
   }
   Statement e = db.prepare(fmt::format(
-      "SELECT e.job_id, e.quantity, e.location, e.value, e.error_estimate FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
-      "JOIN envelopes e ON e.job_id = j.id WHERE {}",
+      "SELECT j.id, e.quantity, e.location, e.value, e.error_estimate FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+      "JOIN job_envelopes e ON e.job_seq = j.seq WHERE {}",
       kFilter));
   bind_filter(e, filter);
   while (e.step()) {

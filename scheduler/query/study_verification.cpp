@@ -168,7 +168,8 @@ std::size_t store_error_estimates(Database& db, const std::string& study_id) {
       "SELECT e.quantity, e.location, e.value, r.value FROM envelopes e LEFT JOIN envelopes r "
       "ON r.job_id = ?2 AND r.quantity = e.quantity AND r.location = e.location WHERE e.job_id = ?1");
   Statement update = db.prepare(
-      "UPDATE envelopes SET error_estimate = ? WHERE job_id = ? AND quantity = ? AND location = ?");
+      "UPDATE job_envelopes SET error_estimate = ? WHERE job_seq = (SELECT seq FROM jobs WHERE id = ?) "
+      "AND quantity = ? AND location = ?");
   for (const auto& [job, reference] : reference_of) {
     struct Estimate {
       std::string quantity, location;

@@ -39,7 +39,8 @@ std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_
   std::size_t new_jobs = 0;
   Statement insert_job = db.prepare(
       "INSERT OR IGNORE INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
-      "cutoff_hz, max_attempts, enqueued_at, rung) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "cutoff_hz, max_attempts, enqueued_at, rung, seq) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
+      "(SELECT coalesce(max(seq), 0) + 1 FROM jobs))");
   // The scene lives apart from the jobs row, which claims and completions rewrite.
   Statement insert_scene = db.prepare("INSERT OR IGNORE INTO job_scenes (job_id, scene) VALUES (?, ?)");
   for (const JobSpec& j : jobs) {
@@ -198,14 +199,16 @@ std::size_t JobQueue::renew(const std::vector<std::string>& job_ids) {
 
 namespace {
 
-bool still_ours(Statement& s, const ClaimedJob& job, const std::string& worker) {
+// The job's number in the store (jobs.seq) when `worker` still holds it.
+std::optional<std::int64_t> still_ours(Statement& s, const ClaimedJob& job, const std::string& worker) {
   s.reset();
-  if (!s.bind(1, job.id).step()) return false;
-  return s.text(0) == "running" && s.text(1) == worker;
+  if (!s.bind(1, job.id).step()) return std::nullopt;
+  if (s.text(0) != "running" || s.text(1) != worker) return std::nullopt;
+  return s.int64(2);
 }
 
-bool still_ours(Database& db, const ClaimedJob& job, const std::string& worker) {
-  Statement s = db.prepare("SELECT state, worker FROM jobs WHERE id = ?");
+std::optional<std::int64_t> still_ours(Database& db, const ClaimedJob& job, const std::string& worker) {
+  Statement s = db.prepare("SELECT state, worker, seq FROM jobs WHERE id = ?");
   return still_ours(s, job, worker);
 }
 
@@ -213,8 +216,8 @@ bool still_ours(Database& db, const ClaimedJob& job, const std::string& worker) 
 // completes many jobs in one).
 struct CompleteStatements {
   explicit CompleteStatements(Database& db)
-      : owner(db.prepare("SELECT state, worker FROM jobs WHERE id = ?")),
-        insert(db.prepare("INSERT INTO envelopes (job_id, quantity, location, value) VALUES (?, ?, ?, ?)")),
+      : owner(db.prepare("SELECT state, worker, seq FROM jobs WHERE id = ?")),
+        insert(db.prepare("INSERT INTO job_envelopes (job_seq, quantity, location, value) VALUES (?, ?, ?, ?)")),
         fidelity(db.prepare("INSERT OR IGNORE INTO fidelity_records (id, record) VALUES (?, ?)")),
         update(db.prepare(
             "UPDATE jobs SET state = ?, status = ?, error = ?, fidelity_id = ?, steps = ?, wall_s = ?, loop_s = ?, "
@@ -260,10 +263,11 @@ bool JobQueue::complete_in_transaction(const ClaimedJob& job, const JobOutcome& 
 namespace {
 
 bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::string& worker, CompleteStatements& st) {
-  if (!still_ours(st.owner, job, worker)) return false;
+  const std::optional<std::int64_t> seq = still_ours(st.owner, job, worker);
+  if (!seq) return false;
   if (outcome.ok) {
     for (const EnvelopeRow& e : outcome.envelopes) {
-      st.insert.bind(1, job.id).bind(2, e.quantity).bind(3, e.location);
+      st.insert.bind(1, *seq).bind(2, e.quantity).bind(3, e.location);
       if (e.value) st.insert.bind(4, *e.value);
       else st.insert.bind_null(4);
       st.insert.run();

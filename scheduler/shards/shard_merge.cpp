@@ -1,6 +1,7 @@
 #include "shards/shard_merge.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <optional>
 
@@ -49,10 +50,15 @@ std::string joined(const std::vector<std::string>& names, const char* separator 
 // One shard into the target, in one transaction. Returns the jobs taken.
 std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::string& file_text) {
   const std::string& study = shard.marker.study_id;
-  const std::vector<std::string> columns = table_columns(target, "main", "jobs");
+  const std::vector<std::string> all_columns = table_columns(target, "main", "jobs");
   AttachedStore attached(target, shard.file, "src");
-  if (table_columns(target, "src", "jobs") != columns)
+  if (table_columns(target, "src", "jobs") != all_columns)
     throw InputError("", "its jobs table differs from the target's", shard.file.string());
+  // A job's number (seq) is the store's own: the target keeps its numbers
+  // and numbers the jobs it takes after its last.
+  std::vector<std::string> columns;
+  std::copy_if(all_columns.begin(), all_columns.end(), std::back_inserter(columns),
+               [](const std::string& c) { return c != "seq"; });
   target.exec("CREATE TEMP TABLE IF NOT EXISTS merge_take (id TEXT PRIMARY KEY)");
   DeferredTransaction tx(target);
   target.exec("DELETE FROM temp.merge_take");
@@ -83,12 +89,13 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
   // Fidelity records (keyed by content) before the jobs rows that refer to them.
   target.exec("INSERT OR IGNORE INTO main.fidelity_records (id, record) SELECT id, record FROM src.fidelity_records "
               "WHERE id IN (SELECT fidelity_id FROM src.jobs WHERE id IN temp.merge_take)");
-  target.exec("DELETE FROM main.envelopes WHERE job_id IN temp.merge_take");
+  target.exec("DELETE FROM main.job_envelopes WHERE job_seq IN (SELECT seq FROM main.jobs WHERE id IN temp.merge_take)");
   target.exec(fmt::format("UPDATE main.jobs SET ({}) = (SELECT {} FROM src.jobs s WHERE s.id = main.jobs.id) "
                           "WHERE id IN temp.merge_take",
                           joined(rest), joined(from_source)));
-  target.exec(fmt::format("INSERT INTO main.jobs ({0}) SELECT {0} FROM src.jobs WHERE id IN temp.merge_take "
-                          "AND id NOT IN (SELECT id FROM main.jobs)",
+  target.exec(fmt::format("INSERT INTO main.jobs ({0}, seq) SELECT {0}, "
+                          "(SELECT coalesce(max(seq), 0) FROM main.jobs) + row_number() OVER (ORDER BY seq) "
+                          "FROM src.jobs WHERE id IN temp.merge_take AND id NOT IN (SELECT id FROM main.jobs)",
                           joined(columns)));
   // A job the shard has not finished waits in the target's queue, not under
   // a lease of a worker on another machine.
@@ -97,8 +104,10 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
   // A taken job's scene, new to the target (after its jobs row: it refers to it).
   target.exec("INSERT OR IGNORE INTO main.job_scenes (job_id, scene) SELECT job_id, scene FROM src.job_scenes "
               "WHERE job_id IN temp.merge_take");
-  target.exec("INSERT INTO main.envelopes (job_id, quantity, location, value) SELECT job_id, quantity, location, value "
-              "FROM src.envelopes WHERE job_id IN temp.merge_take");
+  target.exec("INSERT INTO main.job_envelopes (job_seq, quantity, location, value) "
+              "SELECT m.seq, e.quantity, e.location, e.value FROM src.job_envelopes e "
+              "JOIN src.jobs s ON s.seq = e.job_seq JOIN main.jobs m ON m.id = s.id WHERE s.id IN temp.merge_take "
+              "ORDER BY m.seq");
   target.prepare("INSERT OR IGNORE INTO main.study_jobs (study_id, job_id, position) "
                  "SELECT study_id, job_id, position FROM src.study_jobs WHERE study_id = ?")
       .bind(1, study)

@@ -118,9 +118,10 @@ void copy_shard(Database& source, const std::string& study_id, const std::vector
       .run();
   source.prepare("INSERT INTO dst.cache_stats (study_id) VALUES (?)").bind(1, study_id).run();
   // The definition of each job; its state starts afresh (queued).
+  // seq: the source's numbers are unique, so they serve the new store.
   source.prepare("INSERT INTO dst.jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
-                 "cutoff_hz, max_attempts, enqueued_at) SELECT id, train, speed_kmh, irregularity, operator_key, "
-                 "dt_s, dt_reason, cutoff_hz, max_attempts, ? FROM main.jobs WHERE id IN temp.shard_job_ids")
+                 "cutoff_hz, max_attempts, enqueued_at, seq) SELECT id, train, speed_kmh, irregularity, operator_key, "
+                 "dt_s, dt_reason, cutoff_hz, max_attempts, ?, seq FROM main.jobs WHERE id IN temp.shard_job_ids")
       .bind(1, unix_now_s())
       .run();
   source.exec("INSERT INTO dst.job_scenes (job_id, scene) SELECT job_id, scene FROM main.job_scenes "

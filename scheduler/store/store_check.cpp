@@ -28,11 +28,12 @@ const Invariant kInvariants[] = {
      "jobs under a lease that are not running"},
     {"SELECT count(*) FROM jobs WHERE state IN ('done', 'failed', 'cancelled') AND finished_at IS NULL",
      "finished jobs without a finish time"},
-    {"SELECT count(*) FROM jobs j WHERE state = 'done' AND NOT EXISTS (SELECT 1 FROM envelopes e WHERE e.job_id = j.id)",
+    {"SELECT count(*) FROM jobs j WHERE state = 'done' AND NOT EXISTS (SELECT 1 FROM job_envelopes e WHERE e.job_seq = j.seq)",
      "done jobs without envelopes"},
-    {"SELECT count(*) FROM (SELECT DISTINCT e.job_id FROM envelopes e JOIN jobs j ON j.id = e.job_id "
+    {"SELECT count(*) FROM (SELECT DISTINCT e.job_seq FROM job_envelopes e JOIN jobs j ON j.seq = e.job_seq "
      "WHERE j.state != 'done')",
      "jobs with envelopes that are not done"},
+    {"SELECT count(*) FROM jobs WHERE seq IS NULL", "jobs without a number (jobs.seq: their envelopes could not be stored)"},
     {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM study_jobs sj WHERE sj.job_id = j.id) "
      "AND NOT EXISTS (SELECT 1 FROM verification_jobs v WHERE v.verify_job_id = j.id)",
      "jobs of no study (nor verifying one)"},
@@ -104,7 +105,7 @@ void require_consistent_study(Database& db, const std::string& study_id) {
       "(SELECT count(*) FROM study_jobs INDEXED BY study_jobs_job WHERE study_id = ?1), "
       "(SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1), "
       "(SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1 AND j.state = 'done' "
-      " AND NOT EXISTS (SELECT 1 FROM envelopes e WHERE e.job_id = j.id))");
+      " AND NOT EXISTS (SELECT 1 FROM job_envelopes e WHERE e.job_seq = j.seq))");
   s.bind(1, study_id).step();
   const std::int64_t listed = s.int64(0), linked = s.int64(1), indexed = s.int64(2), found = s.int64(3),
                      bare = s.int64(4);

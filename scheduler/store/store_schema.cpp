@@ -199,6 +199,35 @@ CREATE VIEW job_records AS
   SELECT j.*, s.scene, f.record AS fidelity
   FROM jobs j LEFT JOIN job_scenes s ON s.job_id = j.id LEFT JOIN fidelity_records f ON f.id = j.fidelity_id;
 )sql"},
+      {"job_envelopes: the envelopes keyed by the job's number in the store (jobs.seq, in the order the jobs "
+       "were added) instead of its SHA-256: a batch's results go to neighbouring pages of a table a third the "
+       "size, instead of one page per job anywhere in it; view envelopes gives them by job id as before",
+       R"sql(
+-- Assigned when the row is added (the largest so far + 1). Not the rowid:
+-- VACUUM may renumber the rowids of a table without an INTEGER PRIMARY KEY.
+ALTER TABLE jobs ADD COLUMN seq INTEGER;
+UPDATE jobs SET seq = rowid;
+CREATE UNIQUE INDEX jobs_seq ON jobs (seq);
+CREATE TABLE job_envelopes (
+  job_seq        INTEGER NOT NULL REFERENCES jobs (seq),
+  quantity       TEXT NOT NULL,       -- e.g. deck_acceleration_mps2 (unit in the name)
+  location       TEXT NOT NULL,       -- output point, wheel or vehicle name; '' for the whole job
+  value          REAL,                -- NULL when the run could not produce it (never NaN)
+  error_estimate REAL,                -- (value - verified) / verified; NULL: not verified
+  PRIMARY KEY (job_seq, quantity, location)
+) WITHOUT ROWID;
+INSERT INTO job_envelopes (job_seq, quantity, location, value, error_estimate)
+  SELECT j.seq, e.quantity, e.location, e.value, e.error_estimate FROM envelopes e JOIN jobs j ON j.id = e.job_id
+  ORDER BY j.seq, e.quantity, e.location;
+DROP VIEW study_envelopes;
+DROP TABLE envelopes;
+CREATE VIEW envelopes AS
+  SELECT j.id AS job_id, e.quantity, e.location, e.value, e.error_estimate
+  FROM job_envelopes e JOIN jobs j ON j.seq = e.job_seq;
+CREATE VIEW study_envelopes AS
+  SELECT sj.study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
+  FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id JOIN job_envelopes e ON e.job_seq = j.seq;
+)sql"},
   };
   return all;
 }

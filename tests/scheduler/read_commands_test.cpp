@@ -193,7 +193,8 @@ TEST_F(ReadCommands, StatusShowsExpiredLeasesAndTheRecentThroughput) {
           .bind(1, state).bind(2, started).bind(3, finished).bind(4, id[k]).run();
       // A done job has its envelopes (status checks that the store is consistent).
       if (std::string(state) == "done")
-        db.prepare("INSERT INTO envelopes (job_id, quantity, location, value) VALUES (?, 'deck_displacement_m', '', 0.001)")
+        db.prepare("INSERT INTO job_envelopes (job_seq, quantity, location, value) "
+                   "SELECT seq, 'deck_displacement_m', '', 0.001 FROM jobs WHERE id = ?")
             .bind(1, id[k]).run();
     };
     set(0, "done", now - 3601, now - 3600);

@@ -1,6 +1,7 @@
-// Migration 8 upgrades a store in place: the scenes and fidelity records of
-// a version-7 store move out of the jobs rows, and every reader still sees
-// them (view job_records), unchanged to the byte.
+// Migrations upgrade a store in place. 8: the scenes and fidelity records
+// of a version-7 store move out of the jobs rows, and every reader still
+// sees them (view job_records), unchanged to the byte. 9: the envelopes are
+// keyed by the job's number; view envelopes gives them by job id as before.
 #include <algorithm>
 
 #include <gtest/gtest.h>
@@ -93,6 +94,80 @@ TEST_F(StoreMigration, EightMovesScenesAndFidelityOutOfTheJobsRows) {
   EXPECT_EQ(std::count_if(after.begin(), after.end(),
                           [](const std::string& p) { return p.find("fidelity record is missing") != std::string::npos; }),
             1);
+}
+
+TEST_F(StoreMigration, NineKeysTheEnvelopesByTheJobsNumberAndKeepsThemByJobId) {
+  const StudyPlan plan = expand_study(tiny_study(), dir_, (dir_ / "s.json").string());
+  ASSERT_GE(plan.jobs.size(), 3u);
+  {
+    // A version-8 store: envelopes keyed by job id, one of them verified.
+    Database db((dir_ / "old.sqlite").string());
+    migrate(db, 8);
+    Statement insert = db.prepare(
+        "INSERT INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, "
+        "enqueued_at, state) VALUES (?, ?, ?, ?, ?, ?, ?, ?, 0, ?)");
+    Statement envelope = db.prepare(
+        "INSERT INTO envelopes (job_id, quantity, location, value, error_estimate) VALUES (?, ?, ?, ?, ?)");
+    for (std::size_t k = 0; k < plan.jobs.size(); ++k) {
+      const JobSpec& j = plan.jobs[k];
+      insert.bind(1, j.id).bind(2, j.train).bind(3, j.speed_kmh).bind(4, j.irregularity).bind(5, j.operator_key);
+      insert.bind(6, j.dt_s).bind(7, j.dt_reason).bind(8, j.cutoff_hz).bind(9, k < 2 ? "done" : "queued").run();
+      db.prepare("INSERT INTO job_scenes (job_id, scene) VALUES (?, ?)").bind(1, j.id).bind(2, j.scene).run();
+      if (k >= 2) continue;
+      envelope.bind(1, j.id).bind(2, "deck_acceleration_mps2").bind(3, "").bind(4, 1.5 + k).bind(5, 0.25).run();
+      envelope.bind(1, j.id).bind(2, "deck_acceleration_mps2").bind(3, "midspan").bind(4, 1.25 + k).bind_null(5).run();
+      envelope.bind(1, j.id).bind(2, "deck_displacement_m").bind(3, "").bind_null(4).bind_null(5).run();
+    }
+  }
+  Database db((dir_ / "old.sqlite").string());
+  migrate(db);
+  EXPECT_EQ(count_rows(db, "PRAGMA user_version"), kStoreSchemaVersion);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE seq IS NULL"), 0);
+  EXPECT_EQ(count_rows(db, "SELECT count(DISTINCT seq) FROM jobs"), static_cast<std::int64_t>(plan.jobs.size()));
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM job_envelopes"), 6);
+  // Every value (NULL included) and estimate by job id, as before.
+  for (std::size_t k = 0; k < 2; ++k) {
+    Statement s = db.prepare(
+        "SELECT quantity, location, value, error_estimate FROM envelopes WHERE job_id = ? ORDER BY quantity, location");
+    s.bind(1, plan.jobs[k].id);
+    ASSERT_TRUE(s.step());
+    EXPECT_EQ(s.text(1), "");
+    EXPECT_EQ(s.real(2), 1.5 + static_cast<double>(k));
+    EXPECT_EQ(s.real(3), 0.25);
+    ASSERT_TRUE(s.step());
+    EXPECT_EQ(s.text(1), "midspan");
+    EXPECT_EQ(s.real(2), 1.25 + static_cast<double>(k));
+    EXPECT_TRUE(s.is_null(3));
+    ASSERT_TRUE(s.step());
+    EXPECT_EQ(s.text(0), "deck_displacement_m");
+    EXPECT_TRUE(s.is_null(2));
+    EXPECT_FALSE(s.step());
+  }
+  // A job added after the upgrade gets the next number, and its completion
+  // is found by job id.
+  StudyPlan more = expand_study(tiny_study(), dir_, (dir_ / "s.json").string());
+  more.jobs.front().id = sha256_hex("another scene");
+  more.jobs.front().scene = "another scene";
+  ASSERT_EQ(insert_jobs(db, {more.jobs.front()}, 3, 0.0), 1u);
+  EXPECT_EQ(count_rows(db, "SELECT seq FROM jobs WHERE id = '" + more.jobs.front().id + "'"),
+            static_cast<std::int64_t>(plan.jobs.size()) + 1);
+  JobQueue queue(db, "test:worker");
+  std::size_t completed = 0;
+  while (auto job = queue.claim()) {
+    JobOutcome o;
+    o.status = "ok";
+    o.ok = true;
+    o.fidelity = "{}";
+    o.envelopes = {{"deck_acceleration_mps2", "", 2.0}};
+    EXPECT_TRUE(queue.complete(*job, o));
+    ++completed;
+  }
+  EXPECT_EQ(completed, plan.jobs.size() - 2 + 1);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE job_id = '" + more.jobs.front().id + "' AND value = 2.0"), 1);
+  for (const std::string& p : check_store(db).problems) {
+    EXPECT_EQ(p.find("envelopes"), std::string::npos) << p;
+    EXPECT_EQ(p.find("number"), std::string::npos) << p;
+  }
 }
 
 }  // namespace
