@@ -454,42 +454,42 @@ template <int L>
         }
       }
     }
-  for (long step = first; step < end; ++step) {
-    const double t_new = static_cast<double>(step + 1) * dt_s_;
-    V* const p_next = reinterpret_cast<V*>(ws.chunk.data() + static_cast<std::size_t>(step - first) * row);
-    bool finite = true;
-    V zero{};
-    for (std::size_t k = 0; k < n; ++k) {
-      // ModalStep::advance, lane by lane.
-      const ModalStep& m = steps_[k];
-      const V change = p_next[k] - p[k];
-      const V load_q = m.g0[0] * p[k] + m.g1_per_dt[0] * change;
-      const V load_qd = m.g0[1] * p[k] + m.g1_per_dt[1] * change;
-      const V q1 = (m.phi[0][0] * q[k] + m.phi[0][1] * qd[k]) + load_q;
-      const V qd1 = (m.phi[1][0] * q[k] + m.phi[1][1] * qd[k]) + load_qd;
-      q[k] = q1;
-      qd[k] = qd1;
-      qdd[k] = p_next[k] - 2.0 * m.zeta * m.omega * qd1 - m.omega * m.omega * q1;
-      zero += q1 * 0.0;  // stays 0 while finite, NaN otherwise
+    for (long step = first; step < end; ++step) {
+      const double t_new = static_cast<double>(step + 1) * dt_s_;
+      V* const p_next = reinterpret_cast<V*>(ws.chunk.data() + static_cast<std::size_t>(step - first) * row);
+      bool finite = true;
+      V zero{};
+      for (std::size_t k = 0; k < n; ++k) {
+        // ModalStep::advance, lane by lane.
+        const ModalStep& m = steps_[k];
+        const V change = p_next[k] - p[k];
+        const V load_q = m.g0[0] * p[k] + m.g1_per_dt[0] * change;
+        const V load_qd = m.g0[1] * p[k] + m.g1_per_dt[1] * change;
+        const V q1 = (m.phi[0][0] * q[k] + m.phi[0][1] * qd[k]) + load_q;
+        const V qd1 = (m.phi[1][0] * q[k] + m.phi[1][1] * qd[k]) + load_qd;
+        q[k] = q1;
+        qd[k] = qd1;
+        qdd[k] = p_next[k] - 2.0 * m.zeta * m.omega * qd1 - m.omega * m.omega * q1;
+        zero += q1 * 0.0;  // stays 0 while finite, NaN otherwise
+      }
+      for (std::size_t l = 0; l < lanes_n; ++l) finite = finite && lane_of(zero, l) == 0.0;
+      p = p_next;
+      // A lane whose coordinates are no longer finite ends here (the lanes
+      // that run on record their steps, last_step[l], at the end).
+      for (std::size_t l = 0; l < lanes_n && !finite; ++l) {
+        if (step >= last_step[l]) continue;
+        bool lane_finite = true;
+        for (std::size_t k = 0; k < n; ++k) lane_finite = lane_finite && std::isfinite(lane_of(q[k], l));
+        if (lane_finite) continue;
+        if (l < static_cast<std::size_t>(count))
+          out[l].status = {StatusCode::kDiverged, fmt::format("step {}: non-finite modal coordinates", step + 1)};
+        last_step[l] = step;  // records nothing more
+        all_until = std::min(all_until, step);
+      }
+      const bool store = histories != nullptr && last_step[0] > step &&
+                         ((step + 1) % stride == 0 || step + 1 == lanes[0].n_steps);
+      record(step + 1, t_new, store);
     }
-    for (std::size_t l = 0; l < lanes_n; ++l) finite = finite && lane_of(zero, l) == 0.0;
-    p = p_next;
-    // A lane whose coordinates are no longer finite ends here (the lanes
-    // that run on record their steps, last_step[l], at the end).
-    for (std::size_t l = 0; l < lanes_n && !finite; ++l) {
-      if (step >= last_step[l]) continue;
-      bool lane_finite = true;
-      for (std::size_t k = 0; k < n; ++k) lane_finite = lane_finite && std::isfinite(lane_of(q[k], l));
-      if (lane_finite) continue;
-      if (l < static_cast<std::size_t>(count))
-        out[l].status = {StatusCode::kDiverged, fmt::format("step {}: non-finite modal coordinates", step + 1)};
-      last_step[l] = step;  // records nothing more
-      all_until = std::min(all_until, step);
-    }
-    const bool store = histories != nullptr && last_step[0] > step &&
-                       ((step + 1) % stride == 0 || step + 1 == lanes[0].n_steps);
-    record(step + 1, t_new, store);
-  }
     // The chunk is refilled next: the last loads move out of it.
     std::copy(reinterpret_cast<const double*>(p), reinterpret_cast<const double*>(p) + row, ws.p.data());
     p = reinterpret_cast<V*>(ws.p.data());

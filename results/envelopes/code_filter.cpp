@@ -101,7 +101,7 @@ template <int kStep>
 [[gnu::always_inline]] inline void fused_pass_lanes(const double (&b)[4][3], const double (&a)[4][2],
                                                     const std::array<double*, kL>& x,
                                                     const std::array<std::size_t, kL>& n) {
-  Lanes b0[4], b1[4], b2[4], a1[4], a2[4], z1[4], z2[4];
+  Lanes b0[4], a1[4], a2[4], z1[4], z2[4];
   std::size_t longest = 0;
   std::array<double*, kL> v{};
   Lanes x0;
@@ -115,19 +115,20 @@ template <int kStep>
   for (int k = 0; k < 4; ++k) {
     // A scalar in a vector expression stands for all four lanes.
     b0[k] = Lanes{} + b[k][0];
-    b1[k] = Lanes{} + b[k][1];
-    b2[k] = Lanes{} + b[k][2];
     a1[k] = Lanes{} + a[k][0];
     a2[k] = Lanes{} + a[k][1];
     z1[k] = (b[k][1] + b[k][2] - a[k][0] - a[k][1]) * x0;
     z2[k] = (b[k][2] - a[k][1]) * x0;
   }
-  // The four sections on one sample of every lane, in place.
+  // The four sections on one sample of every lane, in place. A low-pass
+  // section has b1 = 2 b0 and b2 = b0 exactly (see design()), so b1 in and
+  // b2 in are t + t and t for t = b0 in, the same bits in fewer products.
   const auto section_cascade = [&](Lanes& in) {
     for (int k = 0; k < 4; ++k) {
-      const Lanes out = b0[k] * in + z1[k];
-      z1[k] = b1[k] * in - a1[k] * out + z2[k];
-      z2[k] = b2[k] * in - a2[k] * out;
+      const Lanes t = b0[k] * in;
+      const Lanes out = t + z1[k];
+      z1[k] = (t + t) - a1[k] * out + z2[k];
+      z2[k] = t - a2[k] * out;
       in = out;
     }
   };
@@ -194,6 +195,9 @@ CodeFilter::CodeFilter(double dt_s, double cutoff_hz) {
   const double fc = code_filter_half_gain_hz(dt_s, cutoff_hz);
   const Sections sections = design(dt_s, fc);
   for (std::size_t k = 0; k < sections.size(); ++k) {
+    // The lanes' pass counts on it (b1 = 2 b0 is exact: a power of two).
+    if (sections[k].b1 != 2.0 * sections[k].b0 || sections[k].b2 != sections[k].b0)
+      throw std::logic_error("code filter: a low-pass section has b = b0 (1, 2, 1)");
     b_[k][0] = sections[k].b0;
     b_[k][1] = sections[k].b1;
     b_[k][2] = sections[k].b2;
