@@ -10,6 +10,16 @@
 //   bare       the modal recurrence of the same jobs (their steps x modes
 //              with their own modal steps, loads precomputed) in this thread.
 // Run by hand: OPENBLAS_NUM_THREADS=1 build/tests/bench/modal_service_bench
+//
+// --service-only [--reps N]: only the service part of the deck-alone study
+// (asks ["deck"]), N times (default 2) in this process, each on a new
+// store; prints machine-readable lines (what tests/bench/peer_ratio reads):
+//   rep K cpu_s C wall_s W jobs J failed F   (C: process CPU, all threads)
+//   model modes M dt_s D cutoff_hz H
+//   peak TRAIN unfiltered_mps2 A at_kmh V filtered_mps2 A at_kmh V
+// the peak lines being the largest midspan deck acceleration of each train
+// over its speeds, as the last repetition's store holds it, unfiltered and
+// after the code's low-pass filter.
 #include <unistd.h>
 
 #include <chrono>
@@ -20,7 +30,12 @@
 #include <array>
 #include <map>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -65,8 +80,25 @@ json hslm_study() {
           {"checks", {{"deck_acceleration_limit_mps2", 3.5}}}};
 }
 
-// One measurement of the service and the per-job path for this study.
-void measure(const json& doc, const char* label) {
+// The largest midspan deck acceleration of one train over its speeds.
+struct TrainPeak {
+  std::string train;
+  double unfiltered_mps2 = 0.0, unfiltered_at_kmh = 0.0;
+  double filtered_mps2 = 0.0, filtered_at_kmh = 0.0;
+};
+
+// One pass of the service (submit + work + store) and what the store holds.
+struct ServiceRun {
+  StudyPlan plan;
+  double expand_s = 0.0, submit_s = 0.0, service_s = 0.0, service_cpu_s = 0.0;
+  WorkSummary work;
+  double job_wall_s = 0.0, loop_s = 0.0, basis_s = 0.0, min_cutoff_hz = 0.0, max_cutoff_hz = 0.0;
+  long jobs = 0, steps = 0;
+  std::string rung, fidelity;
+  std::vector<TrainPeak> peaks;
+};
+
+ServiceRun run_service(const json& doc) {
   const auto db_file = std::filesystem::temp_directory_path() / ("modal-service-bench-" + std::to_string(::getpid()) + ".sqlite");
   const auto remove_db = [&] {
     for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db_file.string() + suffix);
@@ -74,39 +106,70 @@ void measure(const json& doc, const char* label) {
   remove_db();
 
   // 1. The service: submit + work + store.
+  ServiceRun r;
   const double cpu0 = process_cpu_s();
   const auto t0 = Clock::now();
-  const StudyPlan plan = expand_study(doc, std::filesystem::current_path(), "bench-study.json");
-  const double expand_s = since(t0);
+  r.plan = expand_study(doc, std::filesystem::current_path(), "bench-study.json");
+  r.expand_s = since(t0);
   {
     Database db(db_file.string());
     migrate(db);
-    submit_study(db, plan);
+    submit_study(db, r.plan);
   }
-  const double submit_s = since(t0);
+  r.submit_s = since(t0);
   WorkOptions o;
   o.db_file = db_file.string();
   o.threads = 1;
-  const WorkSummary work = run_workers(o);
-  const double service_s = since(t0);
-  const double service_cpu_s = process_cpu_s() - cpu0;
-  double job_wall_s = 0.0, loop_s = 0.0, basis_s = 0.0;
-  long jobs = 0, steps = 0;
-  std::string rung, fidelity;
+  r.work = run_workers(o);
+  r.service_s = since(t0);
+  r.service_cpu_s = process_cpu_s() - cpu0;
   {
     Database db(db_file.string());
     Statement s = db.prepare("SELECT count(*), total(wall_s), total(loop_s), total(steps), total(factorization_s), "
-                             "min(rung), max(fidelity) FROM job_records WHERE state = 'done'");
+                             "min(rung), max(fidelity), min(cutoff_hz), max(cutoff_hz) FROM job_records "
+                             "WHERE state = 'done'");
     s.step();
-    jobs = s.int64(0);
-    job_wall_s = s.real(1);
-    loop_s = s.real(2);
-    steps = static_cast<long>(s.real(3));
-    basis_s = s.real(4);
-    rung = s.text(5);
-    fidelity = s.text(6);
+    r.jobs = s.int64(0);
+    r.job_wall_s = s.real(1);
+    r.loop_s = s.real(2);
+    r.steps = static_cast<long>(s.real(3));
+    r.basis_s = s.real(4);
+    r.rung = s.text(5);
+    r.fidelity = s.text(6);
+    r.min_cutoff_hz = s.real(7);
+    r.max_cutoff_hz = s.real(8);
+    // Per train, the largest value over its speeds and the speed of it (the
+    // row of max() gives the bare column in SQLite); A1 ... A10 in order.
+    const auto peaks = [&](const char* quantity, auto on_row) {
+      Statement q = db.prepare("SELECT train, max(value), speed_kmh FROM study_envelopes WHERE quantity = ?1 AND "
+                               "location = 'midspan' GROUP BY train ORDER BY length(train), train");
+      q.bind(1, quantity);
+      for (std::size_t i = 0; q.step(); ++i) on_row(i, q.text(0), q.real(1), q.real(2));
+    };
+    peaks("deck_acceleration_unfiltered_mps2", [&](std::size_t, const std::string& train, double a, double v) {
+      r.peaks.push_back({train, a, v, 0.0, 0.0});
+    });
+    peaks("deck_acceleration_mps2", [&](std::size_t i, const std::string& train, double a, double v) {
+      if (i >= r.peaks.size() || r.peaks[i].train != train) throw std::runtime_error("filtered peaks: train order");
+      r.peaks[i].filtered_mps2 = a;
+      r.peaks[i].filtered_at_kmh = v;
+    });
   }
   remove_db();
+  return r;
+}
+
+// One measurement of the service and the per-job path for this study.
+void measure(const json& doc, const char* label) {
+  const ServiceRun sr = run_service(doc);
+  const StudyPlan& plan = sr.plan;
+  const double expand_s = sr.expand_s, submit_s = sr.submit_s, service_s = sr.service_s;
+  const double service_cpu_s = sr.service_cpu_s;
+  const WorkSummary& work = sr.work;
+  const double job_wall_s = sr.job_wall_s, loop_s = sr.loop_s, basis_s = sr.basis_s;
+  const long jobs = sr.jobs, steps = sr.steps;
+  const std::string& rung = sr.rung;
+  const std::string& fidelity = sr.fidelity;
   const json f = json::parse(fidelity);
   const int modes = f.at("modes").get<int>();
   const double dt = f.at("dt_s").get<double>();
@@ -201,16 +264,56 @@ void measure(const json& doc, const char* label) {
               single_s / bare_s);
 }
 
+json deck_only_study() {
+  json deck_only = hslm_study();
+  deck_only["asks"] = {"deck"};
+  return deck_only;
+}
+
+// --service-only: the deck-alone service, reps times, machine-readable.
+int service_only(int reps) {
+  ServiceRun last;
+  for (int k = 1; k <= reps; ++k) {
+    last = run_service(deck_only_study());
+    std::printf("rep %d cpu_s %.4f wall_s %.4f jobs %ld failed %lld\n", k, last.service_cpu_s, last.service_s,
+                last.jobs, static_cast<long long>(last.work.jobs_failed));
+  }
+  const json f = json::parse(last.fidelity);
+  std::printf("model modes %d dt_s %.6g cutoff_hz %.6g %.6g\n", f.at("modes").get<int>(), f.at("dt_s").get<double>(),
+              last.min_cutoff_hz, last.max_cutoff_hz);
+  for (const TrainPeak& p : last.peaks)
+    std::printf("peak %s unfiltered_mps2 %.6f at_kmh %g filtered_mps2 %.6f at_kmh %g\n", p.train.c_str(),
+                p.unfiltered_mps2, p.unfiltered_at_kmh, p.filtered_mps2, p.filtered_at_kmh);
+  return last.jobs > 0 && last.work.jobs_failed == 0 ? 0 : 1;
+}
+
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
   single_threaded_blas();
+  bool only_service = false;
+  int reps = 2;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--service-only") == 0) {
+      only_service = true;
+    } else if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc) {
+      reps = std::atoi(argv[++i]);
+    } else {
+      std::fprintf(stderr, "usage: modal_service_bench [--service-only [--reps N]]\n");
+      return 2;
+    }
+  }
+  if (only_service) {
+    if (reps < 1) {
+      std::fprintf(stderr, "modal_service_bench: --reps must be at least 1\n");
+      return 2;
+    }
+    return service_only(reps);
+  }
   // The study's checks ask the deck; a study without asks gets the section
   // forces too (what the report's dynamic increments need) ...
   measure(hslm_study(), "deck and section forces (default)");
   // ... and one that asks the deck alone skips them.
-  json deck_only = hslm_study();
-  deck_only["asks"] = {"deck"};
-  measure(deck_only, "deck alone (asks [\"deck\"])");
+  measure(deck_only_study(), "deck alone (asks [\"deck\"])");
   return 0;
 }
