@@ -538,11 +538,9 @@ std::vector<ModalSweepRun> ModalSweep::run_group(const std::vector<SweepLane>& l
   if (lanes.size() > static_cast<std::size_t>(kSweepLanes))
     throw std::invalid_argument("ModalSweep::run_group: more runs than lanes");
   std::vector<ModalSweepRun> out(lanes.size());
-  // The processor's features are read once.
-  static const bool avx2 = __builtin_cpu_supports("avx2");
   const int count = static_cast<int>(lanes.size());
   if (count == 1) run_lanes<1>(lanes.data(), 1, out.data(), ws, keep_acceleration, nullptr, 1);
-  else if (count > 1 && avx2 && code == LaneCode::kFastest) run_four_lanes_avx2(lanes.data(), count, out.data(), ws, keep_acceleration);
+  else if (count > 1 && use_avx2(code)) run_four_lanes_avx2(lanes.data(), count, out.data(), ws, keep_acceleration);
   else if (count > 1) run_four_lanes(lanes.data(), count, out.data(), ws, keep_acceleration);
   return out;
 }

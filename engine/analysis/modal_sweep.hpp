@@ -24,6 +24,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/lane_code.hpp"
 #include "simulation/modal_section_forces.hpp"
 #include "solver/modal_basis.hpp"
 #include "core/status.hpp"
@@ -87,9 +88,6 @@ class ModalSweep {
   // (every history_stride-th step and the last) when not null.
   ModalSweepRun run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws, bool keep_acceleration,
                     Histories* histories = nullptr, int history_stride = 1) const;
-  // Which machine code runs a group: the fastest this processor has, or
-  // the portable one (both give the same bits; tests compare them).
-  enum class LaneCode { kFastest, kPortable };
   // Up to kSweepLanes runs at once (no histories); run i keeps its deck
   // acceleration in ws.acceleration[i]. Each gives the bits run() gives.
   std::vector<ModalSweepRun> run_group(const std::vector<SweepLane>& lanes, ModalSweepWorkspace& ws,

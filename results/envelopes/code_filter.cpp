@@ -89,41 +89,43 @@ void fused_pass(const double (&b)[4][3], const double (&a)[4][2], std::vector<do
 }
 
 // fused_pass over up to four signals side by side, one per lane of a
-// vector of four doubles: lane l runs over x[l] (n[l] samples; idle lanes
-// have none) with the arithmetic of fused_pass, element by element (the
-// same products and sums in the same order, so the same bits). A lane that
-// has ended is fed zeros, which it never stores.
+// vector of four doubles, with the arithmetic of fused_pass element by
+// element (the same products and sums in the same order: the same bits).
+// The signals are interleaved (kL doubles per sample, one vector load per
+// sample): four separate arrays, a multiple of 4 KiB apart, made the
+// processor wait on false store-to-load dependencies, and each sample took
+// four scalar loads and stores. The forward pass writes each lane's output
+// reversed into `reversed`, so that the backward pass runs forward over it
+// (every lane from its own last sample) and only takes the maximum.
 constexpr int kL = CodeFilter::kLanes;
 static_assert(kL == 4, "four doubles per vector");
 using Lanes = double __attribute__((vector_size(4 * sizeof(double))));
+// The same, read in place in a buffer of doubles (no alignment beyond a double's).
+using LanesInBuffer = double __attribute__((vector_size(4 * sizeof(double)), aligned(alignof(double)), may_alias));
 
-template <int kStep>
-[[gnu::always_inline]] inline void fused_pass_lanes(const double (&b)[4][3], const double (&a)[4][2],
-                                                    const std::array<double*, kL>& x,
-                                                    const std::array<std::size_t, kL>& n) {
+// One lane's signal: n samples, padded by `pad` at each end to `length`
+// (0 for an idle lane or one that is not filtered).
+struct LanePlan {
+  std::size_t n = 0, pad = 0, length = 0;
+};
+
+struct LaneCascade {
   Lanes b0[4], a1[4], a2[4], z1[4], z2[4];
-  std::size_t longest = 0;
-  std::array<double*, kL> v{};
-  Lanes x0;
-  for (int l = 0; l < kL; ++l) {
-    longest = std::max(longest, n[static_cast<std::size_t>(l)]);
-    const std::size_t nl = n[static_cast<std::size_t>(l)];
-    double* xl = x[static_cast<std::size_t>(l)];
-    v[static_cast<std::size_t>(l)] = nl == 0 ? nullptr : kStep > 0 ? xl : xl + nl - 1;
-    x0[l] = nl == 0 ? 0.0 : *v[static_cast<std::size_t>(l)];
-  }
-  for (int k = 0; k < 4; ++k) {
-    // A scalar in a vector expression stands for all four lanes.
-    b0[k] = Lanes{} + b[k][0];
-    a1[k] = Lanes{} + a[k][0];
-    a2[k] = Lanes{} + a[k][1];
-    z1[k] = (b[k][1] + b[k][2] - a[k][0] - a[k][1]) * x0;
-    z2[k] = (b[k][2] - a[k][1]) * x0;
+  // Each section starts from the steady state of a constant input x0 (see fused_pass).
+  LaneCascade(const double (&b)[4][3], const double (&a)[4][2], const Lanes& x0) {
+    for (int k = 0; k < 4; ++k) {
+      // A scalar in a vector expression stands for all four lanes.
+      b0[k] = Lanes{} + b[k][0];
+      a1[k] = Lanes{} + a[k][0];
+      a2[k] = Lanes{} + a[k][1];
+      z1[k] = (b[k][1] + b[k][2] - a[k][0] - a[k][1]) * x0;
+      z2[k] = (b[k][2] - a[k][1]) * x0;
+    }
   }
   // The four sections on one sample of every lane, in place. A low-pass
   // section has b1 = 2 b0 and b2 = b0 exactly (see design()), so b1 in and
   // b2 in are t + t and t for t = b0 in, the same bits in fewer products.
-  const auto section_cascade = [&](Lanes& in) {
+  [[gnu::always_inline]] void operator()(Lanes& in) {
     for (int k = 0; k < 4; ++k) {
       const Lanes t = b0[k] * in;
       const Lanes out = t + z1[k];
@@ -131,45 +133,70 @@ template <int kStep>
       z2[k] = t - a2[k] * out;
       in = out;
     }
-  };
-  // While every lane has samples: loaded and stored as they are.
-  std::size_t shortest = longest;
-  for (int l = 0; l < kL; ++l) shortest = std::min(shortest, n[static_cast<std::size_t>(l)]);
-  for (std::size_t i = 0; i < shortest; ++i) {
-    Lanes out{*v[0], *v[1], *v[2], *v[3]};
-    section_cascade(out);
-    *v[0] = out[0];
-    *v[1] = out[1];
-    *v[2] = out[2];
-    *v[3] = out[3];
-    for (int l = 0; l < kL; ++l) v[static_cast<std::size_t>(l)] += kStep;
   }
-  // The longer lanes' last samples.
-  for (std::size_t i = shortest; i < longest; ++i) {
-    Lanes in{};
-    for (int l = 0; l < kL; ++l) in[l] = i < n[static_cast<std::size_t>(l)] ? *v[static_cast<std::size_t>(l)] : 0.0;
-    section_cascade(in);
-    const Lanes& out = in;
-    for (int l = 0; l < kL; ++l) {
-      if (i >= n[static_cast<std::size_t>(l)]) continue;
-      *v[static_cast<std::size_t>(l)] = out[l];
-      v[static_cast<std::size_t>(l)] += kStep;
+};
+
+// Both passes over the interleaved padded signals (`longest` samples,
+// zeros past a lane's length); maxima[l] = max |y| over the lane's own
+// samples (its padding excluded), NaN when one of them is NaN.
+[[gnu::always_inline]] inline void forward_backward_max(const double (&b)[4][3], const double (&a)[4][2],
+                                                        const std::array<LanePlan, kL>& plan, std::size_t longest,
+                                                        const double* padded, double* reversed,
+                                                        std::array<double, kL>& maxima) {
+  // Sample i of every lane, in place (a pointer: no vector crosses a call).
+  const auto at = [](const double* buffer, std::size_t i) {
+    return reinterpret_cast<const LanesInBuffer*>(buffer + i * kL);
+  };
+  {
+    const Lanes first = *at(padded, 0);  // copied: a Lanes reference assumes a vector's alignment
+    LaneCascade cascade(b, a, first);
+    for (std::size_t i = 0; i < longest; ++i) {
+      Lanes y = *at(padded, i);
+      cascade(y);
+      for (std::size_t l = 0; l < kL; ++l)
+        if (i < plan[l].length) reversed[(plan[l].length - 1 - i) * kL + l] = y[l];
     }
   }
+  // Samples where every filtered lane is inside its own signal: one vector maximum.
+  std::size_t all_from = 0, all_to = longest;
+  for (const LanePlan& p : plan)
+    if (p.length > 0) {
+      all_from = std::max(all_from, p.pad);
+      all_to = std::min(all_to, p.pad + p.n);
+    }
+  Lanes m{}, nan{};
+  const Lanes last = *at(reversed, 0);
+  LaneCascade cascade(b, a, last);
+  for (std::size_t j = 0; j < longest; ++j) {
+    Lanes y = *at(reversed, j);
+    cascade(y);
+    if (j >= all_from && j < all_to) {
+      const Lanes ay = y < 0.0 ? -y : y;  // |-0.0| = -0.0 here, which the maximum never keeps over 0.0
+      m = m < ay ? ay : m;
+      nan = y != y ? Lanes{} + 1.0 : nan;
+      continue;
+    }
+    for (std::size_t l = 0; l < kL; ++l) {
+      if (j < plan[l].pad || j >= plan[l].pad + plan[l].n) continue;
+      m[l] = std::max(m[l], std::abs(y[l]));
+      if (std::isnan(y[l])) nan[l] = 1.0;
+    }
+  }
+  for (std::size_t l = 0; l < kL; ++l) maxima[l] = nan[l] != 0.0 ? std::nan("") : m[l];
 }
 
-// Both passes, compiled twice: for the baseline processor and with AVX2
-// (four doubles per instruction; no FMA, so the bits do not change).
-void forward_backward_lanes(const double (&b)[4][3], const double (&a)[4][2], const std::array<double*, kL>& x,
-                            const std::array<std::size_t, kL>& n) {
-  fused_pass_lanes<1>(b, a, x, n);
-  fused_pass_lanes<-1>(b, a, x, n);
+// Compiled twice: for the baseline processor and with AVX2 (four doubles
+// per instruction; no FMA, so the bits do not change).
+void forward_backward_max_baseline(const double (&b)[4][3], const double (&a)[4][2],
+                                   const std::array<LanePlan, kL>& plan, std::size_t longest, const double* padded,
+                                   double* reversed, std::array<double, kL>& maxima) {
+  forward_backward_max(b, a, plan, longest, padded, reversed, maxima);
 }
-[[gnu::target("avx2")]] void forward_backward_lanes_avx2(const double (&b)[4][3], const double (&a)[4][2],
-                                                         const std::array<double*, kL>& x,
-                                                         const std::array<std::size_t, kL>& n) {
-  fused_pass_lanes<1>(b, a, x, n);
-  fused_pass_lanes<-1>(b, a, x, n);
+[[gnu::target("avx2")]] void forward_backward_max_avx2(const double (&b)[4][3], const double (&a)[4][2],
+                                                       const std::array<LanePlan, kL>& plan, std::size_t longest,
+                                                       const double* padded, double* reversed,
+                                                       std::array<double, kL>& maxima) {
+  forward_backward_max(b, a, plan, longest, padded, reversed, maxima);
 }
 
 // max |y| over y[first, first + n); NaN propagates: a non-finite input is
@@ -241,27 +268,39 @@ double CodeFilter::max_abs_filtered(const std::vector<double>& signal, std::vect
 }
 
 void CodeFilter::max_abs_filtered(const std::vector<const std::vector<double>*>& signals, double* maxima,
-                                  std::array<std::vector<double>, kLanes>& workspaces) const {
+                                  LaneWorkspace& ws, LaneCode code) const {
   if (signals.size() > static_cast<std::size_t>(kLanes))
     throw std::invalid_argument("code filter: more signals than lanes");
-  std::array<double*, kLanes> x{};
-  std::array<std::size_t, kLanes> length{}, first{};
+  std::array<LanePlan, kLanes> plan{};
+  std::size_t longest = 0;
   for (std::size_t l = 0; l < signals.size(); ++l) {
-    const std::vector<double>& signal = *signals[l];
-    if (signal.size() < 2 || pass_through_) continue;  // as max_abs_filtered: the signal itself
-    first[l] = pad_into(signal, workspaces[l]);
-    x[l] = workspaces[l].data();
-    length[l] = workspaces[l].size();
+    const std::size_t n = signals[l]->size();
+    if (n < 2 || pass_through_) continue;  // as max_abs_filtered: the signal itself
+    const std::size_t pad = std::min(n - 1, pad_);
+    plan[l] = {n, pad, n + 2 * pad};
+    longest = std::max(longest, plan[l].length);
   }
-  // Backward: zero phase. The processor's features are read once.
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) forward_backward_lanes_avx2(b_, a_, x, length);
-  else forward_backward_lanes(b_, a_, x, length);
-  for (std::size_t l = 0; l < signals.size(); ++l) {
-    const std::vector<double>& signal = *signals[l];
-    maxima[l] = length[l] == 0 ? max_abs(signal.data(), signal.size())
-                               : max_abs(workspaces[l].data() + first[l], signal.size());
+  std::array<double, kLanes> filtered{};
+  if (longest > 0) {
+    // Each lane's padded signal as pad_into makes it, interleaved; zeros past its end.
+    ws.padded.assign(longest * kLanes, 0.0);
+    ws.reversed.assign(longest * kLanes, 0.0);
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const LanePlan& p = plan[l];
+      if (p.length == 0) continue;
+      const std::vector<double>& signal = *signals[l];
+      double* x = ws.padded.data() + l;
+      const std::size_t n = p.n, pad = p.pad;
+      // Odd reflection about each end: x(-k) = 2 x(0) - x(k).
+      for (std::size_t k = 0; k < pad; ++k) x[k * kLanes] = 2.0 * signal.front() - signal[pad - k];
+      for (std::size_t k = 0; k < n; ++k) x[(pad + k) * kLanes] = signal[k];
+      for (std::size_t k = 1; k <= pad; ++k) x[(pad + n - 1 + k) * kLanes] = 2.0 * signal.back() - signal[n - 1 - k];
+    }
+    if (use_avx2(code)) forward_backward_max_avx2(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data(), filtered);
+    else forward_backward_max_baseline(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data(), filtered);
   }
+  for (std::size_t l = 0; l < signals.size(); ++l)
+    maxima[l] = plan[l].length == 0 ? max_abs(signals[l]->data(), signals[l]->size()) : filtered[l];
 }
 
 std::vector<double> code_low_pass(const std::vector<double>& signal, double dt_s, double cutoff_hz) {

@@ -27,6 +27,8 @@
 // code frequency) would halve a mode at f3 when f3 sets f_cut. An FFT brick
 // wall truncates exactly at f_cut but rings (Gibbs) across the whole record;
 // this filter's impulse response decays exponentially.
+#include "core/lane_code.hpp"
+
 #include <array>
 #include <cstddef>
 #include <string>
@@ -59,10 +61,15 @@ class CodeFilter {
   double max_abs_filtered(const std::vector<double>& signal, std::vector<double>& workspace) const;
   // The same for up to kLanes signals at once, their passes run side by
   // side (independent recursions the processor overlaps): maxima[i] ==
-  // max_abs_filtered(*signals[i]) bit for bit. workspaces: one per signal.
+  // max_abs_filtered(*signals[i]) bit for bit.
   static constexpr int kLanes = 4;
-  void max_abs_filtered(const std::vector<const std::vector<double>*>& signals, double* maxima,
-                        std::array<std::vector<double>, kLanes>& workspaces) const;
+  // The signals padded and the forward pass's output, kLanes doubles per
+  // sample (sized on first use).
+  struct LaneWorkspace {
+    std::vector<double> padded, reversed;
+  };
+  void max_abs_filtered(const std::vector<const std::vector<double>*>& signals, double* maxima, LaneWorkspace& ws,
+                        LaneCode code = LaneCode::kFastest) const;
 
  private:
   friend std::vector<double> code_low_pass(const std::vector<double>&, double, double);

@@ -144,7 +144,7 @@ std::unique_ptr<ModalPass> make_modal_pass(const ClaimedJob& job, Scene scene, S
 // Modal jobs of one pass run together, up to kSweepLanes speeds in one
 // group: the run of each (the same bits as alone), its maxima and filtered
 // acceleration from the workspace, its envelopes.
-using FilterWorkspace = std::array<std::vector<double>, CodeFilter::kLanes>;
+using FilterWorkspace = CodeFilter::LaneWorkspace;
 static_assert(CodeFilter::kLanes >= kSweepLanes, "a group's signals are filtered together");
 
 struct GroupMember {

@@ -202,7 +202,7 @@ void measure(const json& doc, const char* label) {
                            sections ? modal_section_forces(basis, rails) : nullptr);
     const CodeFilter filter(scene.analysis.dt_s, batch.front().cutoff_hz);
     ModalSweepWorkspace ws;
-    std::array<std::vector<double>, CodeFilter::kLanes> fws;
+    CodeFilter::LaneWorkspace fws;
     for (std::size_t first = 0; first < batch.size(); first += kSweepLanes) {
       std::vector<SweepLane> lanes;
       for (std::size_t j = first; j < std::min(batch.size(), first + kSweepLanes); ++j) {

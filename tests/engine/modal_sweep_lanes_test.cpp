@@ -67,8 +67,8 @@ void expect_same_bits(const ModalSweepRun& grouped, const std::vector<std::vecto
 // Runs `lanes` as one group (in the fastest and in the portable machine
 // code) and one by one; every number must be the same bits.
 void check_group(const ModalSweep& sweep, const std::vector<SweepLane>& lanes, std::size_t points) {
-  for (const auto code : {ModalSweep::LaneCode::kFastest, ModalSweep::LaneCode::kPortable}) {
-    SCOPED_TRACE(code == ModalSweep::LaneCode::kFastest ? "fastest code" : "portable code");
+  for (const auto code : {LaneCode::kFastest, LaneCode::kPortable}) {
+    SCOPED_TRACE(code == LaneCode::kFastest ? "fastest code" : "portable code");
     ModalSweepWorkspace group_ws, alone_ws;
     const std::vector<ModalSweepRun> grouped = sweep.run_group(lanes, group_ws, true, code);
     ASSERT_EQ(grouped.size(), lanes.size());

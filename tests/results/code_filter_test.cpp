@@ -149,17 +149,20 @@ TEST(CodeFilter, SignalsFilteredSideBySideGiveTheBitsOfEachAlone) {
       {wave(1, 5.0, 0.0), wave(2, 5.0, 0.5), with_nan},
       {wave(300, 20.0, 0.0)},
   };
-  std::array<std::vector<double>, CodeFilter::kLanes> workspaces;
+  CodeFilter::LaneWorkspace workspaces;
   std::vector<double> alone_ws;
   for (const auto& group : groups) {
     std::vector<const std::vector<double>*> signals;
     for (const auto& g : group) signals.push_back(&g);
-    double maxima[CodeFilter::kLanes];
-    filter.max_abs_filtered(signals, maxima, workspaces);
-    for (std::size_t l = 0; l < group.size(); ++l) {
-      const double alone = filter.max_abs_filtered(group[l], alone_ws);
-      if (std::isnan(alone)) EXPECT_TRUE(std::isnan(maxima[l])) << l;
-      else EXPECT_EQ(maxima[l], alone) << "lane " << l << " of " << group.size();
+    for (const auto code : {LaneCode::kFastest, LaneCode::kPortable}) {
+      double maxima[CodeFilter::kLanes];
+      filter.max_abs_filtered(signals, maxima, workspaces, code);
+      for (std::size_t l = 0; l < group.size(); ++l) {
+        const double alone = filter.max_abs_filtered(group[l], alone_ws);
+        if (std::isnan(alone)) EXPECT_TRUE(std::isnan(maxima[l])) << l;
+        else EXPECT_EQ(maxima[l], alone) << "lane " << l << " of " << group.size()
+                                         << (code == LaneCode::kFastest ? ", fastest code" : ", portable code");
+      }
     }
   }
   EXPECT_TRUE(std::isnan(filter.max_abs_filtered(with_nan, alone_ws)));
