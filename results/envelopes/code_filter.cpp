@@ -136,8 +136,8 @@ struct LaneCascade {
   }
 };
 
-// Both passes over the interleaved padded signals (`longest` samples,
-// zeros past a lane's length); maxima[l] = max |y| over the lane's own
+// Both passes over the interleaved padded signals (`longest` samples;
+// what a lane has past its length is never read back); maxima[l] = max |y| over the lane's own
 // samples (its padding excluded), NaN when one of them is NaN.
 [[gnu::always_inline]] inline void forward_backward_max(const double (&b)[4][3], const double (&a)[4][2],
                                                         const std::array<LanePlan, kL>& plan, std::size_t longest,
@@ -150,7 +150,28 @@ struct LaneCascade {
   {
     const Lanes first = *at(padded, 0);  // copied: a Lanes reference assumes a vector's alignment
     LaneCascade cascade(b, a, first);
-    for (std::size_t i = 0; i < longest; ++i) {
+    // Lane l's output i goes to reversed[(length - 1 - i) kL + l]. While
+    // every lane has samples the four go out unconditionally, each lane
+    // straight from the register (a lane that is not filtered writes as if
+    // its length were the longest: it is never read).
+    std::array<double*, kL> to{};
+    std::size_t shortest = longest;
+    for (std::size_t l = 0; l < kL; ++l) {
+      const std::size_t length = plan[l].length > 0 ? plan[l].length : longest;
+      shortest = std::min(shortest, length);
+      to[l] = reversed + (length - 1) * kL + l;
+    }
+    std::size_t i = 0;
+    for (; i < shortest; ++i) {
+      Lanes y = *at(padded, i);
+      cascade(y);
+      *to[0] = y[0];
+      *to[1] = y[1];
+      *to[2] = y[2];
+      *to[3] = y[3];
+      for (double*& t : to) t -= kL;
+    }
+    for (; i < longest; ++i) {
       Lanes y = *at(padded, i);
       cascade(y);
       for (std::size_t l = 0; l < kL; ++l)
@@ -282,12 +303,18 @@ void CodeFilter::max_abs_filtered(const std::vector<const std::vector<double>*>&
   }
   std::array<double, kLanes> filtered{};
   if (longest > 0) {
-    // Each lane's padded signal as pad_into makes it, interleaved; zeros past its end.
-    ws.padded.assign(longest * kLanes, 0.0);
-    ws.reversed.assign(longest * kLanes, 0.0);
+    // Each lane's padded signal as pad_into makes it, interleaved. What a
+    // lane has past its own length (left by an earlier call) only ever
+    // reaches samples nobody reads, so the buffers are not cleared (that
+    // was half the filter's time); a lane not filtered gets zeros.
+    ws.padded.resize(longest * kLanes);
+    ws.reversed.resize(longest * kLanes);
     for (std::size_t l = 0; l < kLanes; ++l) {
       const LanePlan& p = plan[l];
-      if (p.length == 0) continue;
+      if (p.length == 0) {
+        for (std::size_t i = 0; i < longest; ++i) ws.padded[i * kLanes + l] = 0.0;
+        continue;
+      }
       const std::vector<double>& signal = *signals[l];
       double* x = ws.padded.data() + l;
       const std::size_t n = p.n, pad = p.pad;

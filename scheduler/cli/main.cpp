@@ -12,6 +12,7 @@
 #include "cli/report_command.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/shard_command.hpp"
+#include "core/freed_memory.hpp"
 #include "core/huge_pages.hpp"
 #include "core/terminal_text.hpp"
 
@@ -94,6 +95,8 @@ int main(int argc, char** argv) {
   using namespace railvsi::cli;
   // Before anything is read: a seed-scale run sets up in half the time.
   railvsi::reexec_with_huge_pages(argv);
+  // Workers reuse their buffers job after job: keep them mapped.
+  railvsi::keep_freed_memory();
   try {
     return run(argc, argv);
   } catch (const railvsi::InputError& e) {

@@ -40,6 +40,8 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/modal_moving_forces.hpp"
+#include "core/freed_memory.hpp"
+#include "core/huge_pages.hpp"
 #include "cpu_time.hpp"
 #include "envelopes/code_filter.hpp"
 #include "integration/modal_recurrence.hpp"
@@ -290,6 +292,9 @@ int service_only(int reps) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The process as vsi sets it up: huge pages for the heap, freed buffers kept.
+  reexec_with_huge_pages(argv);
+  keep_freed_memory();
   single_threaded_blas();
   bool only_service = false;
   int reps = 2;
