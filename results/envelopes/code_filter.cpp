@@ -65,6 +65,10 @@ namespace {
 // The sections run interleaved sample by sample: each sees the same inputs
 // in the same order as when they run one after the other, but the four
 // recursions overlap in the processor instead of waiting for each other.
+// A low-pass section has b = b0 (1, 2, 1) (checked when the filter is
+// made): b1 in and b2 in are evaluated as t + t and t for t = b0 in, here
+// and in the lanes below, so that both give the same bits for every input
+// (2 (b0 in) and (2 b0) in differ when b0 in is subnormal).
 template <int kStep>
 void fused_pass(const double (&b)[4][3], const double (&a)[4][2], std::vector<double>& x) {
   if (x.empty()) return;
@@ -79,9 +83,10 @@ void fused_pass(const double (&b)[4][3], const double (&a)[4][2], std::vector<do
   for (std::size_t i = 0; i < n; ++i, v += kStep) {
     double in = *v;
     for (int k = 0; k < 4; ++k) {
-      const double out = b[k][0] * in + z1[k];
-      z1[k] = b[k][1] * in - a[k][0] * out + z2[k];
-      z2[k] = b[k][2] * in - a[k][1] * out;
+      const double t = b[k][0] * in;
+      const double out = t + z1[k];
+      z1[k] = (t + t) - a[k][0] * out + z2[k];
+      z2[k] = t - a[k][1] * out;
       in = out;
     }
     *v = in;
@@ -122,9 +127,8 @@ struct LaneCascade {
       z2[k] = (b[k][2] - a[k][1]) * x0;
     }
   }
-  // The four sections on one sample of every lane, in place. A low-pass
-  // section has b1 = 2 b0 and b2 = b0 exactly (see design()), so b1 in and
-  // b2 in are t + t and t for t = b0 in, the same bits in fewer products.
+  // The four sections on one sample of every lane, in place, with the
+  // arithmetic of fused_pass (b1 in and b2 in as t + t and t).
   [[gnu::always_inline]] void operator()(Lanes& in) {
     for (int k = 0; k < 4; ++k) {
       const Lanes t = b0[k] * in;
@@ -243,7 +247,7 @@ CodeFilter::CodeFilter(double dt_s, double cutoff_hz) {
   const double fc = code_filter_half_gain_hz(dt_s, cutoff_hz);
   const Sections sections = design(dt_s, fc);
   for (std::size_t k = 0; k < sections.size(); ++k) {
-    // The lanes' pass counts on it (b1 = 2 b0 is exact: a power of two).
+    // The passes count on it (they evaluate b1 in and b2 in from b0 in).
     if (sections[k].b1 != 2.0 * sections[k].b0 || sections[k].b2 != sections[k].b0)
       throw std::logic_error("code filter: a low-pass section has b = b0 (1, 2, 1)");
     b_[k][0] = sections[k].b0;

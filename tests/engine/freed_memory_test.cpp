@@ -1,6 +1,8 @@
 // keep_freed_memory: a block below the threshold comes from the heap (not a
 // mapping of its own that free() unmaps), so a worker's buffers stay mapped
-// from one job to the next.
+// from one job to the next. Each check runs in a child process: it starts
+// from glibc's defaults (which earlier frees in this process may have
+// raised) and leaves no setting behind.
 #include <gtest/gtest.h>
 #include <malloc.h>
 
@@ -22,14 +24,21 @@ std::size_t own_mappings_while_holding(std::size_t bytes) {
   return mapped;
 }
 
-TEST(FreedMemory, BlocksBelowTheThresholdComeFromTheHeap) {
+// Exits 0 when every expectation holds, else with the number of the first that fails.
+[[noreturn]] void check_thresholds() {
   const std::size_t before = mallinfo2().hblks;
-  // glibc's default: a 1 MiB block is mapped on its own.
-  ASSERT_EQ(own_mappings_while_holding(std::size_t{1} << 20), before + 1);
-  ASSERT_TRUE(keep_freed_memory(std::size_t{32} << 20));
-  EXPECT_EQ(own_mappings_while_holding(std::size_t{1} << 20), before);
+  // glibc's default in a fresh process: a 1 MiB block is mapped on its own.
+  if (own_mappings_while_holding(std::size_t{1} << 20) != before + 1) std::_Exit(1);
+  if (!keep_freed_memory(std::size_t{32} << 20)) std::_Exit(2);
+  if (own_mappings_while_holding(std::size_t{1} << 20) != before) std::_Exit(3);
   // Above the threshold a block is still mapped on its own (and unmapped when freed).
-  EXPECT_EQ(own_mappings_while_holding(std::size_t{40} << 20), before + 1);
+  if (own_mappings_while_holding(std::size_t{40} << 20) != before + 1) std::_Exit(4);
+  std::_Exit(0);
+}
+
+TEST(FreedMemory, BlocksBelowTheThresholdComeFromTheHeap) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");  // a fresh process: glibc's defaults
+  EXPECT_EXIT(check_thresholds(), ::testing::ExitedWithCode(0), "");
 }
 
 TEST(FreedMemory, RefusesAThresholdGlibcCannotHold) {

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <vector>
 
@@ -166,6 +168,34 @@ TEST(CodeFilter, SignalsFilteredSideBySideGiveTheBitsOfEachAlone) {
     }
   }
   EXPECT_TRUE(std::isnan(filter.max_abs_filtered(with_nan, alone_ws)));
+}
+
+// Values so small that b0 x is subnormal: 2 (b0 x) and (2 b0) x differ
+// there, and the lanes and the single pass must still agree to the bit.
+TEST(CodeFilter, SubnormalSignalsFilteredSideBySideGiveTheBitsOfEachAlone) {
+  const CodeFilter filter(9.66e-4, 30.0);
+  std::vector<double> tiny(2000);
+  std::uint64_t state = 12345;
+  for (double& v : tiny) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    v = (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5) * 1e-305;
+  }
+  CodeFilter::LaneWorkspace ws;
+  std::vector<double> alone_ws;
+  const double alone = filter.max_abs_filtered(tiny, alone_ws);
+  ASSERT_GT(alone, 0.0);
+  ASSERT_LT(alone, 1e-300);
+  const std::vector<const std::vector<double>*> signals{&tiny, &tiny};
+  for (const auto code : {LaneCode::kFastest, LaneCode::kPortable}) {
+    double maxima[CodeFilter::kLanes];
+    filter.max_abs_filtered(signals, maxima, ws, code);
+    EXPECT_EQ(maxima[0], alone);
+    EXPECT_EQ(maxima[1], alone);
+  }
+  // The filtered signal itself, as code_low_pass gives it, has the same maximum.
+  double m = 0.0;
+  for (double v : code_low_pass(tiny, 9.66e-4, 30.0)) m = std::max(m, std::abs(v));
+  EXPECT_EQ(m, alone);
 }
 
 }  // namespace
