@@ -263,19 +263,20 @@ CodeFilter::CodeFilter(double dt_s, double cutoff_hz) {
   pad_ = static_cast<std::size_t>(std::ceil(pad_s / dt_s));
 }
 
-std::size_t CodeFilter::pad_into(const std::vector<double>& signal, std::vector<double>& x) const {
+std::size_t CodeFilter::padding(std::size_t n) const { return std::min(n - 1, pad_); }
+
+void CodeFilter::pad_into(const std::vector<double>& signal, std::size_t pad, double* x, std::size_t stride) const {
   const std::size_t n = signal.size();
-  const std::size_t pad = std::min(n - 1, pad_);
   // Odd reflection about each end: x(-k) = 2 x(0) - x(k).
-  x.resize(n + 2 * pad);
-  for (std::size_t k = 0; k < pad; ++k) x[k] = 2.0 * signal.front() - signal[pad - k];
-  std::copy(signal.begin(), signal.end(), x.begin() + static_cast<std::ptrdiff_t>(pad));
-  for (std::size_t k = 1; k <= pad; ++k) x[pad + n - 1 + k] = 2.0 * signal.back() - signal[n - 1 - k];
-  return pad;
+  for (std::size_t k = 0; k < pad; ++k) x[k * stride] = 2.0 * signal.front() - signal[pad - k];
+  for (std::size_t k = 0; k < n; ++k) x[(pad + k) * stride] = signal[k];
+  for (std::size_t k = 1; k <= pad; ++k) x[(pad + n - 1 + k) * stride] = 2.0 * signal.back() - signal[n - 1 - k];
 }
 
 std::size_t CodeFilter::filter_into(const std::vector<double>& signal, std::vector<double>& x) const {
-  const std::size_t pad = pad_into(signal, x);
+  const std::size_t pad = padding(signal.size());
+  x.resize(signal.size() + 2 * pad);
+  pad_into(signal, pad, x.data(), 1);
   fused_pass<1>(b_, a_, x);
   fused_pass<-1>(b_, a_, x);  // backward: zero phase
   return pad;
@@ -301,13 +302,13 @@ void CodeFilter::max_abs_filtered(const std::vector<const std::vector<double>*>&
   for (std::size_t l = 0; l < signals.size(); ++l) {
     const std::size_t n = signals[l]->size();
     if (n < 2 || pass_through_) continue;  // as max_abs_filtered: the signal itself
-    const std::size_t pad = std::min(n - 1, pad_);
+    const std::size_t pad = padding(n);
     plan[l] = {n, pad, n + 2 * pad};
     longest = std::max(longest, plan[l].length);
   }
   std::array<double, kLanes> filtered{};
   if (longest > 0) {
-    // Each lane's padded signal as pad_into makes it, interleaved. What a
+    // Each lane's padded signal (pad_into), interleaved. What a
     // lane has past its own length (left by an earlier call) only ever
     // reaches samples nobody reads, so the buffers are not cleared (that
     // was half the filter's time); a lane not filtered gets zeros.
@@ -319,13 +320,7 @@ void CodeFilter::max_abs_filtered(const std::vector<const std::vector<double>*>&
         for (std::size_t i = 0; i < longest; ++i) ws.padded[i * kLanes + l] = 0.0;
         continue;
       }
-      const std::vector<double>& signal = *signals[l];
-      double* x = ws.padded.data() + l;
-      const std::size_t n = p.n, pad = p.pad;
-      // Odd reflection about each end: x(-k) = 2 x(0) - x(k).
-      for (std::size_t k = 0; k < pad; ++k) x[k * kLanes] = 2.0 * signal.front() - signal[pad - k];
-      for (std::size_t k = 0; k < n; ++k) x[(pad + k) * kLanes] = signal[k];
-      for (std::size_t k = 1; k <= pad; ++k) x[(pad + n - 1 + k) * kLanes] = 2.0 * signal.back() - signal[n - 1 - k];
+      pad_into(*signals[l], p.pad, ws.padded.data() + l, kLanes);
     }
     if (use_avx2(code)) forward_backward_max_avx2(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data(), filtered);
     else forward_backward_max_baseline(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data(), filtered);

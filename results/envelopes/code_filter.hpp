@@ -75,8 +75,10 @@ class CodeFilter {
   friend std::vector<double> code_low_pass(const std::vector<double>&, double, double);
   // The padded, filtered signal in workspace; returns the padding.
   std::size_t filter_into(const std::vector<double>& signal, std::vector<double>& x) const;
-  // The signal with its reflected ends in x; returns the padding.
-  std::size_t pad_into(const std::vector<double>& signal, std::vector<double>& x) const;
+  // The padding of a signal of n >= 2 samples at each end.
+  std::size_t padding(std::size_t n) const;
+  // The signal with `pad` samples reflected at each end, into x[i * stride].
+  void pad_into(const std::vector<double>& signal, std::size_t pad, double* x, std::size_t stride) const;
   bool pass_through_ = false;  // cut-off at or above Nyquist
   double b_[4][3] = {}, a_[4][2] = {};
   std::size_t pad_ = 0;        // before clamping to the signal length

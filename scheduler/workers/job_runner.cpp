@@ -144,7 +144,6 @@ std::unique_ptr<ModalPass> make_modal_pass(const ClaimedJob& job, Scene scene, S
 // Modal jobs of one pass run together, up to kSweepLanes speeds in one
 // group: the run of each (the same bits as alone), its maxima and filtered
 // acceleration from the workspace, its envelopes.
-using FilterWorkspace = CodeFilter::LaneWorkspace;
 static_assert(CodeFilter::kLanes >= kSweepLanes, "a group's signals are filtered together");
 
 struct GroupMember {
@@ -154,7 +153,7 @@ struct GroupMember {
 };
 
 void run_group_on_pass(ModalPass& pass, const std::vector<GroupMember>& group, const std::vector<ClaimedJob>& jobs,
-                       ModalSweepWorkspace& ws, FilterWorkspace& filter_ws, std::vector<JobOutcome>& outcomes) {
+                       ModalSweepWorkspace& ws, CodeFilter::LaneWorkspace& filter_ws, std::vector<JobOutcome>& outcomes) {
   const auto start = Clock::now();
   std::vector<SweepLane> lanes;
   for (const GroupMember& m : group) lanes.push_back({modal_run_start_x_m(m.scene), m.scene.speed_mps, m.n_steps});
@@ -204,7 +203,7 @@ std::vector<JobOutcome> run_modal_jobs(const std::vector<ClaimedJob>& jobs, Fact
   std::vector<JobOutcome> outcomes(jobs.size());
   std::unique_ptr<ModalPass> pass;
   ModalSweepWorkspace ws;
-  FilterWorkspace filter_ws;
+  CodeFilter::LaneWorkspace filter_ws;
   for (std::size_t i = 0; i < jobs.size();) {
     const auto start = Clock::now();
     JobOutcome& out = outcomes[i];
