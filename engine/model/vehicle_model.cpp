@@ -53,4 +53,21 @@ VehicleModel::VehicleModel(std::string name, DenseMatrix K, DenseMatrix M, Dense
   }
 }
 
+std::vector<int> VehicleModel::coupled_dofs(int dof, int links) const {
+  const int n = num_dofs();
+  std::vector<int> reached{dof}, distance(static_cast<std::size_t>(n), -1);
+  distance[static_cast<std::size_t>(dof)] = 0;
+  for (std::size_t next = 0; next < reached.size(); ++next) {
+    const int i = reached[next];
+    if (distance[static_cast<std::size_t>(i)] == links) continue;
+    for (int j = 0; j < n; ++j)
+      if (j != i && distance[static_cast<std::size_t>(j)] < 0 &&
+          (K_(i, j) != 0.0 || C_(i, j) != 0.0 || M_(i, j) != 0.0)) {
+        distance[static_cast<std::size_t>(j)] = distance[static_cast<std::size_t>(i)] + 1;
+        reached.push_back(j);
+      }
+  }
+  return reached;
+}
+
 }  // namespace railvsi

@@ -38,6 +38,10 @@ class VehicleModel {
   double total_mass_kg() const { return total_mass_; }
   // Indices of the DOFs that the car-body acceleration envelope looks at.
   const std::vector<int>& body_dofs() const { return body_dofs_; }
+  // DOFs reached from `dof` through at most `links` couplings (non-zero
+  // off-diagonal terms of K, C or M): with links = 4 from a wheel, the
+  // wheels under the same car body (wheel, bogie, body, bogie, wheel).
+  std::vector<int> coupled_dofs(int dof, int links) const;
 
  private:
   std::string name_;

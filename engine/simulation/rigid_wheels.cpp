@@ -53,9 +53,7 @@ RigidWheels::RigidWheels(const Scene& scene, const TrainLayout& layout, const St
   enabled_ = !layout.contacts.empty() && layout.contacts.front().law->is_constraint();
   if (!enabled_) return;
   terms_.resize(layout.contacts.size());
-  const auto [b0, b1] = bridge_extent_m(*scene.structure);
-  window_start_m_ = b0 - scene.analysis.evaluation_margin_m;
-  window_end_m_ = b1 + scene.analysis.evaluation_margin_m;
+  window_ = EvaluationWindow::of(scene);
 }
 
 // A wheel crossing a kink of slope d_theta at speed V jumps in velocity by
@@ -153,7 +151,7 @@ void RigidWheels::follow_rail(double front_x_m, const KinematicState& s,
     const auto& before = rows_prev_[c];
     const bool same = (now && before && now->element == before->element) || (!now && !before);
     const double x = TrainLayout::position_m(front_x_m, cs.offset_m);
-    if (same || x < window_start_m_ || x > window_end_m_) continue;
+    if (same || !window_.contains(x)) continue;
     // Slope left of the crossing (end of the old element, or the flat rigid
     // path) against slope right of it, both at the new state.
     const double left = before ? element_end_slope(*before, true, s.u, coords_) : 0.0;

@@ -36,6 +36,7 @@
 
 #include "integration/hht.hpp"
 #include "model/rail_line.hpp"
+#include "simulation/evaluation_window.hpp"
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/train_layout.hpp"
@@ -111,7 +112,7 @@ class RigidWheels {
   };
   Kink worst_;  // largest unresolved impulse of the run, in the window
   std::vector<std::optional<RailContactRow>> rows_prev_;
-  double window_start_m_ = 0.0, window_end_m_ = 0.0;
+  EvaluationWindow window_;
 };
 
 }  // namespace railvsi

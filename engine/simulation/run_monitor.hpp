@@ -5,13 +5,15 @@
 //   instability (status "unstable"): a contact force oscillating at the
 //     Nyquist frequency (chatter), a structure or vehicle displacement
 //     implausible for the structure, the energy balance broken;
-//   warnings: energy_balance, tensile_contact, newton_iterations_high,
-//     irregularity_ignored, entry_inside_window.
+//   warnings: energy_balance, tensile_contact (inside the evaluation
+//     window), newton_iterations_high, irregularity_ignored,
+//     entry_inside_window, exit_inside_window.
 // Part of the per-run state: one monitor per run.
 #include <optional>
 #include <vector>
 
 #include "simulation/energy_balance.hpp"
+#include "simulation/evaluation_window.hpp"
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/train_layout.hpp"
@@ -60,11 +62,14 @@ class RunMonitor {
   Vector vehicle_load(std::size_t v, const Vector& P_old, const Vector& P_new, double alpha) const;
   void warn_once(const std::string& code, std::string message, std::optional<double> t_s = {},
                  std::optional<int> wheel = {}, std::optional<double> factor = {});
+  void check_track_ends(double start_x_m);
 
   const Scene& scene_;
   const TrainLayout& layout_;
   const StructureCoordinates& coords_;
   MonitorLimits limits_;
+  double start_x_m_ = 0.0;
+  EvaluationWindow window_;
   double u_limit_m_ = 0.0;
   std::vector<Vector> u_v0_;
   EnergyAccount<SparseMatrix> structure_energy_;

@@ -11,7 +11,8 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
                    const DeckTwistGauge& twist, const ModalSectionForces* modal_sections)
     : scene_(scene), layout_(layout), coords_(coords), start_x_m_(start_x_m),
       history_(coords.M(), coords.C(), coords.K()), rigid_(scene, layout, coords),
-      sections_(section_forms), modal_sections_(modal_sections), section_envelope_(section_forms), twist_(twist) {
+      window_(EvaluationWindow::of(scene)), sections_(section_forms), modal_sections_(modal_sections),
+      section_envelope_(section_forms), twist_(twist) {
   const int ns = coords.size();
   s_.resize(ns);
   s_.u = statics.u_s;
@@ -37,15 +38,11 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
   max_abs_a_.assign(np, 0.0);
   min_P_.assign(static_cast<std::size_t>(nc), std::numeric_limits<double>::infinity());
   no_contact_s_.assign(static_cast<std::size_t>(nc), 0.0);
-  const auto [b0, b1] = bridge_extent_m(*scene.structure);
-  window_start_m_ = b0 - scene.analysis.evaluation_margin_m;
-  window_end_m_ = b1 + scene.analysis.evaluation_margin_m;
   monitor_.emplace(scene, layout, coords, start_x_m, s_, vehicles_, f_s_, P_);
 }
 
 bool RunState::in_window(double front_x_m, const ContactSpec& c) const {
-  const double x = TrainLayout::position_m(front_x_m, c.offset_m);
-  return x >= window_start_m_ && x <= window_end_m_;
+  return window_.contains(TrainLayout::position_m(front_x_m, c.offset_m));
 }
 
 Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver, int& iterations) {

@@ -11,6 +11,7 @@
 #include "simulation/run_monitor.hpp"
 #include "simulation/scene.hpp"
 #include "simulation/deck_twist.hpp"
+#include "simulation/evaluation_window.hpp"
 #include "simulation/modal_section_forces.hpp"
 #include "simulation/section_forms.hpp"
 #include "simulation/static_equilibrium.hpp"
@@ -70,7 +71,7 @@ class RunState {
   std::vector<double> max_abs_u_, max_abs_a_, min_P_, no_contact_s_;
   double max_abs_body_a_ = 0.0;
   std::vector<bool> vehicle_in_window_;
-  double window_start_m_ = 0.0, window_end_m_ = 0.0;
+  EvaluationWindow window_;
   // Section forces of a beam deck (empty forms otherwise).
   const SectionForms& sections_;
   const ModalSectionForces* modal_sections_;

@@ -122,19 +122,9 @@ TEST(RigidContact, AgreesWithHertzOnATtbLikeSpan) {
   EXPECT_LT(rel(fr.min_N, fh.min_N), 0.005);
   EXPECT_LT(rel(fr.max_N, fh.max_N), 0.005);
   EXPECT_LT(rel(fr.max_N - fr.min_N, fh.max_N - fh.min_N), 0.05);
-  // The run monitor may flag tension where a wheel leaves the modelled track
-  // at the exit rail end (outside the evaluation window): nothing else.
-  const auto [b0, b1] = bridge_extent_m(*rigid_scene.structure);
-  const double window_end = b1 + rigid_scene.analysis.evaluation_margin_m;
-  std::vector<double> offsets;
-  for (const TrainVehicle& v : rigid_scene.train.vehicles)
-    for (const Wheel& wh : v.model->wheels()) offsets.push_back(v.offset_m + wh.offset_m);
-  for (const RunWarning& w : rigid.summary.warnings) {
-    EXPECT_EQ(w.code, "tensile_contact") << w.message;
-    ASSERT_TRUE(w.t_s && w.wheel) << w.message;
-    const double x = x0 + rigid_scene.speed_mps * *w.t_s - offsets[static_cast<std::size_t>(*w.wheel)];
-    EXPECT_GT(x, window_end) << w.message << " at x = " << x;
-  }
+  // Tension where a wheel runs off the exit rail end is outside the
+  // evaluation window and not reported: no warning at all.
+  for (const RunWarning& w : rigid.summary.warnings) ADD_FAILURE() << w.code << ": " << w.message;
 }
 
 // At alpha = 0 a wheel mass moving over the rail's beam elements excites the

@@ -1,6 +1,8 @@
 // The plane car and articulated-set templates against hand-derived facts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/input_error.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "test_scenes.hpp"
@@ -103,6 +105,35 @@ TEST(Articulated2dTemplate, RejectsASingleBodyAndBadValuesWithTheirPaths) {
     } catch (const InputError& e) {
       EXPECT_EQ(e.json_path(), path);
     }
+  }
+}
+
+// Wheel, bogie, body, bogie, wheel: four couplings reach every wheel under
+// the car body; two only the wheels of the same bogie.
+TEST(Car2dTemplate, CoupledDofsReachTheWheelsUnderTheSameCarBody) {
+  const auto car = make_car_2d(testing::ice3_coach());
+  const auto wheels_reached = [&](int links) {
+    const std::vector<int> near = car->coupled_dofs(car->wheels()[0].dof, links);
+    std::vector<int> w;
+    for (std::size_t i = 0; i < car->wheels().size(); ++i)
+      if (std::find(near.begin(), near.end(), car->wheels()[i].dof) != near.end()) w.push_back(static_cast<int>(i));
+    return w;
+  };
+  EXPECT_EQ(wheels_reached(4), (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(wheels_reached(2), (std::vector<int>{0, 1}));
+  EXPECT_EQ(wheels_reached(0), (std::vector<int>{0}));
+}
+
+// On an articulated set, the first body's wheels (bogies 1 and 2) are
+// within four couplings of the front wheel; bogie 3, under the second and
+// third bodies only, is not.
+TEST(Articulated2dTemplate, CoupledDofsStopAtTheFirstCarBody) {
+  const auto set = make_articulated_2d(three_body_set());
+  ASSERT_EQ(set->wheels().size(), 8u);  // 4 bogies x 2 axles
+  const std::vector<int> near = set->coupled_dofs(set->wheels()[0].dof, 4);
+  for (std::size_t i = 0; i < set->wheels().size(); ++i) {
+    const bool reached = std::find(near.begin(), near.end(), set->wheels()[i].dof) != near.end();
+    EXPECT_EQ(reached, i < 4) << "wheel " << i;
   }
 }
 
