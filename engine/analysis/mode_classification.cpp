@@ -19,18 +19,16 @@ struct Segment {
   double start_m, end_m;
 };
 
-bool spans_known(const StructureInfo& info) { return info.support_x_m.size() >= 2; }
-
 // Vertical displacement of the deck at interior points of each span: on
 // the deck's own line when the model has one (a beam deck), else on the
 // first rail (a 3D deck or an imported model, where the rail follows the deck).
-std::vector<std::vector<double>> deck_samples(const StructureModel& s, const Vector& shape) {
+std::vector<std::vector<double>> deck_samples(const StructureModel& s, const Vector& shape,
+                                              const std::vector<double>& supports_x_m) {
   const StructureInfo& info = s.info();
   const RailLine& line = !info.deck_line.x_m.empty() ? info.deck_line : s.rails().front();
   std::vector<Segment> segments;
-  if (spans_known(info)) {
-    for (std::size_t i = 0; i + 1 < info.support_x_m.size(); ++i)
-      segments.push_back({info.support_x_m[i], info.support_x_m[i + 1]});
+  if (supports_x_m.size() >= 2) {
+    for (std::size_t i = 0; i + 1 < supports_x_m.size(); ++i) segments.push_back({supports_x_m[i], supports_x_m[i + 1]});
   } else {
     const double start = info.bridge_end_m > info.bridge_start_m ? info.bridge_start_m : line.start_m();
     const double end = info.bridge_end_m > info.bridge_start_m ? info.bridge_end_m : line.end_m();
@@ -88,6 +86,10 @@ std::string deck_description(const std::vector<int>& half_waves, bool per_span) 
 }  // namespace
 
 ModeType classify_mode(const StructureModel& s, const Vector& shape) {
+  return classify_mode(s, shape, s.info().support_x_m);
+}
+
+ModeType classify_mode(const StructureModel& s, const Vector& shape, const std::vector<double>& supports_x_m) {
   ModeType t;
   const Vector energy = shape.cwiseProduct(s.M() * shape);
   const double total = energy.sum();
@@ -100,14 +102,14 @@ ModeType classify_mode(const StructureModel& s, const Vector& shape) {
     t.description = "track";
     return t;
   }
-  const auto w = deck_samples(s, shape);
+  const auto w = deck_samples(s, shape, supports_x_m);
   double largest = 0.0;
   for (const auto& span : w) largest = std::max(largest, max_abs(span));
   for (const auto& span : w) {
     const double amplitude = max_abs(span);
     t.half_waves.push_back(amplitude > kSpanAtRest * largest ? count_half_waves(span, amplitude) : 0);
   }
-  t.description = deck_description(t.half_waves, spans_known(s.info()));
+  t.description = deck_description(t.half_waves, supports_x_m.size() >= 2);
   return t;
 }
 

@@ -16,14 +16,18 @@ struct ModeType {
   bool deck = false;  // at least half of the energy in the deck
   // Half-waves of the deck's vertical displacement per span (sign changes
   // + 1), 0 for a span that hardly moves (< 10 % of the largest amplitude).
-  // One entry for the whole bridge when the supports are unknown (imported
-  // models: rail line 0 between bridge_start_m and bridge_end_m).
+  // One entry for the whole bridge when the supports are unknown (rail
+  // line 0 between bridge_start_m and bridge_end_m; see span_supports.hpp).
   std::vector<int> half_waves;
   // "deck bending, 1 half-wave in span 2", "deck bending, 1 half-wave in
   // each of spans 1-3", "deck bending, half-waves per span 1/2/0", "track".
   std::string description;
 };
 
+// Span by span between the structure's supports (StructureInfo::support_x_m)...
 ModeType classify_mode(const StructureModel& structure, const Vector& shape);
+// ...or between `supports_x_m` (bridge start, interior supports, bridge
+// end; fewer than 2: the bridge as one span).
+ModeType classify_mode(const StructureModel& structure, const Vector& shape, const std::vector<double>& supports_x_m);
 
 }  // namespace railvsi

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 
 #include "analysis/frequency_units_check.hpp"
 #include "solver/modal_analysis.hpp"
 #include "analysis/mode_classification.hpp"
+#include "analysis/span_supports.hpp"
 #include "simulation/static_equilibrium.hpp"
 
 namespace railvsi::cli {
@@ -66,8 +68,18 @@ ordered_json modal_report(const StructureModel& s, int modes) {
   out["modes"] = ordered_json::array();
   if (!r.frequencies_hz.empty() && s.info().source == "import")
     if (const auto warning = frequency_units_warning(r.frequencies_hz.front())) out["units_warning"] = *warning;
+  const SpanSupports supports = span_supports(s, r);
+  if (supports.from_modes)
+    out["supports_from_modes"] = {
+        {"supports_m", supports.x_m},
+        {"modes_used", supports.modes_used},
+        {"largest_rest", supports.largest_rest},
+        {"note", fmt::format("the map gives no supports_x_m: {} interior support(s) read from the {} lowest deck "
+                             "modes (at most {:.1f} % of a mode's largest displacement there); give supports_x_m to "
+                             "state them",
+                             supports.x_m.size() - 2, supports.modes_used, 100.0 * supports.largest_rest)}};
   for (std::size_t k = 0; k < r.frequencies_hz.size(); ++k) {
-    const ModeType type = classify_mode(s, r.shapes.col(static_cast<Eigen::Index>(k)));
+    const ModeType type = classify_mode(s, r.shapes.col(static_cast<Eigen::Index>(k)), supports.x_m);
     out["modes"].push_back({{"n", k + 1},
                             {"frequency_hz", r.frequencies_hz[k]},
                             {"type", type.description},

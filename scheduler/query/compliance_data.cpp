@@ -87,10 +87,9 @@ std::optional<double> span_at(const StructureInfo& info, double x_m) {
   return std::nullopt;
 }
 
-std::vector<double> spans_of(const StructureInfo& info) {
+std::vector<double> spans_of(const std::vector<double>& supports_x_m) {
   std::vector<double> spans;
-  for (std::size_t i = 0; i + 1 < info.support_x_m.size(); ++i)
-    spans.push_back(info.support_x_m[i + 1] - info.support_x_m[i]);
+  for (std::size_t i = 0; i + 1 < supports_x_m.size(); ++i) spans.push_back(supports_x_m[i + 1] - supports_x_m[i]);
   return spans;
 }
 
@@ -287,7 +286,8 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   const StructureInfo& sinfo = structure.info();
   const DeckFrequencies freq = deck_frequencies(structure);
   const double cutoff = jobs.empty() ? 0.0 : jobs.front().cutoff_hz;
-  const std::vector<double> spans = spans_of(sinfo);
+  // An import without supports_x_m: the supports read from its modes.
+  const std::vector<double> spans = spans_of(freq.supports.x_m);
   const bool continuous = study.contains("structure") && study.at("structure").value("continuous", false);
   const double L_phi = determinant_length_m(spans, continuous);
   const bool phi2 = checks.value("dynamic_factor", std::string("phi3")) == "phi2";
@@ -311,7 +311,10 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   if (!spans.empty()) {
     std::string s;
     for (double x : spans) s += (s.empty() ? "" : ", ") + fmt::format("{:g}", x);
-    report.model.push_back({"spans [m]", s + (continuous ? " (continuous)" : " (simply supported)")});
+    report.model.push_back({"spans [m]", s + (continuous ? " (continuous)" : " (simply supported)") +
+                                             (freq.supports.from_modes ? ", supports read from the deck modes "
+                                                                         "(the model gives none)"
+                                                                       : "")});
   }
   if (study.contains("structure") && study.at("structure").contains("deck")) {
     const json& deck = study.at("structure").at("deck");

@@ -15,8 +15,9 @@ DeckFrequencies deck_frequencies(const StructureModel& structure) {
   const ModalResult modes = modal_analysis(structure, options);
   DeckFrequencies f;
   if (!modes.status.ok()) return f;
+  f.supports = span_supports(structure, modes);
   for (std::size_t k = 0; k < modes.frequencies_hz.size(); ++k) {
-    const ModeType type = classify_mode(structure, modes.shapes.col(static_cast<Eigen::Index>(k)));
+    const ModeType type = classify_mode(structure, modes.shapes.col(static_cast<Eigen::Index>(k)), f.supports.x_m);
     if (!type.deck) continue;
     if (f.f0_hz == 0.0) f.f0_hz = modes.frequencies_hz[k];
     // A span's third bending mode: at least 3 half-waves in every span

@@ -6,6 +6,7 @@
 // third bending mode, three half-waves: f3 is the lowest deck mode with
 // three or more half-waves in a span, found among the modes of the whole
 // structure with the track modes skipped.
+#include "analysis/span_supports.hpp"
 #include "model/structure_model.hpp"
 
 namespace railvsi::scheduler {
@@ -13,6 +14,9 @@ namespace railvsi::scheduler {
 struct DeckFrequencies {
   double f0_hz = 0.0;  // 0 when not found (the code frequency is then at least 30 Hz)
   double f3_hz = 0.0;
+  // The supports the modes were read span by span with: the structure's,
+  // or read from its modes (analysis/span_supports.hpp); empty: one span.
+  SpanSupports supports;
 };
 
 DeckFrequencies deck_frequencies(const StructureModel& structure);

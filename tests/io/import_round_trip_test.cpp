@@ -128,6 +128,34 @@ TEST_F(ImportRoundTrip, Deck3dSupportsTravelWithTheMapAndItsSpansAreReadAsSpans)
         << m.dump();
 }
 
+// The same export with supports_x_m taken out of the map: vsi inspect reads
+// the supports from the deck's lowest modes, says so, and reads the modes
+// span by span as with the map's.
+TEST_F(ImportRoundTrip, Deck3dWithoutSupportsInTheMapHasThemReadFromItsModes) {
+  Deck3dOptions o;
+  o.spans_m = {25.0, 25.0, 25.0};
+  o.approach_m = 20.0;
+  o.exit_m = 20.0;
+  o.mesh = Deck3dMesh{{25, 25, 25}, 4, 2};
+  const auto scene = export_scene(*make_deck_3d(o).model, ExportFormat::kMatrixMarket, 0.1, true);
+  const auto map_path = dir_ / "mtx" / "map.json";
+  json map = json::parse(std::ifstream(map_path));
+  map.erase("supports_x_m");
+  std::ofstream(map_path) << map.dump(2);
+  const VsiRun run = vsi("inspect '" + scene.string() + "' --modes 3 --format json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json report = json::parse(run.out);
+  EXPECT_TRUE(report["structure"]["supports_m"].empty());
+  const json& read = report["modal_analysis"]["supports_from_modes"];
+  ASSERT_TRUE(read.is_object()) << report["modal_analysis"].dump();
+  ASSERT_EQ(read["supports_m"].size(), 4u);
+  EXPECT_NEAR(read["supports_m"][1].get<double>(), 25.0, 0.2);
+  EXPECT_NEAR(read["supports_m"][2].get<double>(), 50.0, 0.2);
+  EXPECT_NE(read["note"].get<std::string>().find("give supports_x_m"), std::string::npos);
+  for (const auto& m : report["modal_analysis"]["modes"])
+    EXPECT_NE(m["type"].get<std::string>().find("1 half-wave in each of spans"), std::string::npos) << m.dump();
+}
+
 TEST_F(ImportRoundTrip, InspectTellsTrackFromDeckOnAnImportedStructure) {
   const auto model = make_bridge_2d(ttb_like());
   const auto inspect = [&](const std::filesystem::path& scene) {

@@ -7,6 +7,7 @@
 
 #include "generators/bridge_2d.hpp"
 #include "generators/deck_3d.hpp"
+#include "analysis/span_supports.hpp"
 #include "study/deck_frequencies.hpp"
 
 namespace railvsi::scheduler {
@@ -54,6 +55,85 @@ TEST(DeckFrequencies, ThreeDimensionalDeckGivesASpansThirdBendingMode) {
   // Euler-Bernoulli gives f3 = 9 f0; measured 8.91 f0 (37.52 against 4.21
   // Hz: the solid deck's shear and rotary inertia lower the third mode).
   EXPECT_NEAR(f.f3_hz / (9.0 * f.f0_hz), 1.0, 0.02) << f.f0_hz << " " << f.f3_hz;
+}
+
+// The same model as an import whose map gives no supports_x_m: no deck
+// line, no supports, the deck read on rail 0.
+std::shared_ptr<const StructureModel> without_supports(const StructureModel& s) {
+  StructureInfo info = s.info();
+  info.source = "import";
+  info.support_x_m.clear();
+  info.deck_line = RailLine{};
+  info.deck_beam.reset();
+  return std::make_shared<const StructureModel>(s.K(), s.M(), s.C(), s.rails(), s.outputs(), info);
+}
+
+Deck3dOptions three_span_deck_3d() {
+  Deck3dOptions o;
+  o.spans_m = {25.0, 25.0, 25.0};
+  o.approach_m = 20.0;
+  o.exit_m = 20.0;
+  o.mesh = Deck3dMesh{{25, 25, 25}, 4, 2};
+  return o;
+}
+
+// Read as one span, the 3D deck's first mode looked like a third bending
+// mode (f3 = f0). Its supports read from its three lowest modes are 0.10
+// and 0.11 m from the true ones (the rail over the joint between two spans
+// moves with their ends: 4.8 % of the modes' largest displacement), and f3
+// is the one read with the true supports.
+TEST(DeckFrequencies, ThreeDimensionalDeckWithoutSupportsReadsThemFromItsModes) {
+  const auto model = make_deck_3d(three_span_deck_3d()).model;
+  const DeckFrequencies given = deck_frequencies(*model);
+  const DeckFrequencies read = deck_frequencies(*without_supports(*model));
+  EXPECT_FALSE(given.supports.from_modes);
+  ASSERT_TRUE(read.supports.from_modes);
+  ASSERT_EQ(read.supports.x_m.size(), 4u);
+  EXPECT_NEAR(read.supports.x_m[1], 25.0, 0.2);
+  EXPECT_NEAR(read.supports.x_m[2], 50.0, 0.2);
+  EXPECT_EQ(read.supports.modes_used, 3);
+  EXPECT_LT(read.supports.largest_rest, kSupportAtRest);
+  EXPECT_DOUBLE_EQ(read.f0_hz, given.f0_hz);
+  EXPECT_DOUBLE_EQ(read.f3_hz, given.f3_hz);
+}
+
+// A plane girder of three spans (20, 25, 20 m, no track: the wheels run on
+// the deck) exported without supports: the supports are found (measured
+// 4 and 12 mm from the true ones, the modes at rest there to 7e-4) and f3
+// is a span's third mode.
+TEST(DeckFrequencies, PlaneGirderWithoutSupportsReadsThemFromItsModes) {
+  const auto model = make_bridge_2d(deck({20.0, 25.0, 20.0}));
+  const DeckFrequencies given = deck_frequencies(*model);
+  const DeckFrequencies read = deck_frequencies(*without_supports(*model));
+  ASSERT_TRUE(read.supports.from_modes);
+  ASSERT_EQ(read.supports.x_m.size(), 4u);
+  EXPECT_NEAR(read.supports.x_m[1], 20.0, 0.03);
+  EXPECT_NEAR(read.supports.x_m[2], 45.0, 0.03);
+  EXPECT_DOUBLE_EQ(read.f3_hz, given.f3_hz);
+  EXPECT_NEAR(read.f3_hz / simply_supported_hz(3, 25.0, 7.694e10, 15000.0), 1.0, 5e-3);
+}
+
+// One span has no interior support: nothing is read, the span is the bridge.
+TEST(DeckFrequencies, SingleSpanWithoutSupportsStaysOneSpan) {
+  const auto model = make_bridge_2d(deck({25.0}));
+  const DeckFrequencies read = deck_frequencies(*without_supports(*model));
+  EXPECT_TRUE(read.supports.x_m.empty());
+  EXPECT_NEAR(read.f3_hz / simply_supported_hz(3, 25.0, 7.694e10, 15000.0), 1.0, 5e-3);
+}
+
+// A 15 m span beside 30 m ones: its first mode is at 4 f0, above the modes
+// used (2.5 f0), so it does not move in any of them. Rather than one
+// support in the middle of it, none is read (the bridge is read as one
+// span, as before: give supports_x_m).
+TEST(DeckFrequencies, ASpanNoLowModeBendsStopsTheReading) {
+  for (const std::vector<double>& spans : {std::vector<double>{30.0, 15.0, 30.0}, std::vector<double>{30.0, 15.0}}) {
+    const DeckFrequencies read = deck_frequencies(*without_supports(*make_bridge_2d(deck(spans))));
+    EXPECT_TRUE(read.supports.x_m.empty()) << spans.size() << " spans";
+  }
+  // Control: spans of 30 and 24 m (first modes 1.56 f0 apart) are read.
+  const DeckFrequencies read = deck_frequencies(*without_supports(*make_bridge_2d(deck({30.0, 24.0}))));
+  ASSERT_EQ(read.supports.x_m.size(), 3u);
+  EXPECT_NEAR(read.supports.x_m[1], 30.0, 0.2);
 }
 
 }  // namespace
