@@ -23,7 +23,7 @@ struct Segment {
 // the deck's own line when the model has one (a beam deck), else on the
 // first rail (a 3D deck or an imported model, where the rail follows the deck).
 std::vector<std::vector<double>> deck_samples(const StructureModel& s, const Vector& shape,
-                                              const std::vector<double>& supports_x_m) {
+                                              const std::vector<double>& supports_x_m, double band) {
   const StructureInfo& info = s.info();
   const RailLine& line = !info.deck_line.x_m.empty() ? info.deck_line : s.rails().front();
   std::vector<Segment> segments;
@@ -38,7 +38,8 @@ std::vector<std::vector<double>> deck_samples(const StructureModel& s, const Vec
   const StructureCoordinates dofs(s);
   for (std::size_t k = 0; k < segments.size(); ++k)
     for (int j = 0; j < kSamplesPerSpan; ++j) {
-      const double x = segments[k].start_m + (j + 0.5) / kSamplesPerSpan * (segments[k].end_m - segments[k].start_m);
+      const double x = segments[k].start_m + (band + (1.0 - 2.0 * band) * (j + 0.5) / kSamplesPerSpan) *
+                                                 (segments[k].end_m - segments[k].start_m);
       w[k].push_back(rail_top(line.locate(x), shape, dofs));
     }
   return w;
@@ -89,7 +90,8 @@ ModeType classify_mode(const StructureModel& s, const Vector& shape) {
   return classify_mode(s, shape, s.info().support_x_m);
 }
 
-ModeType classify_mode(const StructureModel& s, const Vector& shape, const std::vector<double>& supports_x_m) {
+ModeType classify_mode(const StructureModel& s, const Vector& shape, const std::vector<double>& supports_x_m,
+                       double support_band) {
   ModeType t;
   const Vector energy = shape.cwiseProduct(s.M() * shape);
   const double total = energy.sum();
@@ -102,7 +104,7 @@ ModeType classify_mode(const StructureModel& s, const Vector& shape, const std::
     t.description = "track";
     return t;
   }
-  const auto w = deck_samples(s, shape, supports_x_m);
+  const auto w = deck_samples(s, shape, supports_x_m, support_band);
   double largest = 0.0;
   for (const auto& span : w) largest = std::max(largest, max_abs(span));
   for (const auto& span : w) {

@@ -27,7 +27,9 @@ struct ModeType {
 // Span by span between the structure's supports (StructureInfo::support_x_m)...
 ModeType classify_mode(const StructureModel& structure, const Vector& shape);
 // ...or between `supports_x_m` (bridge start, interior supports, bridge
-// end; fewer than 2: the bridge as one span).
-ModeType classify_mode(const StructureModel& structure, const Vector& shape, const std::vector<double>& supports_x_m);
+// end; fewer than 2: the bridge as one span), leaving out `support_band`
+// of each span at either end (supports whose place is known only roughly).
+ModeType classify_mode(const StructureModel& structure, const Vector& shape, const std::vector<double>& supports_x_m,
+                       double support_band = 0.0);
 
 }  // namespace railvsi

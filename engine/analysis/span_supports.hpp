@@ -40,5 +40,9 @@ constexpr double kSupportModesBelowF0 = 2.5;
 // by more than kSpanMoving.
 constexpr double kSupportAtRest = 0.1;
 constexpr double kSpanMoving = 0.25;
+// Supports read from the modes are placed to about 0.5 % of a span, and the
+// rail over them moves with the longer span beside: the modes are read
+// span by span without this fraction of each span at either end.
+constexpr double kReadSupportBand = 0.05;
 
 }  // namespace railvsi

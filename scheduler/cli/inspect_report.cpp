@@ -79,7 +79,8 @@ ordered_json modal_report(const StructureModel& s, int modes) {
                              "state them",
                              supports.x_m.size() - 2, supports.modes_used, 100.0 * supports.largest_rest)}};
   for (std::size_t k = 0; k < r.frequencies_hz.size(); ++k) {
-    const ModeType type = classify_mode(s, r.shapes.col(static_cast<Eigen::Index>(k)), supports.x_m);
+    const ModeType type = classify_mode(s, r.shapes.col(static_cast<Eigen::Index>(k)), supports.x_m,
+                                        supports.from_modes ? kReadSupportBand : 0.0);
     out["modes"].push_back({{"n", k + 1},
                             {"frequency_hz", r.frequencies_hz[k]},
                             {"type", type.description},

@@ -327,7 +327,9 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
                                                                        sinfo.damping_source)
                                                          : sinfo.damping_source});
   report.model.push_back({"f0, first deck bending frequency", freq.f0_hz > 0 ? fmt::format("{:.4g} Hz", freq.f0_hz) : "not found"});
-  report.model.push_back({"f3, third mode of the member", freq.f3_hz > 0 ? fmt::format("{:.4g} Hz", freq.f3_hz) : "not found"});
+  report.model.push_back({"f3, third mode of the member", freq.f3_hz > 0 ? fmt::format("{:.4g} Hz", freq.f3_hz)
+                                                                   : fmt::format("not found among the {} lowest modes",
+                                                                                 freq.modes_searched)});
   report.model.push_back({"deck acceleration cut-off max(30 Hz, 1.5 f0, f3) (EN 1990 A2.4.4.2.1)",
                           fmt::format("{:.4g} Hz", cutoff)});
   if (L_phi > 0.0)
