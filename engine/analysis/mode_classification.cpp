@@ -86,6 +86,15 @@ std::string deck_description(const std::vector<int>& half_waves, bool per_span) 
 
 }  // namespace
 
+double deck_energy_fraction(const StructureModel& s, const Vector& shape) {
+  const Vector energy = shape.cwiseProduct(s.M() * shape);
+  const double total = energy.sum();
+  double deck = 0.0;
+  for (Eigen::Index i = 0; i < energy.size(); ++i)
+    if (!s.info().is_track_dof(static_cast<int>(i))) deck += energy[i];
+  return total > 0.0 ? deck / total : 0.0;
+}
+
 ModeType classify_mode(const StructureModel& s, const Vector& shape) {
   return classify_mode(s, shape, s.info().support_x_m);
 }
@@ -93,13 +102,8 @@ ModeType classify_mode(const StructureModel& s, const Vector& shape) {
 ModeType classify_mode(const StructureModel& s, const Vector& shape, const std::vector<double>& supports_x_m,
                        double support_band) {
   ModeType t;
-  const Vector energy = shape.cwiseProduct(s.M() * shape);
-  const double total = energy.sum();
-  double deck = 0.0;
-  for (Eigen::Index i = 0; i < energy.size(); ++i)
-    if (!s.info().is_track_dof(static_cast<int>(i))) deck += energy[i];
-  t.deck_energy_fraction = total > 0.0 ? deck / total : 0.0;
-  t.deck = t.deck_energy_fraction >= 0.5;
+  t.deck_energy_fraction = deck_energy_fraction(s, shape);
+  t.deck = is_deck_mode(t.deck_energy_fraction);
   if (!t.deck) {
     t.description = "track";
     return t;

@@ -24,6 +24,11 @@ struct ModeType {
   std::string description;
 };
 
+// Share of the mode's kinetic energy in the deck DOFs, and whether that
+// makes it a deck mode (ModeType::deck), without reading its half-waves.
+double deck_energy_fraction(const StructureModel& structure, const Vector& shape);
+inline bool is_deck_mode(double deck_energy_fraction) { return deck_energy_fraction >= 0.5; }
+
 // Span by span between the structure's supports (StructureInfo::support_x_m)...
 ModeType classify_mode(const StructureModel& structure, const Vector& shape);
 // ...or between `supports_x_m` (bridge start, interior supports, bridge

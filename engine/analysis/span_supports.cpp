@@ -34,7 +34,7 @@ SpanSupports span_supports(const StructureModel& s, const ModalResult& modes) {
   double f0 = 0.0;
   for (std::size_t k = 0; k < modes.frequencies_hz.size(); ++k) {
     const Vector shape = modes.shapes.col(static_cast<Eigen::Index>(k));
-    if (!classify_mode(s, shape).deck) continue;
+    if (!is_deck_mode(deck_energy_fraction(s, shape))) continue;
     if (f0 == 0.0) f0 = modes.frequencies_hz[k];
     if (modes.frequencies_hz[k] > kSupportModesBelowF0 * f0) break;
     std::vector<double> wk(x.size());

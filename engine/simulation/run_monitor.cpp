@@ -167,6 +167,7 @@ Status RunMonitor::after_step(const HhtCoefficients& h, double t_new, const Kine
   }
 
   // Contact forces: chatter and tension.
+  const double front_x_m = start_x_m_ + scene_.speed_mps * t_new;
   for (Eigen::Index c = 0; c < P_new.size(); ++c) {
     const double q0 = std::max(std::abs(Q0_[c]), 1.0);
     const double dP = P_new[c] - P_old[c];
@@ -189,7 +190,7 @@ Status RunMonitor::after_step(const HhtCoefficients& h, double t_new, const Kine
     // Tension outside the window (a wheel running off the exit rail end) is
     // no result: the window's envelopes do not contain it.
     if (!cs.law->unilateral() && P_new[c] < 0.0 &&
-        window_.contains(TrainLayout::position_m(start_x_m_ + scene_.speed_mps * t_new, cs.offset_m))) {
+        window_.contains(TrainLayout::position_m(front_x_m, cs.offset_m))) {
       auto& m = min_tension_ratio_[static_cast<std::size_t>(c)];
       const double ratio = P_new[c] / q0;
       if (m == 0.0 && !std::any_of(warnings_.begin(), warnings_.end(),

@@ -40,6 +40,16 @@ Bridge2dOptions ttb_like() {
   return o;
 }
 
+// Three 25 m spans of the 3D deck, coarse, with 20 m of track either side.
+Deck3dOptions three_span_deck() {
+  Deck3dOptions o;
+  o.spans_m = {25.0, 25.0, 25.0};
+  o.approach_m = 20.0;
+  o.exit_m = 20.0;
+  o.mesh = Deck3dMesh{{25, 25, 25}, 4, 2};
+  return o;
+}
+
 // Two 195 kN axles 3 m apart at 300 km/h, a short run.
 json two_axles(json structure, double duration_s, bool both_rails) {
   json scene = {{"structure", std::move(structure)},
@@ -109,13 +119,7 @@ TEST_F(ImportRoundTrip, Deck3dRunsBitIdenticallyInEveryFormat) {
 // bend each span in one half-wave. Read as one span along the bridge, the
 // three spans' first mode looked like a third bending mode.
 TEST_F(ImportRoundTrip, Deck3dSupportsTravelWithTheMapAndItsSpansAreReadAsSpans) {
-  Deck3dOptions o;
-  o.spans_m = {25.0, 25.0, 25.0};
-  o.approach_m = 20.0;
-  o.exit_m = 20.0;
-  o.mesh = Deck3dMesh{{25, 25, 25}, 4, 2};
-  const auto model = make_deck_3d(o).model;
-  const auto scene = export_scene(*model, ExportFormat::kMatrixMarket, 0.1, true);
+  const auto scene = export_scene(*make_deck_3d(three_span_deck()).model, ExportFormat::kMatrixMarket, 0.1, true);
   const json map = json::parse(std::ifstream(dir_ / "mtx" / "map.json"));
   EXPECT_EQ(map["supports_x_m"], json({0.0, 25.0, 50.0, 75.0}));
   const VsiRun run = vsi("inspect '" + scene.string() + "' --modes 3 --format json");
@@ -132,12 +136,7 @@ TEST_F(ImportRoundTrip, Deck3dSupportsTravelWithTheMapAndItsSpansAreReadAsSpans)
 // the supports from the deck's lowest modes, says so, and reads the modes
 // span by span as with the map's.
 TEST_F(ImportRoundTrip, Deck3dWithoutSupportsInTheMapHasThemReadFromItsModes) {
-  Deck3dOptions o;
-  o.spans_m = {25.0, 25.0, 25.0};
-  o.approach_m = 20.0;
-  o.exit_m = 20.0;
-  o.mesh = Deck3dMesh{{25, 25, 25}, 4, 2};
-  const auto scene = export_scene(*make_deck_3d(o).model, ExportFormat::kMatrixMarket, 0.1, true);
+  const auto scene = export_scene(*make_deck_3d(three_span_deck()).model, ExportFormat::kMatrixMarket, 0.1, true);
   const auto map_path = dir_ / "mtx" / "map.json";
   json map = json::parse(std::ifstream(map_path));
   map.erase("supports_x_m");
