@@ -1,0 +1,48 @@
+#pragma once
+// A CHOLMOD factor of K - sigma M for the mode solvers: y = (K - sigma M)^-1 x
+// for one vector (Lanczos) or a block of them (subspace iteration; one solve
+// of many columns runs on BLAS-3 kernels).
+#include <memory>
+
+#include "core/status.hpp"
+#include "core/types.hpp"
+#include "solver/cholmod_handles.hpp"
+
+namespace railvsi {
+
+class ShiftInvertFactor {
+ public:
+  // Keeps references to K and M: both must outlive the factor.
+  ShiftInvertFactor(const SparseMatrix& K, const SparseMatrix& M) : K_(K), M_(M) {}
+  ~ShiftInvertFactor();
+  ShiftInvertFactor(const ShiftInvertFactor&) = delete;
+  ShiftInvertFactor& operator=(const ShiftInvertFactor&) = delete;
+
+  // Factorizes K - sigma M as L L' (a repeated sigma keeps the factor). Not
+  // positive definite (a shift above an eigenvalue, or a mechanism) is a
+  // Status: an L D L' factor would accept it, and the "lowest" modes found
+  // would silently skip those below the shift.
+  const Status& factorize(double sigma);
+  const Status& status() const { return status_; }
+  Eigen::Index rows() const { return K_.rows(); }
+
+  // y = (K - sigma M)^-1 x for n values; NaN in y if CHOLMOD fails.
+  void solve(const double* x, double* y) const;
+  // X = (K - sigma M)^-1 B, all columns in one solve; false if CHOLMOD fails.
+  bool solve(const DenseMatrix& B, DenseMatrix& X) const;
+
+ private:
+  using Factor = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>;
+  const SparseMatrix& K_;
+  const SparseMatrix& M_;
+  std::unique_ptr<CholmodCommon> common_ = std::make_unique<CholmodCommon>();
+  Factor factor_{nullptr, CholmodFactorDeleter{nullptr}};
+  // Solve workspaces, reused between the solves of one analysis.
+  mutable cholmod_dense* X_ = nullptr;
+  mutable cholmod_dense* Y_ = nullptr;
+  mutable cholmod_dense* E_ = nullptr;
+  Status status_{StatusCode::kInvalidInput, "not factorized"};
+  double sigma_ = 0.0;
+};
+
+}  // namespace railvsi
