@@ -158,6 +158,7 @@ void print_modes(const ordered_json& m, std::ostream& out) {
       at += fmt::format("{}{:.2f}", at.empty() ? "" : ", ", x.get<double>());
     out << "  supports [m]: " << at << " (" << m["supports_from_modes"]["note"].get<std::string>() << ")\n";
   }
+  if (m.contains("solver")) out << "  solver: " << m["solver"].get<std::string>() << '\n';
   out << "     n   frequency_hz  deck_energy  type\n";
   for (const auto& mode : m["modes"])
     out << fmt::format("  {:4d}  {:13.4f}  {:10.1f}%  {}\n", mode["n"].get<int>(), mode["frequency_hz"].get<double>(),

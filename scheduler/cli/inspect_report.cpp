@@ -65,6 +65,9 @@ ordered_json modal_report(const StructureModel& s, int modes) {
     out["modes"] = ordered_json::array();
     return out;
   }
+  out["solver"] = r.solver == ModeSolver::kSubspace
+                      ? fmt::format("subspace iteration, {} iterations", r.iterations)
+                      : std::string("Lanczos");
   out["modes"] = ordered_json::array();
   if (!r.frequencies_hz.empty() && s.info().source == "import")
     if (const auto warning = frequency_units_warning(r.frequencies_hz.front())) out["units_warning"] = *warning;

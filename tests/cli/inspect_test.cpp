@@ -37,6 +37,7 @@ TEST_F(Inspect, ReportsTheFirstBendingFrequencyOfASimplySupportedBeamAtTheDefaul
   EXPECT_NEAR(modes[1]["frequency_hz"].get<double>() / (4.0 * f1), 1.0, 5e-3);
   EXPECT_EQ(modes[0]["type"], "deck bending, 1 half-wave in span 1");
   EXPECT_EQ(modes[2]["half_waves_per_span"], json::array({3}));
+  EXPECT_EQ(report["modal_analysis"]["solver"], "Lanczos") << "a small model";
   const json& s = report["structure"];
   EXPECT_EQ(s["source"], "bridge-2d");
   EXPECT_EQ(s["track_dofs"], 0);
