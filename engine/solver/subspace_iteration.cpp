@@ -63,10 +63,12 @@ ModalResult subspace_iteration(const SparseMatrix& K, const SparseMatrix& M, Eig
     KXm.noalias() = MX * Q.leftCols(modes);  // K X = (M X_old + sigma M Y) Q
     MX.noalias() = MY * Q;
     KXm += sigma * MX.leftCols(modes);
+    // Relative to |(K - sigma M) phi|, which a rigid-body mode (K phi = 0)
+    // does not make zero.
     double worst = 0.0;
     for (Eigen::Index k = 0; k < modes; ++k) {
-      const double r = (KXm.col(k) - lambda[k] * MX.col(k)).norm() / std::max(KXm.col(k).norm(), 1e-300);
-      worst = std::max(worst, r);
+      const double scale = (KXm.col(k) - sigma * MX.col(k)).norm();
+      worst = std::max(worst, (KXm.col(k) - lambda[k] * MX.col(k)).norm() / std::max(scale, 1e-300));
     }
     if (worst <= options.subspace_tolerance) {
       result.shapes.noalias() = Y * Q.leftCols(modes);  // M-orthonormal

@@ -15,7 +15,8 @@ namespace railvsi {
 
 // The lowest `modes` eigenpairs (modes < n), factor factorized at the shift.
 // Converged when every wanted pair has a relative residual
-// |K phi - lambda M phi| / |K phi| below options.subspace_tolerance.
+// |K phi - lambda M phi| / |(K - sigma M) phi| below
+// options.subspace_tolerance.
 ModalResult subspace_iteration(const SparseMatrix& K, const SparseMatrix& M, Eigen::Index modes,
                                const ShiftInvertFactor& factor, const ModalOptions& options);
 

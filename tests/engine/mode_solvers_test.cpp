@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -92,6 +93,31 @@ TEST_P(ModeSolvers, SpringMassChainMatchesItsClosedForm) {
   for (int j = 1; j <= 8; ++j) {
     const double expected = 2.0 * std::sqrt(k / m) * std::sin(j * kPi / (2.0 * (n + 1))) / (2.0 * kPi);
     EXPECT_NEAR(r.frequencies_hz[j - 1] / expected, 1.0, 1e-12) << "mode " << j;
+  }
+  EXPECT_LT(pair_errors(K, M, r).orthonormality, 1e-12);
+}
+
+TEST_P(ModeSolvers, FreeChainHasARigidBodyModeAndItsClosedForm) {
+  // n masses m joined by n - 1 springs k, both ends free: K is singular,
+  // omega_j = 2 sqrt(k/m) sin(j pi / (2 n)), j = 0 (the rigid translation),
+  // 1, ..., n - 1.
+  const int n = 40;
+  const double k = 4.0e6, m = 250.0;
+  std::vector<Triplet> kt, mt;
+  for (int i = 0; i + 1 < n; ++i)
+    for (const auto& [a, b, v] : {std::tuple{i, i, k}, {i + 1, i + 1, k}, {i, i + 1, -k}, {i + 1, i, -k}})
+      kt.emplace_back(a, b, v);
+  for (int i = 0; i < n; ++i) mt.emplace_back(i, i, m);
+  SparseMatrix K(n, n), M(n, n);
+  K.setFromTriplets(kt.begin(), kt.end());
+  M.setFromTriplets(mt.begin(), mt.end());
+  const ModalResult r = modal_analysis(K, M, options(6));
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  ASSERT_EQ(r.frequencies_hz.size(), 6u);
+  EXPECT_LT(r.frequencies_hz[0], 1e-6) << "the rigid translation";
+  for (int j = 1; j < 6; ++j) {
+    const double expected = 2.0 * std::sqrt(k / m) * std::sin(j * kPi / (2.0 * n)) / (2.0 * kPi);
+    EXPECT_NEAR(r.frequencies_hz[static_cast<std::size_t>(j)] / expected, 1.0, 1e-12) << "mode " << j + 1;
   }
   EXPECT_LT(pair_errors(K, M, r).orthonormality, 1e-12);
 }
