@@ -24,10 +24,6 @@ namespace {
 
 using nlohmann::ordered_json;
 
-// As vsi simulate: structures up to this size get their f0 and f3; larger
-// ones the code frequency's floor of 30 Hz.
-constexpr int kMaxDofsForModes = 20000;
-
 ordered_json number(std::optional<double> v) {
   if (!v || !std::isfinite(*v)) return nullptr;
   return *v;
@@ -243,7 +239,7 @@ std::string price_csv(const PriceReport& p, const std::string& job) {
 PriceOptions options_for(const Scene& scene, int threads) {
   PriceOptions o;
   o.threads = threads;
-  if (scene.structure->num_dofs() <= kMaxDofsForModes) {
+  if (scene.structure->num_dofs() <= scheduler::kMaxDofsForDeckFrequencies) {  // as vsi simulate
     const scheduler::DeckFrequencies f = scheduler::deck_frequencies(*scene.structure);
     o.f0_hz = f.f0_hz;
     o.f3_hz = f.f3_hz;

@@ -17,18 +17,16 @@
 namespace railvsi::cli {
 namespace {
 
-// Structures up to this size get their f0 and f3 (a few Lanczos pairs, well
-// under a second for plane models); larger ones use the code frequency's
-// floor of 30 Hz, which can only make the dt check more lenient.
-constexpr int kMaxDofsForModes = 20000;
-
 // The deck frequencies, for the code frequency and the planner; zero (not
 // known) for a structure too large for a quick modal analysis.
 scheduler::DeckFrequencies frequencies_of(const Scene& scene, std::vector<RunWarning>& warnings) {
-  if (scene.structure->num_dofs() <= kMaxDofsForModes) return scheduler::deck_frequencies(*scene.structure);
+  // Larger structures take the code frequency's floor of 30 Hz: a dt check
+  // more lenient and a filter cut-off that may be below the code's.
+  if (scene.structure->num_dofs() <= scheduler::kMaxDofsForDeckFrequencies)
+    return scheduler::deck_frequencies(*scene.structure);
   warnings.push_back({"cutoff_not_computed",
                       fmt::format("the structure has {} DOFs: its deck frequencies were not computed, the time-step "
-                                  "checks use the code frequency's floor of 30 Hz",
+                                  "checks and the code filter use the code frequency's floor of 30 Hz",
                                   scene.structure->num_dofs()),
                       std::nullopt, std::nullopt, std::nullopt});
   return {};
