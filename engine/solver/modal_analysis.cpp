@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsShiftSolver.h>
@@ -55,7 +56,7 @@ ModalResult lanczos(const SparseMatrix& M, Eigen::Index nev, ShiftInvertFactor& 
     solver.init();
     // Largest |1/(lambda - sigma)| are the eigenvalues nearest the shift;
     // reported in ascending lambda.
-    solver.compute(Spectra::SortRule::LargestMagn, max_restarts, options.tolerance,
+    solver.compute(Spectra::SortRule::LargestMagn, max_restarts, options.lanczos_tolerance,
                    Spectra::SortRule::SmallestAlge);
     if (solver.info() == Spectra::CompInfo::Successful) {
       const Vector lambda = solver.eigenvalues().head(nev);
@@ -89,14 +90,11 @@ ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const M
     return result;
   }
   ShiftInvertFactor factor(K, M);
-  const auto full_lanczos = [&] { return lanczos(M, nev, factor, options, options.max_iterations, true); };
+  const auto full_lanczos = [&] { return lanczos(M, nev, factor, options, options.lanczos_max_restarts, true); };
   const auto subspace = [&] {
-    if (!factor.factorize(options.shift_rad2_per_s2).ok()) {
-      ModalResult failed;
-      failed.status = factor.status();
-      return failed;
-    }
-    ModalResult r = subspace_iteration(K, M, nev, factor, options);
+    ModalResult r;
+    if (factor.factorize(options.shift_rad2_per_s2).ok()) r = subspace_iteration(K, M, nev, factor, options);
+    else r.status = factor.status();
     r.solver = ModeSolver::kSubspace;
     return r;
   };
@@ -111,16 +109,24 @@ ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const M
   // Each method has structures it is slow on (see ModeSolver): the other
   // one is tried when the first misses, and Lanczos without a budget last.
   // A factor that fails is not retried: neither method can do without it.
-  if (n >= kSubspaceFromDofs) {
-    ModalResult r = subspace();
-    if (r.status.ok() || !factor.status().ok()) return r;
-    return full_lanczos();
+  // A final failure says why each attempt failed.
+  std::string missed;
+  const auto attempt = [&](ModalResult r) {
+    if (!r.status.ok() && factor.status().ok()) {
+      missed += (missed.empty() ? "" : "; ") + r.status.message();
+      r.status = {r.status.code(), missed};
+    }
+    return r;
+  };
+  const auto done = [&](const ModalResult& r) { return r.status.ok() || !factor.status().ok(); };
+  if (n >= options.subspace_from_dofs) {
+    ModalResult r = attempt(subspace());
+    return done(r) ? r : attempt(full_lanczos());
   }
-  ModalResult r = lanczos(M, nev, factor, options, options.auto_lanczos_restarts, false);
-  if (r.status.ok() || !factor.status().ok()) return r;
-  r = subspace();
-  if (r.status.ok()) return r;
-  return full_lanczos();
+  ModalResult r = attempt(lanczos(M, nev, factor, options, options.auto_lanczos_restarts, false));
+  if (done(r)) return r;
+  r = attempt(subspace());
+  return done(r) ? r : attempt(full_lanczos());
 }
 
 ModalResult modal_analysis(const StructureModel& structure, const ModalOptions& options) {

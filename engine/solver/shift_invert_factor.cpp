@@ -16,7 +16,7 @@ ShiftInvertFactor::~ShiftInvertFactor() {
 }
 
 const Status& ShiftInvertFactor::factorize(double sigma) {
-  if (sigma == sigma_ && status_.code() != StatusCode::kInvalidInput) return status_;  // factorized already
+  if (sigma_ == sigma) return status_;  // factorized (or failed) already
   sigma_ = sigma;
   const SparseMatrix A = K_ - sigma * M_;
   cholmod_sparse view = cholmod_view_symmetric(A);
@@ -24,16 +24,21 @@ const Status& ShiftInvertFactor::factorize(double sigma) {
   c->supernodal = CHOLMOD_AUTO;
   c->final_ll = 1;  // L L' also when simplicial (see the header)
   factor_ = Factor(cholmod_analyze(&view, c), CholmodFactorDeleter{c});
-  if (!factor_ || !cholmod_factorize(&view, factor_.get(), c) || c->status == CHOLMOD_NOT_POSDEF ||
-      factor_->minor < factor_->n) {
+  const bool factorized = factor_ && cholmod_factorize(&view, factor_.get(), c);
+  if (factorized && c->status != CHOLMOD_NOT_POSDEF && factor_->minor == factor_->n) {
+    status_ = Status::Ok();
+    return status_;
+  }
+  if (factorized)  // but not positive definite: CHOLMOD stopped at column `minor`
     status_ = {StatusCode::kDiverged,
                fmt::format("K - sigma M (sigma = {} rad^2/s^2) is not positive definite: a mechanism, or an "
                            "eigenvalue below the shift",
                            sigma)};
-    factor_.reset();
-    return status_;
-  }
-  status_ = Status::Ok();
+  else
+    status_ = {StatusCode::kDiverged,
+               fmt::format("CHOLMOD could not factorize K - sigma M of {} DOFs (status {}{})", K_.rows(), c->status,
+                           c->status == CHOLMOD_OUT_OF_MEMORY ? ": out of memory" : "")};
+  factor_.reset();
   return status_;
 }
 

@@ -3,6 +3,7 @@
 // for one vector (Lanczos) or a block of them (subspace iteration; one solve
 // of many columns runs on BLAS-3 kernels).
 #include <memory>
+#include <optional>
 
 #include "core/status.hpp"
 #include "core/types.hpp"
@@ -26,6 +27,7 @@ class ShiftInvertFactor {
   const Status& status() const { return status_; }
   Eigen::Index rows() const { return K_.rows(); }
 
+  // The solves share workspaces: one caller at a time (not reentrant).
   // y = (K - sigma M)^-1 x for n values; NaN in y if CHOLMOD fails.
   void solve(const double* x, double* y) const;
   // X = (K - sigma M)^-1 B, all columns in one solve; false if CHOLMOD fails.
@@ -42,7 +44,7 @@ class ShiftInvertFactor {
   mutable cholmod_dense* Y_ = nullptr;
   mutable cholmod_dense* E_ = nullptr;
   Status status_{StatusCode::kInvalidInput, "not factorized"};
-  double sigma_ = 0.0;
+  std::optional<double> sigma_;  // the shift factorized (or failed) last
 };
 
 }  // namespace railvsi

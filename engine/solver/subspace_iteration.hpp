@@ -8,7 +8,7 @@
 // modes come in near-equal groups, costs no more than any other. Each
 // iteration is one block solve on the factor (BLAS-3) and dense products.
 #include "core/types.hpp"
-#include "solver/modal_analysis.hpp"
+#include "solver/modal_types.hpp"
 #include "solver/shift_invert_factor.hpp"
 
 namespace railvsi {

@@ -22,12 +22,21 @@ namespace {
 scheduler::DeckFrequencies frequencies_of(const Scene& scene, std::vector<RunWarning>& warnings) {
   // Larger structures take the code frequency's floor of 30 Hz: a dt check
   // more lenient and a filter cut-off that may be below the code's.
-  if (scene.structure->num_dofs() <= scheduler::kMaxDofsForDeckFrequencies)
-    return scheduler::deck_frequencies(*scene.structure);
+  const int dofs = scene.structure->num_dofs();
+  if (dofs <= scheduler::kMaxDofsForDeckFrequencies) {
+    scheduler::DeckFrequencies f = scheduler::deck_frequencies(*scene.structure);
+    if (f.status.ok()) return f;
+    warnings.push_back({"cutoff_not_computed",
+                        fmt::format("the modal analysis for the deck frequencies failed ({}): the time-step checks "
+                                    "and the code filter use the code frequency's floor of 30 Hz",
+                                    f.status.message()),
+                        std::nullopt, std::nullopt, std::nullopt});
+    return f;
+  }
   warnings.push_back({"cutoff_not_computed",
                       fmt::format("the structure has {} DOFs: its deck frequencies were not computed, the time-step "
                                   "checks and the code filter use the code frequency's floor of 30 Hz",
-                                  scene.structure->num_dofs()),
+                                  dofs),
                       std::nullopt, std::nullopt, std::nullopt});
   return {};
 }

@@ -50,8 +50,13 @@ DeckFrequencies deck_frequencies(const StructureModel& structure) {
   for (int n = kFirstModes;; n *= 2) {
     ModalOptions options;
     options.modes = n;
+    if (structure.num_dofs() >= options.subspace_from_dofs) options.solver = ModeSolver::kSubspace;  // see the header
     const ModalResult modes = modal_analysis(structure, options);
-    if (!modes.status.ok()) return {};
+    if (!modes.status.ok()) {
+      DeckFrequencies none;
+      none.status = modes.status;
+      return none;
+    }
     DeckFrequencies f = read_frequencies(structure, modes);
     f.modes_searched = static_cast<int>(modes.frequencies_hz.size());
     const bool more = f.f3_hz == 0.0 && f.f0_hz > 0.0 && f.modes_searched == n && 2 * n <= kMaxModes &&

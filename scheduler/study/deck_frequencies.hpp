@@ -8,6 +8,7 @@
 // structure with the track modes skipped (24 of them, doubled while f3 is
 // not among them, up to 96 for 20,000 DOFs).
 #include "analysis/span_supports.hpp"
+#include "core/status.hpp"
 #include "model/structure_model.hpp"
 
 namespace railvsi::scheduler {
@@ -19,6 +20,7 @@ struct DeckFrequencies {
   // or read from its modes (analysis/span_supports.hpp); empty: one span.
   SpanSupports supports;
   int modes_searched = 0;  // the lowest modes f3 was looked for in
+  Status status;           // of the modal analysis: not ok, nothing was found
 };
 
 DeckFrequencies deck_frequencies(const StructureModel& structure);
@@ -26,7 +28,9 @@ DeckFrequencies deck_frequencies(const StructureModel& structure);
 // The largest structure vsi simulate and vsi price compute f0 and f3 for
 // (larger ones take the code frequency's floor of 30 Hz, with a warning):
 // the 233,000-DOF seed-scale deck takes 28 s and 2.1 GB for its 24 modes by
-// subspace iteration, 5 % of its FE run.
+// subspace iteration, 5 % of its FE run. From the size where subspace
+// iteration comes first, it alone is tried: Lanczos after it can take tens
+// of minutes there, and a miss leaves the floor, with the reason.
 inline constexpr int kMaxDofsForDeckFrequencies = 300000;
 
 }  // namespace railvsi::scheduler

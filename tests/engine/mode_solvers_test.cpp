@@ -30,8 +30,9 @@ std::string solver_name(ModeSolver s) {
 }
 
 // The largest |K phi - lambda M phi| / |K phi| over the pairs (subspace
-// iteration stops below 1e-8; Lanczos measured 1e-13 to 8e-10 here), and
-// the largest deviation of Phi' M Phi from the identity (measured <= 1.5e-14).
+// iteration stops below 1e-8, measured 3.8e-9 to 9.4e-9 here; Lanczos
+// 1e-13 to 8e-10), and the largest deviation of Phi' M Phi from the
+// identity (measured <= 1.5e-14).
 struct PairErrors {
   double residual = 0.0;
   double orthonormality = 0.0;
@@ -92,7 +93,7 @@ TEST_P(ModeSolvers, SpringMassChainMatchesItsClosedForm) {
   ASSERT_EQ(r.frequencies_hz.size(), 8u);
   for (int j = 1; j <= 8; ++j) {
     const double expected = 2.0 * std::sqrt(k / m) * std::sin(j * kPi / (2.0 * (n + 1))) / (2.0 * kPi);
-    EXPECT_NEAR(r.frequencies_hz[j - 1] / expected, 1.0, 1e-12) << "mode " << j;
+    EXPECT_NEAR(r.frequencies_hz[j - 1] / expected, 1.0, 1e-12) << "mode " << j;  // measured: 9.2e-15
   }
   EXPECT_LT(pair_errors(K, M, r).orthonormality, 1e-12);
 }
@@ -114,7 +115,7 @@ TEST_P(ModeSolvers, FreeChainHasARigidBodyModeAndItsClosedForm) {
   const ModalResult r = modal_analysis(K, M, options(6));
   ASSERT_TRUE(r.status.ok()) << r.status.message();
   ASSERT_EQ(r.frequencies_hz.size(), 6u);
-  EXPECT_LT(r.frequencies_hz[0], 1e-6) << "the rigid translation";
+  EXPECT_LT(r.frequencies_hz[0], 1e-6) << "the rigid translation";  // lambda rounds to 0 or a tiny value
   for (int j = 1; j < 6; ++j) {
     const double expected = 2.0 * std::sqrt(k / m) * std::sin(j * kPi / (2.0 * n)) / (2.0 * kPi);
     EXPECT_NEAR(r.frequencies_hz[static_cast<std::size_t>(j)] / expected, 1.0, 1e-12) << "mode " << j + 1;
@@ -137,23 +138,27 @@ TEST_P(ModeSolvers, ThreeSeparateEqualSpansGiveEachFrequencyThreeTimes) {
   for (int k = 0; k < 9; ++k) {
     const int n = k / 3 + 1;
     const double expected = n * n * kPi / (2.0 * L * L) * std::sqrt(EI / m);
-    EXPECT_NEAR(r.frequencies_hz[k] / expected, 1.0, 1e-5) << "mode " << k + 1;  // the mesh's error
+    EXPECT_NEAR(r.frequencies_hz[k] / expected, 1.0, 1e-5) << "mode " << k + 1;  // the mesh's: 2.1e-6
   }
   const PairErrors e = pair_errors(s->K(), s->M(), r);
   EXPECT_LT(e.residual, 1e-8);
   EXPECT_LT(e.orthonormality, 1e-12) << "the three shapes of a frequency are M-orthogonal";
 }
 
-TEST_P(ModeSolvers, SolversAgreeOnTheLowestModesOfA3dDeck) {
-  // Lanczos, budget-free, is the reference for the other two.
+TEST_P(ModeSolvers, EachAgreesWithTheOtherMethodOnTheLowestModesOfA3dDeck) {
+  // The reference is the other method: subspace iteration for Lanczos (and
+  // for kAuto, which takes Lanczos here), Lanczos for subspace iteration.
+  // Measured: they agree to 8e-14.
   const StructureModel& deck = small_deck_3d();
-  ModalOptions lanczos;
-  lanczos.modes = 24;
-  lanczos.solver = ModeSolver::kLanczos;
-  const ModalResult reference = modal_analysis(deck, lanczos);
+  ModalOptions other;
+  other.modes = 24;
+  other.solver = GetParam() == ModeSolver::kSubspace ? ModeSolver::kLanczos : ModeSolver::kSubspace;
+  const ModalResult reference = modal_analysis(deck, other);
   ASSERT_TRUE(reference.status.ok()) << reference.status.message();
+  ASSERT_EQ(reference.solver, other.solver);
   const ModalResult r = modal_analysis(deck, options(24));
   ASSERT_TRUE(r.status.ok()) << r.status.message();
+  EXPECT_EQ(r.solver, GetParam() == ModeSolver::kSubspace ? ModeSolver::kSubspace : ModeSolver::kLanczos);
   ASSERT_EQ(r.frequencies_hz.size(), 24u);
   for (int k = 0; k < 24; ++k)
     EXPECT_NEAR(r.frequencies_hz[k] / reference.frequencies_hz[k], 1.0, 1e-12) << "mode " << k + 1;
@@ -200,9 +205,27 @@ TEST(ModeSolverChoice, AutoTakesSubspaceIterationWhenLanczosMissesItsBudgetOnGro
   lanczos.solver = ModeSolver::kLanczos;
   const ModalResult reference = modal_analysis(deck, lanczos);
   ASSERT_TRUE(reference.status.ok());
-  for (int k = 0; k < 24; ++k)
+  for (int k = 0; k < 24; ++k)  // measured: 8.2e-14
     EXPECT_NEAR(r.frequencies_hz[k] / reference.frequencies_hz[k], 1.0, 1e-12) << "mode " << k + 1;
   for (int k = 1; k < 36; ++k) EXPECT_GE(r.frequencies_hz[k], r.frequencies_hz[k - 1]);
+}
+
+TEST(ModeSolverChoice, AutoTakesSubspaceIterationFirstFromItsSize) {
+  // The size rule on a small model: the 3D decks it is meant for take
+  // minutes to build at 20,000 DOFs.
+  Bridge2dOptions o;
+  o.spans_m = {20.0, 20.0, 20.0};
+  o.deck_EI_Nm2 = 4.0e10;
+  o.deck_mass_kg_per_m = 14000.0;
+  const auto s = make_bridge_2d(o);
+  ModalOptions automatic;
+  automatic.modes = 9;
+  automatic.subspace_from_dofs = s->num_dofs();
+  const ModalResult r = modal_analysis(*s, automatic);
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  EXPECT_EQ(r.solver, ModeSolver::kSubspace);
+  automatic.subspace_from_dofs = s->num_dofs() + 1;
+  EXPECT_EQ(modal_analysis(*s, automatic).solver, ModeSolver::kLanczos);
 }
 
 TEST(ModeSolverChoice, SubspaceIterationGivesUpEarlyBeforeADenseClusterAndAutoKeepsLanczos) {
@@ -224,7 +247,9 @@ TEST(ModeSolverChoice, SubspaceIterationGivesUpEarlyBeforeADenseClusterAndAutoKe
   EXPECT_EQ(stalled.status.code(), StatusCode::kNoConvergence);
   EXPECT_NE(stalled.status.message().find("would not converge in 200 iterations"), std::string::npos)
       << stalled.status.message();
-  EXPECT_EQ(stalled.iterations, 0);
+  EXPECT_EQ(stalled.solver, ModeSolver::kSubspace);
+  EXPECT_GE(stalled.iterations, 20) << "two rate windows";
+  EXPECT_LE(stalled.iterations, 30) << "far from the budget of 200";
 
   ModalOptions automatic;
   automatic.modes = 24;
