@@ -146,19 +146,21 @@ TEST_P(ModeSolvers, ThreeSeparateEqualSpansGiveEachFrequencyThreeTimes) {
 }
 
 TEST_P(ModeSolvers, EachAgreesWithTheOtherMethodOnTheLowestModesOfA3dDeck) {
-  // The reference is the other method: subspace iteration for Lanczos (and
-  // for kAuto, which takes Lanczos here), Lanczos for subspace iteration.
-  // Measured: they agree to 8e-14.
+  // The reference is the other method than the one that ran (kAuto takes
+  // the block here: Lanczos needs more than its budget). Measured: they
+  // agree to 8e-14.
   const StructureModel& deck = small_deck_3d();
+  const ModalResult r = modal_analysis(deck, options(24));
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  if (GetParam() != ModeSolver::kAuto) {
+    EXPECT_EQ(r.solver, GetParam());
+  }
   ModalOptions other;
   other.modes = 24;
-  other.solver = GetParam() == ModeSolver::kSubspace ? ModeSolver::kLanczos : ModeSolver::kSubspace;
+  other.solver = r.solver == ModeSolver::kSubspace ? ModeSolver::kLanczos : ModeSolver::kSubspace;
   const ModalResult reference = modal_analysis(deck, other);
   ASSERT_TRUE(reference.status.ok()) << reference.status.message();
   ASSERT_EQ(reference.solver, other.solver);
-  const ModalResult r = modal_analysis(deck, options(24));
-  ASSERT_TRUE(r.status.ok()) << r.status.message();
-  EXPECT_EQ(r.solver, GetParam() == ModeSolver::kSubspace ? ModeSolver::kSubspace : ModeSolver::kLanczos);
   ASSERT_EQ(r.frequencies_hz.size(), 24u);
   for (int k = 0; k < 24; ++k)
     EXPECT_NEAR(r.frequencies_hz[k] / reference.frequencies_hz[k], 1.0, 1e-12) << "mode " << k + 1;
