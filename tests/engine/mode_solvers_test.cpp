@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 #include <tuple>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -50,6 +51,24 @@ PairErrors pair_errors(const SparseMatrix& K, const SparseMatrix& M, const Modal
   return e;
 }
 
+// n masses m in a line joined by springs k; with fixed ends, one more
+// spring k from each end mass to the ground.
+std::pair<SparseMatrix, SparseMatrix> spring_chain(int n, double k, double m, bool fixed_ends) {
+  std::vector<Triplet> kt, mt;
+  for (int i = 0; i + 1 < n; ++i)
+    for (const auto& [a, b, v] : {std::tuple{i, i, k}, {i + 1, i + 1, k}, {i, i + 1, -k}, {i + 1, i, -k}})
+      kt.emplace_back(a, b, v);
+  if (fixed_ends) {
+    kt.emplace_back(0, 0, k);
+    kt.emplace_back(n - 1, n - 1, k);
+  }
+  for (int i = 0; i < n; ++i) mt.emplace_back(i, i, m);
+  SparseMatrix K(n, n), M(n, n);
+  K.setFromTriplets(kt.begin(), kt.end());
+  M.setFromTriplets(mt.begin(), mt.end());
+  return {std::move(K), std::move(M)};
+}
+
 // The smallest generated 3D deck (three 25 m spans, rails on pads): its
 // modes come in groups of three nearly equal ones, one per span.
 const StructureModel& small_deck_3d() {
@@ -76,18 +95,7 @@ TEST_P(ModeSolvers, SpringMassChainMatchesItsClosedForm) {
   // omega_j = 2 sqrt(k/m) sin(j pi / (2 (n + 1))).
   const int n = 60;
   const double k = 4.0e6, m = 250.0;
-  std::vector<Triplet> kt, mt;
-  for (int i = 0; i < n; ++i) {
-    kt.emplace_back(i, i, 2.0 * k);
-    if (i + 1 < n) {
-      kt.emplace_back(i, i + 1, -k);
-      kt.emplace_back(i + 1, i, -k);
-    }
-    mt.emplace_back(i, i, m);
-  }
-  SparseMatrix K(n, n), M(n, n);
-  K.setFromTriplets(kt.begin(), kt.end());
-  M.setFromTriplets(mt.begin(), mt.end());
+  const auto [K, M] = spring_chain(n, k, m, true);
   const ModalResult r = modal_analysis(K, M, options(8));
   ASSERT_TRUE(r.status.ok()) << r.status.message();
   ASSERT_EQ(r.frequencies_hz.size(), 8u);
@@ -104,14 +112,7 @@ TEST_P(ModeSolvers, FreeChainHasARigidBodyModeAndItsClosedForm) {
   // 1, ..., n - 1.
   const int n = 40;
   const double k = 4.0e6, m = 250.0;
-  std::vector<Triplet> kt, mt;
-  for (int i = 0; i + 1 < n; ++i)
-    for (const auto& [a, b, v] : {std::tuple{i, i, k}, {i + 1, i + 1, k}, {i, i + 1, -k}, {i + 1, i, -k}})
-      kt.emplace_back(a, b, v);
-  for (int i = 0; i < n; ++i) mt.emplace_back(i, i, m);
-  SparseMatrix K(n, n), M(n, n);
-  K.setFromTriplets(kt.begin(), kt.end());
-  M.setFromTriplets(mt.begin(), mt.end());
+  const auto [K, M] = spring_chain(n, k, m, false);
   const ModalResult r = modal_analysis(K, M, options(6));
   ASSERT_TRUE(r.status.ok()) << r.status.message();
   ASSERT_EQ(r.frequencies_hz.size(), 6u);

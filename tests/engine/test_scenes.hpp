@@ -6,10 +6,22 @@
 #include <vector>
 
 #include "generators/bridge_2d.hpp"
+#include "generators/deck_3d.hpp"
 #include "generators/vehicle_2d.hpp"
 #include "simulation/scene.hpp"
 
 namespace railvsi::testing {
+
+// Three 25 m spans of the 3D deck, coarse (25 elements a span, 4 across, 2
+// deep), with 20 m of track either side: a few thousand DOFs.
+inline Deck3dOptions coarse_three_span_deck_3d() {
+  Deck3dOptions o;
+  o.spans_m = {25.0, 25.0, 25.0};
+  o.approach_m = 20.0;
+  o.exit_m = 20.0;
+  o.mesh = Deck3dMesh{{25, 25, 25}, 4, 2};
+  return o;
+}
 
 // ICE3 coach (Goicolea 2014, AVE S-103 simplified description; see
 // jobs/trains/ICE3.json).

@@ -11,6 +11,7 @@
 #include "../cli/vsi_test_support.hpp"
 #include "generators/bridge_2d.hpp"
 #include "generators/deck_3d.hpp"
+#include "../engine/test_scenes.hpp"
 #include "io/file_set_writer.hpp"
 #include "io/structure_export.hpp"
 
@@ -37,16 +38,6 @@ Bridge2dOptions ttb_like() {
   o.track = TrackOptions{};
   o.track->approach_m = 10.0;
   o.track->exit_m = 10.0;
-  return o;
-}
-
-// Three 25 m spans of the 3D deck, coarse, with 20 m of track either side.
-Deck3dOptions three_span_deck() {
-  Deck3dOptions o;
-  o.spans_m = {25.0, 25.0, 25.0};
-  o.approach_m = 20.0;
-  o.exit_m = 20.0;
-  o.mesh = Deck3dMesh{{25, 25, 25}, 4, 2};
   return o;
 }
 
@@ -119,7 +110,7 @@ TEST_F(ImportRoundTrip, Deck3dRunsBitIdenticallyInEveryFormat) {
 // bend each span in one half-wave. Read as one span along the bridge, the
 // three spans' first mode looked like a third bending mode.
 TEST_F(ImportRoundTrip, Deck3dSupportsTravelWithTheMapAndItsSpansAreReadAsSpans) {
-  const auto scene = export_scene(*make_deck_3d(three_span_deck()).model, ExportFormat::kMatrixMarket, 0.1, true);
+  const auto scene = export_scene(*make_deck_3d(testing::coarse_three_span_deck_3d()).model, ExportFormat::kMatrixMarket, 0.1, true);
   const json map = json::parse(std::ifstream(dir_ / "mtx" / "map.json"));
   EXPECT_EQ(map["supports_x_m"], json({0.0, 25.0, 50.0, 75.0}));
   const VsiRun run = vsi("inspect '" + scene.string() + "' --modes 3 --format json");
@@ -136,7 +127,7 @@ TEST_F(ImportRoundTrip, Deck3dSupportsTravelWithTheMapAndItsSpansAreReadAsSpans)
 // the supports from the deck's lowest modes, says so, and reads the modes
 // span by span as with the map's.
 TEST_F(ImportRoundTrip, Deck3dWithoutSupportsInTheMapHasThemReadFromItsModes) {
-  const auto scene = export_scene(*make_deck_3d(three_span_deck()).model, ExportFormat::kMatrixMarket, 0.1, true);
+  const auto scene = export_scene(*make_deck_3d(testing::coarse_three_span_deck_3d()).model, ExportFormat::kMatrixMarket, 0.1, true);
   const auto map_path = dir_ / "mtx" / "map.json";
   json map = json::parse(std::ifstream(map_path));
   map.erase("supports_x_m");

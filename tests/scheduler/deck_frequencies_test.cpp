@@ -7,6 +7,7 @@
 
 #include "generators/bridge_2d.hpp"
 #include "generators/deck_3d.hpp"
+#include "../engine/test_scenes.hpp"
 #include "analysis/span_supports.hpp"
 #include "study/deck_frequencies.hpp"
 
@@ -55,21 +56,12 @@ void expect_supports_read(const DeckFrequencies& read, const std::vector<double>
   for (std::size_t i = 0; i < interior_m.size(); ++i) EXPECT_NEAR(read.supports.x_m[i + 1], interior_m[i], tol_m);
 }
 
-Deck3dOptions three_span_deck_3d() {
-  Deck3dOptions o;
-  o.spans_m = {25.0, 25.0, 25.0};
-  o.approach_m = 20.0;
-  o.exit_m = 20.0;
-  o.mesh = Deck3dMesh{{25, 25, 25}, 4, 2};
-  return o;
-}
-
 // A 3D deck (solid section, rails on pads, no deck line): the spans come
 // from its supports and the deck is read on the rail. Sampled as one line
 // along the bridge, its first mode (1 half-wave in each of three spans,
 // alternating) read as 3 half-waves, and f3 came out as f0.
 TEST(DeckFrequencies, ThreeDimensionalDeckGivesASpansThirdBendingMode) {
-  const DeckFrequencies f = deck_frequencies(*make_deck_3d(three_span_deck_3d()).model);
+  const DeckFrequencies f = deck_frequencies(*make_deck_3d(testing::coarse_three_span_deck_3d()).model);
   ASSERT_GT(f.f0_hz, 0.0);
   // Euler-Bernoulli gives f3 = 9 f0; measured 8.91 f0 (37.52 against 4.21
   // Hz: the solid deck's shear and rotary inertia lower the third mode).
@@ -93,7 +85,7 @@ std::shared_ptr<const StructureModel> without_supports(const StructureModel& s) 
 // moves with their ends: 4.8 % of the modes' largest displacement), and f3
 // is the one read with the true supports.
 TEST(DeckFrequencies, ThreeDimensionalDeckWithoutSupportsReadsThemFromItsModes) {
-  const auto model = make_deck_3d(three_span_deck_3d()).model;
+  const auto model = make_deck_3d(testing::coarse_three_span_deck_3d()).model;
   const DeckFrequencies given = deck_frequencies(*model);
   const DeckFrequencies read = deck_frequencies(*without_supports(*model));
   EXPECT_FALSE(given.supports.from_modes);
