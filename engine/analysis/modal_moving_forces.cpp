@@ -31,7 +31,7 @@ Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis) {
   const long n_steps = modal_run_steps(scene);
   result.summary.setup_s = std::chrono::duration<double>(Clock::now() - t_start).count();
   const ModalSweepRun run =
-      sweep.run(modal_run_start_x_m(scene), scene.speed_mps, n_steps, ws, false, &result.histories, scene.analysis.history_stride);
+      sweep.run(modal_run_start_x_m(scene), scene.speed_mps, n_steps, ws, &result.histories, scene.analysis.history_stride);
   result.status = run.status;
   fill_modal_summary(sweep, run, result.summary);
   result.summary.wall_s = std::chrono::duration<double>(Clock::now() - t_start).count();

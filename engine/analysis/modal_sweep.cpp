@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "core/sampled_peak.hpp"
 
 namespace railvsi {
 
@@ -238,7 +239,7 @@ template <class V>
 
 template <int L>
 [[gnu::always_inline]] inline void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
-                           bool keep_acceleration, Histories* histories, int history_stride) const {
+                           Histories* histories, int history_stride) const {
   using V = typename LaneValue<L>::type;
   constexpr auto lanes_n = static_cast<std::size_t>(L);
   const auto n = static_cast<std::size_t>(n_modes_);
@@ -260,18 +261,13 @@ template <int L>
     last_step[static_cast<std::size_t>(l)] = l < count ? lanes[l].n_steps : -1;
     steps = std::max(steps, last_step[static_cast<std::size_t>(l)]);
   }
-  // The maxima of every lane as vectors (an idle lane's are never read).
-  std::vector<double> maxima(2 * np * lanes_n, 0.0);
-  V* max_u = reinterpret_cast<V*>(maxima.data());
-  V* max_a = max_u + np;
   for (int l = 0; l < count; ++l) {
     ModalSweepRun& o = out[l];  // freshly made by the caller
     if (sections_) o.sections.emplace(sections_->forms());
     if (twist_.available()) o.max_abs_twist_m = 0.0;
-    if (keep_acceleration) {
-      auto& acc = ws.acceleration[static_cast<std::size_t>(l)];
-      acc.resize(np);
-      for (auto& a : acc) a.resize(static_cast<std::size_t>(lanes[l].n_steps) + 1);
+    for (auto* kept : {&ws.displacement[static_cast<std::size_t>(l)], &ws.acceleration[static_cast<std::size_t>(l)]}) {
+      kept->resize(np);
+      for (auto& k : *kept) k.resize(static_cast<std::size_t>(lanes[l].n_steps) + 1);
     }
   }
   const int stride = std::max(1, history_stride);
@@ -323,11 +319,13 @@ template <int L>
   // diverges, the shortest run's length).
   long all_until = steps;
   for (int l = 0; l < count; ++l) all_until = std::min(all_until, last_step[static_cast<std::size_t>(l)]);
-  // Where each lane keeps the deck acceleration of each output point.
-  std::vector<double*> acceleration_of(keep_acceleration ? np * lanes_n : 0, nullptr);
-  for (std::size_t i = 0; i < acceleration_of.size() / lanes_n; ++i)
-    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
+  // Where each lane keeps the deck displacement and acceleration of each output point.
+  std::vector<double*> displacement_of(np * lanes_n, nullptr), acceleration_of(np * lanes_n, nullptr);
+  for (std::size_t i = 0; i < np; ++i)
+    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l) {
+      displacement_of[i * lanes_n + l] = ws.displacement[l][i].data();
       acceleration_of[i * lanes_n + l] = ws.acceleration[l][i].data();
+    }
   const auto record = [&](long step, double t, bool store) __attribute__((always_inline)) {
     const bool all = step <= all_until;
     if (store) histories->t_s.push_back(t);
@@ -339,21 +337,11 @@ template <int L>
         u += phi * q[k];
         a += phi * qdd[k];
       }
-      if (all) {
-        raise_max_abs(max_u[i], u);
-        raise_max_abs(max_a[i], a);
-      } else {
-        for (std::size_t l = 0; l < lanes_n; ++l) {
-          if (!running(step, l)) continue;
-          double& mu = lane_of(max_u[i], l);
-          double& ma = lane_of(max_a[i], l);
-          mu = std::max(mu, std::abs(lane_of(u, l)));
-          ma = std::max(ma, std::abs(lane_of(a, l)));
+      for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
+        if (all || running(step, l)) {
+          displacement_of[i * lanes_n + l][static_cast<std::size_t>(step)] = lane_of(u, l);
+          acceleration_of[i * lanes_n + l][static_cast<std::size_t>(step)] = lane_of(a, l);
         }
-      }
-      if (keep_acceleration)
-        for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
-          if (all || running(step, l)) acceleration_of[i * lanes_n + l][static_cast<std::size_t>(step)] = lane_of(a, l);
       if (!store) continue;
       histories->deck_displacement_m[i].push_back(lane_of(u, 0));
       histories->deck_acceleration_mps2[i].push_back(lane_of(a, 0));
@@ -502,46 +490,47 @@ template <int L>
         ws.form_values[f] = lane_of(form_signed_[f] ? max_form[f] : max_abs_form[f], static_cast<std::size_t>(l));
       o.sections->update(ws.form_values);
     }
+    // The peaks from the kept samples, each refined between its samples.
+    const auto samples = static_cast<std::size_t>(o.steps) + 1;
     o.max_abs_displacement_m.resize(np);
     o.max_abs_acceleration_mps2.resize(np);
     for (std::size_t i = 0; i < np; ++i) {
-      o.max_abs_displacement_m[i] = lane_of(max_u[i], static_cast<std::size_t>(l));
-      o.max_abs_acceleration_mps2[i] = lane_of(max_a[i], static_cast<std::size_t>(l));
+      o.max_abs_displacement_m[i] = refined_max_abs(ws.displacement[static_cast<std::size_t>(l)][i].data(), samples);
+      o.max_abs_acceleration_mps2[i] = refined_max_abs(ws.acceleration[static_cast<std::size_t>(l)][i].data(), samples);
     }
   }
 }
 
-void ModalSweep::run_four_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
-                                bool keep_acceleration) const {
-  run_lanes<kSweepLanes>(lanes, count, out, ws, keep_acceleration, nullptr, 1);
+void ModalSweep::run_four_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws) const {
+  run_lanes<kSweepLanes>(lanes, count, out, ws, nullptr, 1);
 }
 
 // The same code for a processor with AVX2: a vector of four doubles is one
 // register and one instruction. No FMA: each product is rounded before its
 // sum, as in the baseline code, so the bits are the same.
 __attribute__((target("avx2"))) void ModalSweep::run_four_lanes_avx2(const SweepLane* lanes, int count,
-                                                                      ModalSweepRun* out, ModalSweepWorkspace& ws,
-                                                                      bool keep_acceleration) const {
-  run_lanes<kSweepLanes>(lanes, count, out, ws, keep_acceleration, nullptr, 1);
+                                                                      ModalSweepRun* out,
+                                                                      ModalSweepWorkspace& ws) const {
+  run_lanes<kSweepLanes>(lanes, count, out, ws, nullptr, 1);
 }
 
 ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws,
-                              bool keep_acceleration, Histories* histories, int history_stride) const {
+                              Histories* histories, int history_stride) const {
   const SweepLane lane{x0_m, speed_mps, n_steps};
   ModalSweepRun out;
-  run_lanes<1>(&lane, 1, &out, ws, keep_acceleration, histories, history_stride);
+  run_lanes<1>(&lane, 1, &out, ws, histories, history_stride);
   return out;
 }
 
 std::vector<ModalSweepRun> ModalSweep::run_group(const std::vector<SweepLane>& lanes, ModalSweepWorkspace& ws,
-                                                 bool keep_acceleration, LaneCode code) const {
+                                                 LaneCode code) const {
   if (lanes.size() > static_cast<std::size_t>(kSweepLanes))
     throw std::invalid_argument("ModalSweep::run_group: more runs than lanes");
   std::vector<ModalSweepRun> out(lanes.size());
   const int count = static_cast<int>(lanes.size());
-  if (count == 1) run_lanes<1>(lanes.data(), 1, out.data(), ws, keep_acceleration, nullptr, 1);
-  else if (count > 1 && use_avx2(code)) run_four_lanes_avx2(lanes.data(), count, out.data(), ws, keep_acceleration);
-  else if (count > 1) run_four_lanes(lanes.data(), count, out.data(), ws, keep_acceleration);
+  if (count == 1) run_lanes<1>(lanes.data(), 1, out.data(), ws, nullptr, 1);
+  else if (count > 1 && use_avx2(code)) run_four_lanes_avx2(lanes.data(), count, out.data(), ws);
+  else if (count > 1) run_four_lanes(lanes.data(), count, out.data(), ws);
   return out;
 }
 

@@ -56,16 +56,18 @@ struct ModalSweepWorkspace {
   std::vector<double> chunk;
   // The section forms' values of every lane (lane-minor), and of one.
   std::vector<double> lane_values, form_values;
-  // Deck acceleration at every step (n_steps + 1 samples), per lane and
-  // output point, for the code filter; kept only when asked.
-  std::array<std::vector<std::vector<double>>, kSweepLanes> acceleration;
+  // Deck displacement and acceleration at every step (n_steps + 1
+  // samples), per lane and output point: the peaks are refined from them
+  // (core/sampled_peak.hpp) and the code filter reads the acceleration.
+  std::array<std::vector<std::vector<double>>, kSweepLanes> displacement, acceleration;
   std::vector<std::size_t> piece;  // per rail and lane: the piece of its train load the first axle is on
 };
 
 struct ModalSweepRun {
   Status status;
   long steps = 0;
-  std::vector<double> max_abs_displacement_m, max_abs_acceleration_mps2;  // per output point
+  // Per output point, refined between steps (core/sampled_peak.hpp).
+  std::vector<double> max_abs_displacement_m, max_abs_acceleration_mps2;
   // The section envelope when the sweep has section forces.
   std::optional<SectionEnvelope> sections;
   // Deck twist over 3 m (m), max over steps and bases, and the start of
@@ -83,15 +85,18 @@ class ModalSweep {
              std::shared_ptr<const ModalSectionForces> sections = nullptr);
 
   // First axle at x0_m at t = 0, moving at speed_mps >= 0, for n_steps steps
-  // from the static modal response. Keeps the deck acceleration of every
-  // step in ws.acceleration[0] when keep_acceleration; fills histories
-  // (every history_stride-th step and the last) when not null.
-  ModalSweepRun run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws, bool keep_acceleration,
+  // from the static modal response. Keeps the deck displacement and
+  // acceleration of every step in ws.displacement[0] and ws.acceleration[0];
+  // fills histories (every history_stride-th step and the last) when not
+  // null. The peaks at the output points are refined_max_abs of the kept
+  // samples: a peak between two steps is not missed.
+  ModalSweepRun run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws,
                     Histories* histories = nullptr, int history_stride = 1) const;
   // Up to kSweepLanes runs at once (no histories); run i keeps its deck
-  // acceleration in ws.acceleration[i]. Each gives the bits run() gives.
+  // response in ws.displacement[i] and ws.acceleration[i]. Each gives the
+  // bits run() gives.
   std::vector<ModalSweepRun> run_group(const std::vector<SweepLane>& lanes, ModalSweepWorkspace& ws,
-                                       bool keep_acceleration, LaneCode code = LaneCode::kFastest) const;
+                                       LaneCode code = LaneCode::kFastest) const;
 
   const ModalBasis& basis() const { return basis_; }
   int num_modes() const { return n_modes_; }
@@ -128,13 +133,11 @@ class ModalSweep {
   // The runs of one group, L lanes (lanes[i] for i < count, the rest idle).
   // Inlined into run() and into the two functions below, one for the
   // baseline processor and one for AVX2 (the same bits).
-  void run_four_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
-                      bool keep_acceleration) const;
-  void run_four_lanes_avx2(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
-                           bool keep_acceleration) const;
+  void run_four_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws) const;
+  void run_four_lanes_avx2(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws) const;
   template <int L>
   void run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
-                 bool keep_acceleration, Histories* histories, int history_stride) const;
+                 Histories* histories, int history_stride) const;
 
   const ModalBasis& basis_;
   int n_modes_ = 0;

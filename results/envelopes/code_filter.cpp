@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "core/sampled_peak.hpp"
+
 namespace railvsi {
 namespace {
 
@@ -141,12 +143,13 @@ struct LaneCascade {
 };
 
 // Both passes over the interleaved padded signals (`longest` samples;
-// what a lane has past its length is never read back); maxima[l] = max |y| over the lane's own
-// samples (its padding excluded), NaN when one of them is NaN.
-[[gnu::always_inline]] inline void forward_backward_max(const double (&b)[4][3], const double (&a)[4][2],
-                                                        const std::array<LanePlan, kL>& plan, std::size_t longest,
-                                                        const double* padded, double* reversed,
-                                                        std::array<double, kL>& maxima) {
+// what a lane has past its length is never read back). The backward pass
+// leaves its output in `reversed`, sample j of every lane at j kL: lane l's
+// own samples (its padding excluded) are j in [pad, pad + n), in reverse
+// time order.
+[[gnu::always_inline]] inline void forward_backward(const double (&b)[4][3], const double (&a)[4][2],
+                                                    const std::array<LanePlan, kL>& plan, std::size_t longest,
+                                                    const double* padded, double* reversed) {
   // Sample i of every lane, in place (a pointer: no vector crosses a call).
   const auto at = [](const double* buffer, std::size_t i) {
     return reinterpret_cast<const LanesInBuffer*>(buffer + i * kL);
@@ -182,57 +185,26 @@ struct LaneCascade {
         if (i < plan[l].length) reversed[(plan[l].length - 1 - i) * kL + l] = y[l];
     }
   }
-  // Samples where every filtered lane is inside its own signal: one vector maximum.
-  std::size_t all_from = 0, all_to = longest;
-  for (const LanePlan& p : plan)
-    if (p.length > 0) {
-      all_from = std::max(all_from, p.pad);
-      all_to = std::min(all_to, p.pad + p.n);
-    }
-  Lanes m{}, nan{};
   const Lanes last = *at(reversed, 0);
   LaneCascade cascade(b, a, last);
   for (std::size_t j = 0; j < longest; ++j) {
-    Lanes y = *at(reversed, j);
+    auto* sample = reinterpret_cast<LanesInBuffer*>(reversed + j * kL);
+    Lanes y = *sample;
     cascade(y);
-    if (j >= all_from && j < all_to) {
-      const Lanes ay = y < 0.0 ? -y : y;  // |-0.0| = -0.0 here, which the maximum never keeps over 0.0
-      m = m < ay ? ay : m;
-      nan = y != y ? Lanes{} + 1.0 : nan;
-      continue;
-    }
-    for (std::size_t l = 0; l < kL; ++l) {
-      if (j < plan[l].pad || j >= plan[l].pad + plan[l].n) continue;
-      m[l] = std::max(m[l], std::abs(y[l]));
-      if (std::isnan(y[l])) nan[l] = 1.0;
-    }
+    *sample = y;
   }
-  for (std::size_t l = 0; l < kL; ++l) maxima[l] = nan[l] != 0.0 ? std::nan("") : m[l];
 }
 
 // Compiled twice: for the baseline processor and with AVX2 (four doubles
 // per instruction; no FMA, so the bits do not change).
-void forward_backward_max_baseline(const double (&b)[4][3], const double (&a)[4][2],
-                                   const std::array<LanePlan, kL>& plan, std::size_t longest, const double* padded,
-                                   double* reversed, std::array<double, kL>& maxima) {
-  forward_backward_max(b, a, plan, longest, padded, reversed, maxima);
+void forward_backward_baseline(const double (&b)[4][3], const double (&a)[4][2], const std::array<LanePlan, kL>& plan,
+                               std::size_t longest, const double* padded, double* reversed) {
+  forward_backward(b, a, plan, longest, padded, reversed);
 }
-[[gnu::target("avx2")]] void forward_backward_max_avx2(const double (&b)[4][3], const double (&a)[4][2],
-                                                       const std::array<LanePlan, kL>& plan, std::size_t longest,
-                                                       const double* padded, double* reversed,
-                                                       std::array<double, kL>& maxima) {
-  forward_backward_max(b, a, plan, longest, padded, reversed, maxima);
-}
-
-// max |y| over y[first, first + n); NaN propagates: a non-finite input is
-// never hidden by the maximum.
-double max_abs(const double* y, std::size_t n) {
-  double m = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double v = y[i];
-    m = std::isnan(v) || std::isnan(m) ? std::nan("") : std::max(m, std::abs(v));
-  }
-  return m;
+[[gnu::target("avx2")]] void forward_backward_avx2(const double (&b)[4][3], const double (&a)[4][2],
+                                                   const std::array<LanePlan, kL>& plan, std::size_t longest,
+                                                   const double* padded, double* reversed) {
+  forward_backward(b, a, plan, longest, padded, reversed);
 }
 
 }  // namespace
@@ -290,7 +262,7 @@ double CodeFilter::max_abs_filtered(const std::vector<double>& signal, std::vect
     first = filter_into(signal, workspace);
     y = &workspace;
   }
-  return max_abs(y->data() + first, n);
+  return refined_max_abs(y->data() + first, n);
 }
 
 void CodeFilter::max_abs_filtered(const std::vector<const std::vector<double>*>& signals, double* maxima,
@@ -306,7 +278,6 @@ void CodeFilter::max_abs_filtered(const std::vector<const std::vector<double>*>&
     plan[l] = {n, pad, n + 2 * pad};
     longest = std::max(longest, plan[l].length);
   }
-  std::array<double, kLanes> filtered{};
   if (longest > 0) {
     // Each lane's padded signal (pad_into), interleaved. What a
     // lane has past its own length (left by an earlier call) only ever
@@ -322,11 +293,13 @@ void CodeFilter::max_abs_filtered(const std::vector<const std::vector<double>*>&
       }
       pad_into(*signals[l], p.pad, ws.padded.data() + l, kLanes);
     }
-    if (use_avx2(code)) forward_backward_max_avx2(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data(), filtered);
-    else forward_backward_max_baseline(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data(), filtered);
+    if (use_avx2(code)) forward_backward_avx2(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data());
+    else forward_backward_baseline(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data());
   }
+  // The same samples as max_abs_filtered's, in reverse order: the same maximum.
   for (std::size_t l = 0; l < signals.size(); ++l)
-    maxima[l] = plan[l].length == 0 ? max_abs(signals[l]->data(), signals[l]->size()) : filtered[l];
+    maxima[l] = plan[l].length == 0 ? refined_max_abs(signals[l]->data(), signals[l]->size())
+                                    : refined_max_abs(ws.reversed.data() + plan[l].pad * kLanes + l, plan[l].n, kLanes);
 }
 
 std::vector<double> code_low_pass(const std::vector<double>& signal, double dt_s, double cutoff_hz) {

@@ -54,7 +54,9 @@ std::vector<double> code_low_pass(const std::vector<double>& signal, double dt_s
 
 // The filter of one (dt, cut-off), designed once and applied to many
 // signals without allocating (the workspace grows to the longest signal):
-// max_abs_filtered(x) == max |code_low_pass(x)| bit for bit.
+// max_abs_filtered(x) == refined_max_abs(code_low_pass(x)) bit for bit:
+// the largest |value|, each local maximum raised to its parabola's vertex
+// (core/sampled_peak.hpp), so a peak between two samples is not missed.
 class CodeFilter {
  public:
   CodeFilter(double dt_s, double cutoff_hz);

@@ -127,11 +127,23 @@ Rung escalated(const Rung& rung);
 // for moving forces on FE (a load model has no vehicle to couple).
 std::optional<Rung> next_rung(const Rung& rung);
 
+// How the peaks of a modal run are taken from its samples.
+enum class ModalPeaks {
+  // Deck displacement and acceleration (filtered or not) alone: each peak
+  // is refined between its samples (core/sampled_peak.hpp).
+  kRefined,
+  // Also section forces or deck twist, whose peaks are the largest sample
+  // (a section force has a kink where an axle passes the section, which no
+  // parabola follows).
+  kSampled,
+};
+
 // Time step of the modal rung, where dt only samples the load and the
-// output (the recurrence is exact): the peak of a harmonic at the code
-// frequency sampled n times a period is low by at most 1 - cos(pi / n);
-// n = ceil(pi / acos(1 - tolerance)) keeps it within the tolerance (23 for
-// 1 %). The step is rounded down to 3 significant digits.
-double modal_time_step_s(double code_frequency_hz, double tolerance);
+// output (the recurrence is exact): the smallest number n of samples a
+// period of a harmonic at the code frequency for which its peak is low by
+// at most the tolerance: 1 - cos(pi / n) for the largest sample (n = 23
+// for 1 %), 1 - cos(pi / n) (1 + sin^2(pi / n) / 2) when refined (n = 8
+// for 1 %). The step is rounded down to 3 significant digits.
+double modal_time_step_s(double code_frequency_hz, double tolerance, ModalPeaks peaks);
 
 }  // namespace railvsi

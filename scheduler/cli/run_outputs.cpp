@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cli/histories_csv.hpp"
+#include "core/sampled_peak.hpp"
 #include "summary/summary_json.hpp"
 #include "envelopes/code_filter.hpp"
 #include "simulation/simulation.hpp"
@@ -82,9 +83,12 @@ ordered_json run_summary_json(const Result& result, const Scene& scene, const Ru
     ordered_json& point = deck["points"][p];
     point["max_abs_acceleration_filtered_mps2"] = nullptr;
     if (!filtered.empty()) {
+      // The peak as the stored envelope has it (CodeFilter::max_abs_filtered:
+      // refined between samples); `at` gives the largest sample and its time.
       const ordered_json at = where_max_abs(filtered[p], h.t_s, frame);
-      point["max_abs_acceleration_filtered_mps2"] = at.is_null() ? ordered_json(nullptr) : at["value"];
-      if (!at.is_null() && at["value"].is_number()) overall = std::max(overall, at["value"].get<double>());
+      const double peak = refined_max_abs(filtered[p].data(), filtered[p].size());
+      point["max_abs_acceleration_filtered_mps2"] = at.is_null() ? ordered_json(nullptr) : number(peak);
+      if (!at.is_null() && std::isfinite(peak)) overall = std::max(overall, peak);
       point["at_max_acceleration_filtered"] = at;
     }
     point["at_max_displacement"] = where_max_abs(h.deck_displacement_m[p], h.t_s, frame);

@@ -170,10 +170,16 @@ struct JobTimeStep {
 JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequencies& f, const EffectsPlan& plan) {
   if (dt_given) return {scene.analysis.dt_s, "given in the study (analysis.dt_s)"};
   if (plan.rung.exact_modal()) {
-    const double dt = modal_time_step_s(plan.code_frequency_hz, scene.fidelity.tolerance);
+    // Section forces and deck twist (a structure with two rail lines may
+    // have one) keep their largest sample; the deck's peaks are refined.
+    const bool sampled = scene.fidelity.asks_section_forces() || scene.structure->rails().size() >= 2;
+    const ModalPeaks peaks = sampled ? ModalPeaks::kSampled : ModalPeaks::kRefined;
+    const double dt = modal_time_step_s(plan.code_frequency_hz, scene.fidelity.tolerance, peaks);
     return {dt, fmt::format("modal rung (exact recurrence: dt samples the load and output only): the peak at the code "
-                            "frequency {:.1f} Hz sampled within the tolerance {:g} needs {:.3e} s",
-                            plan.code_frequency_hz, scene.fidelity.tolerance, dt)};
+                            "frequency {:.1f} Hz {} within the tolerance {:g} needs {:.3e} s",
+                            plan.code_frequency_hz,
+                            sampled ? "sampled (section forces or deck twist asked)" : "refined between samples",
+                            scene.fidelity.tolerance, dt)};
   }
   TimeStepPolicy policy;
   policy.hht = scene.analysis.hht;

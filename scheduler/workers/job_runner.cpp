@@ -157,7 +157,7 @@ void run_group_on_pass(ModalPass& pass, const std::vector<GroupMember>& group, c
   const auto start = Clock::now();
   std::vector<SweepLane> lanes;
   for (const GroupMember& m : group) lanes.push_back({modal_run_start_x_m(m.scene), m.scene.speed_mps, m.n_steps});
-  const std::vector<ModalSweepRun> runs = pass.sweep->run_group(lanes, ws, true);
+  const std::vector<ModalSweepRun> runs = pass.sweep->run_group(lanes, ws);
   // The filtered acceleration of each output point, the group's signals
   // filtered side by side; a run that stopped early filters what it computed.
   std::vector<std::vector<double>> filtered(group.size());

@@ -14,7 +14,8 @@
 // --service-only [--reps N]: only the service part of the deck-alone study
 // (asks ["deck"]), N times (default 2) in this process, each on a new
 // store; prints machine-readable lines (what tests/bench/peer_ratio reads):
-//   rep K cpu_s C wall_s W jobs J failed F   (C: process CPU, all threads)
+//   rep K cpu_s C wall_s W jobs J failed F expand_s E submit_s S work_s K
+//                                           (C: process CPU, all threads; E, S, K: wall)
 //   model modes M dt_s D cutoff_hz H
 //   peak TRAIN unfiltered_mps2 A at_kmh V filtered_mps2 A at_kmh V
 // the peak lines being the largest midspan deck acceleration of each train
@@ -213,7 +214,7 @@ void measure(const json& doc, const char* label) {
         lanes.push_back({modal_run_start_x_m(at), at.speed_mps, modal_run_steps(at)});
       }
       const double t1 = thread_cpu_s();
-      const std::vector<ModalSweepRun> runs = sweep.run_group(lanes, ws, true);
+      const std::vector<ModalSweepRun> runs = sweep.run_group(lanes, ws);
       const double t2 = thread_cpu_s();
       std::vector<const std::vector<double>*> signals;
       for (std::size_t g = 0; g < lanes.size(); ++g) signals.push_back(&ws.acceleration[g][0]);
@@ -223,7 +224,7 @@ void measure(const json& doc, const char* label) {
       sweep_s += t2 - t1;
       for (std::size_t g = 0; g < lanes.size(); ++g) sink += maxima[g] + static_cast<double>(runs[g].steps);
       const double t3 = thread_cpu_s();
-      for (const SweepLane& l : lanes) sink += static_cast<double>(sweep.run(l.x0_m, l.speed_mps, l.n_steps, ws, true).steps);
+      for (const SweepLane& l : lanes) sink += static_cast<double>(sweep.run(l.x0_m, l.speed_mps, l.n_steps, ws).steps);
       single_s += thread_cpu_s() - t3;
     }
   }
@@ -277,8 +278,9 @@ int service_only(int reps) {
   ServiceRun last;
   for (int k = 1; k <= reps; ++k) {
     last = run_service(deck_only_study());
-    std::printf("rep %d cpu_s %.4f wall_s %.4f jobs %ld failed %lld\n", k, last.service_cpu_s, last.service_s,
-                last.jobs, static_cast<long long>(last.work.jobs_failed));
+    std::printf("rep %d cpu_s %.4f wall_s %.4f jobs %ld failed %lld expand_s %.4f submit_s %.4f work_s %.4f\n", k,
+                last.service_cpu_s, last.service_s, last.jobs, static_cast<long long>(last.work.jobs_failed),
+                last.expand_s, last.submit_s, last.work.wall_s);
   }
   const json f = json::parse(last.fidelity);
   std::printf("model modes %d dt_s %.6g cutoff_hz %.6g %.6g\n", f.at("modes").get<int>(), f.at("dt_s").get<double>(),

@@ -70,11 +70,11 @@ void check_group(const ModalSweep& sweep, const std::vector<SweepLane>& lanes, s
   for (const auto code : {LaneCode::kFastest, LaneCode::kPortable}) {
     SCOPED_TRACE(code == LaneCode::kFastest ? "fastest code" : "portable code");
     ModalSweepWorkspace group_ws, alone_ws;
-    const std::vector<ModalSweepRun> grouped = sweep.run_group(lanes, group_ws, true, code);
+    const std::vector<ModalSweepRun> grouped = sweep.run_group(lanes, group_ws, code);
     ASSERT_EQ(grouped.size(), lanes.size());
     for (std::size_t l = 0; l < lanes.size(); ++l) {
       SCOPED_TRACE("lane " + std::to_string(l));
-      const ModalSweepRun alone = sweep.run(lanes[l].x0_m, lanes[l].speed_mps, lanes[l].n_steps, alone_ws, true);
+      const ModalSweepRun alone = sweep.run(lanes[l].x0_m, lanes[l].speed_mps, lanes[l].n_steps, alone_ws);
       ASSERT_TRUE(alone.status.ok()) << alone.status.message();
       EXPECT_EQ(alone.steps, lanes[l].n_steps);
       expect_same_bits(grouped[l], group_ws.acceleration[l], alone, alone_ws.acceleration[0], points);
@@ -168,7 +168,7 @@ TEST(ModalSweepLanes, TabulatedTrainLoadIsTheSumOverTheAxles) {
   ModalSweepWorkspace ws;
   double worst = 0.0, peak = 0.0;
   for (double x : xs) {
-    const ModalSweepRun run = sweep.run(x, 0.0, 0, ws, false);
+    const ModalSweepRun run = sweep.run(x, 0.0, 0, ws);
     const double expected = independent(x);
     worst = std::max(worst, std::abs(run.max_abs_displacement_m[0] - expected));
     peak = std::max(peak, expected);

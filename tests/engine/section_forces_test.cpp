@@ -232,7 +232,7 @@ TEST(SectionForces, ModalSweepStaticPartIsTheExactInfluenceLine) {
   ModalSweepWorkspace ws;
   double worst = 0.0, worst_fit = 0.0;
   for (double x : {0.0, 0.5, 1.3, 5.0, 7.77, 10.0, 12.25, 19.5, 20.0}) {
-    const ModalSweepRun run = sweep.run(x, 0.0, 0, ws, false);
+    const ModalSweepRun run = sweep.run(x, 0.0, 0, ws);
     ASSERT_TRUE(run.sections.has_value());
     RunSummary sum;
     sum.points.resize(2);

@@ -193,12 +193,22 @@ TEST(EffectsPlanner, EscalationReasonNamesTheFinerTimeStep) {
 }
 
 TEST(EffectsPlanner, ModalTimeStepSamplesTheCodeFrequencyWithinTheTolerance) {
-  // 1 %: n = ceil(pi / acos(0.99)) = 23 samples per period of 45 Hz: 0.966 ms.
-  const double dt = modal_time_step_s(45.0, 0.01);
+  // The largest sample, 1 %: n = ceil(pi / acos(0.99)) = 23 samples per period of 45 Hz: 0.966 ms.
+  const double dt = modal_time_step_s(45.0, 0.01, ModalPeaks::kSampled);
   EXPECT_DOUBLE_EQ(dt, 9.66e-4);
   EXPECT_LE(1.0 - std::cos(M_PI * 45.0 * dt), 0.01);
   // A tighter tolerance samples more finely.
-  EXPECT_LT(modal_time_step_s(45.0, 0.001), dt / 3.0);
+  EXPECT_LT(modal_time_step_s(45.0, 0.001, ModalPeaks::kSampled), dt / 3.0);
+}
+
+TEST(EffectsPlanner, ModalTimeStepOfRefinedPeaksIsEightSamplesAPeriodForOnePercent) {
+  // cos(pi/8) (1 + sin^2(pi/8) / 2) = 0.99153 >= 0.99, cos(pi/7) (1 + sin^2(pi/7) / 2) = 0.98578 < 0.99:
+  // n = 8, dt = 1 / (8 x 45 Hz) = 2.7778 ms, rounded down to 2.77 ms.
+  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.01, ModalPeaks::kRefined), 2.77e-3);
+  // 0.1 %: n = 14 (1 - cos(pi/14)(1 + sin^2(pi/14)/2) = 0.00094; n = 13: 0.00125).
+  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.001, ModalPeaks::kRefined), 1.58e-3);
+  // A tolerance no double-precision step honours stops at 10^6 samples a period, not in an endless search.
+  EXPECT_GT(modal_time_step_s(45.0, 1e-300, ModalPeaks::kSampled), 0.0);
 }
 
 TEST(EffectsPlanner, NextRungClimbsTowardFiniteElementsAndUnilateralHertz) {

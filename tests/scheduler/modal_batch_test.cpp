@@ -69,14 +69,16 @@ class ModalBatches : public ServiceTest {
 };
 
 // A study that asks the deck alone skips the section forces on the modal
-// sweep (11 rows per job instead of 23), and its deck values are the same
-// bits as those of the study that asks everything: the section forces only
-// read the sweep's state.
+// sweep (11 rows per job instead of 23), and at the same step its deck
+// values are the same bits as those of the study that asks everything: the
+// section forces only read the sweep's state.
 TEST_F(ModalBatches, AskingTheDeckAloneSkipsSectionForcesAndLeavesTheDeckBitsAlone) {
-  json deck_only = modal_study();
+  json all = modal_study();
+  all["analysis"]["dt_s"] = 1e-3;
+  json deck_only = all;
   deck_only["asks"] = {"deck"};
   const std::string a = run_study(deck_only, "deck.sqlite", 256);
-  const std::string b = run_study(modal_study(), "all.sqlite", 256);
+  const std::string b = run_study(all, "all.sqlite", 256);
   const auto deck_rows = [](const std::string& file) {
     Database db(file);
     std::string out;
@@ -92,6 +94,29 @@ TEST_F(ModalBatches, AskingTheDeckAloneSkipsSectionForcesAndLeavesTheDeckBitsAlo
   const std::string da = deck_rows(a);
   EXPECT_FALSE(da.empty());
   EXPECT_EQ(da, deck_rows(b));
+}
+
+// Left to the planner, the deck alone takes a longer step than the study
+// with section forces: its peaks are refined between samples (8 samples a
+// period of the code frequency for 1 %), a section force's are not (23).
+TEST_F(ModalBatches, DeckAloneTakesTheLongerStepOfRefinedPeaks) {
+  json deck_only = modal_study();
+  deck_only["asks"] = {"deck"};
+  const auto step = [&](const json& doc, const char* file) {
+    Database db(run_study(doc, file, 256));
+    Statement s = db.prepare("SELECT min(dt_s), max(dt_s), min(cutoff_hz) FROM jobs");
+    s.step();
+    EXPECT_EQ(s.real(0), s.real(1));
+    return std::make_pair(s.real(0), s.real(2));
+  };
+  const auto [dt_deck, code_hz] = step(deck_only, "deck-step.sqlite");
+  const auto [dt_all, code_hz_all] = step(modal_study(), "all-step.sqlite");
+  EXPECT_EQ(code_hz, code_hz_all);
+  // The largest step with 8 (23) samples a period of the code frequency, 3 significant digits.
+  EXPECT_LE(dt_deck * code_hz, 1.0 / 8.0);
+  EXPECT_GT(dt_deck * code_hz, 0.99 / 8.0);
+  EXPECT_LE(dt_all * code_hz, 1.0 / 23.0);
+  EXPECT_GT(dt_all * code_hz, 0.99 / 23.0);
 }
 
 TEST_F(ModalBatches, PlannerPutsMovingForceStudiesOnTheModalRungAndRecordsWhy) {
