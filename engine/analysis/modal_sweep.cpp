@@ -261,6 +261,11 @@ template <int L>
     last_step[static_cast<std::size_t>(l)] = l < count ? lanes[l].n_steps : -1;
     steps = std::max(steps, last_step[static_cast<std::size_t>(l)]);
   }
+  // The largest samples of every lane as vectors (an idle lane's are never
+  // read); refined between samples at the end.
+  std::vector<double> maxima(2 * np * lanes_n, 0.0);
+  V* max_u = reinterpret_cast<V*>(maxima.data());
+  V* max_a = max_u + np;
   for (int l = 0; l < count; ++l) {
     ModalSweepRun& o = out[l];  // freshly made by the caller
     if (sections_) o.sections.emplace(sections_->forms());
@@ -336,6 +341,18 @@ template <int L>
         const V phi = phi_rows[i * n + k];
         u += phi * q[k];
         a += phi * qdd[k];
+      }
+      if (all) {
+        raise_max_abs(max_u[i], u);
+        raise_max_abs(max_a[i], a);
+      } else {
+        for (std::size_t l = 0; l < lanes_n; ++l) {
+          if (!running(step, l)) continue;
+          double& mu = lane_of(max_u[i], l);
+          double& ma = lane_of(max_a[i], l);
+          mu = std::max(mu, std::abs(lane_of(u, l)));
+          ma = std::max(ma, std::abs(lane_of(a, l)));
+        }
       }
       for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
         if (all || running(step, l)) {
@@ -494,9 +511,10 @@ template <int L>
     const auto samples = static_cast<std::size_t>(o.steps) + 1;
     o.max_abs_displacement_m.resize(np);
     o.max_abs_acceleration_mps2.resize(np);
+    const auto lane = static_cast<std::size_t>(l);
     for (std::size_t i = 0; i < np; ++i) {
-      o.max_abs_displacement_m[i] = refined_max_abs(ws.displacement[static_cast<std::size_t>(l)][i].data(), samples);
-      o.max_abs_acceleration_mps2[i] = refined_max_abs(ws.acceleration[static_cast<std::size_t>(l)][i].data(), samples);
+      o.max_abs_displacement_m[i] = refine_max_abs(ws.displacement[lane][i].data(), samples, 1, lane_of(max_u[i], lane));
+      o.max_abs_acceleration_mps2[i] = refine_max_abs(ws.acceleration[lane][i].data(), samples, 1, lane_of(max_a[i], lane));
     }
   }
 }

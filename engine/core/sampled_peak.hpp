@@ -16,6 +16,9 @@ namespace railvsi {
 // below the samples themselves). The same bits whatever the stride and in
 // reverse order. NaN when a sample is NaN. 0 for n = 0.
 double refined_max_abs(const double* s, std::size_t n, std::size_t stride = 1);
+// The same when the largest |sample| is known (the producer of the samples
+// kept it): max_abs_sample raised to the vertices above it. NaN stays NaN.
+double refine_max_abs(const double* s, std::size_t n, std::size_t stride, double max_abs_sample);
 
 // How low the largest sample of a harmonic sampled n times a period can be
 // (relative): 1 - cos(pi / n).

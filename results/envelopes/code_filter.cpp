@@ -146,10 +146,11 @@ struct LaneCascade {
 // what a lane has past its length is never read back). The backward pass
 // leaves its output in `reversed`, sample j of every lane at j kL: lane l's
 // own samples (its padding excluded) are j in [pad, pad + n), in reverse
-// time order.
+// time order; maxima[l] = max |y| over them, NaN when one of them is NaN.
 [[gnu::always_inline]] inline void forward_backward(const double (&b)[4][3], const double (&a)[4][2],
                                                     const std::array<LanePlan, kL>& plan, std::size_t longest,
-                                                    const double* padded, double* reversed) {
+                                                    const double* padded, double* reversed,
+                                                    std::array<double, kL>& maxima) {
   // Sample i of every lane, in place (a pointer: no vector crosses a call).
   const auto at = [](const double* buffer, std::size_t i) {
     return reinterpret_cast<const LanesInBuffer*>(buffer + i * kL);
@@ -185,6 +186,14 @@ struct LaneCascade {
         if (i < plan[l].length) reversed[(plan[l].length - 1 - i) * kL + l] = y[l];
     }
   }
+  // Samples where every filtered lane is inside its own signal: one vector maximum.
+  std::size_t all_from = 0, all_to = longest;
+  for (const LanePlan& p : plan)
+    if (p.length > 0) {
+      all_from = std::max(all_from, p.pad);
+      all_to = std::min(all_to, p.pad + p.n);
+    }
+  Lanes m{}, nan{};
   const Lanes last = *at(reversed, 0);
   LaneCascade cascade(b, a, last);
   for (std::size_t j = 0; j < longest; ++j) {
@@ -192,19 +201,33 @@ struct LaneCascade {
     Lanes y = *sample;
     cascade(y);
     *sample = y;
+    if (j >= all_from && j < all_to) {
+      const Lanes ay = y < 0.0 ? -y : y;  // |-0.0| = -0.0 here, which the maximum never keeps over 0.0
+      m = m < ay ? ay : m;
+      nan = y != y ? Lanes{} + 1.0 : nan;
+      continue;
+    }
+    for (std::size_t l = 0; l < kL; ++l) {
+      if (j < plan[l].pad || j >= plan[l].pad + plan[l].n) continue;
+      m[l] = std::max(m[l], std::abs(y[l]));
+      if (std::isnan(y[l])) nan[l] = 1.0;
+    }
   }
+  for (std::size_t l = 0; l < kL; ++l) maxima[l] = nan[l] != 0.0 ? std::nan("") : m[l];
 }
 
 // Compiled twice: for the baseline processor and with AVX2 (four doubles
 // per instruction; no FMA, so the bits do not change).
 void forward_backward_baseline(const double (&b)[4][3], const double (&a)[4][2], const std::array<LanePlan, kL>& plan,
-                               std::size_t longest, const double* padded, double* reversed) {
-  forward_backward(b, a, plan, longest, padded, reversed);
+                               std::size_t longest, const double* padded, double* reversed,
+                               std::array<double, kL>& maxima) {
+  forward_backward(b, a, plan, longest, padded, reversed, maxima);
 }
 [[gnu::target("avx2")]] void forward_backward_avx2(const double (&b)[4][3], const double (&a)[4][2],
                                                    const std::array<LanePlan, kL>& plan, std::size_t longest,
-                                                   const double* padded, double* reversed) {
-  forward_backward(b, a, plan, longest, padded, reversed);
+                                                   const double* padded, double* reversed,
+                                                   std::array<double, kL>& maxima) {
+  forward_backward(b, a, plan, longest, padded, reversed, maxima);
 }
 
 }  // namespace
@@ -278,6 +301,7 @@ void CodeFilter::max_abs_filtered(const std::vector<const std::vector<double>*>&
     plan[l] = {n, pad, n + 2 * pad};
     longest = std::max(longest, plan[l].length);
   }
+  std::array<double, kLanes> sampled{};
   if (longest > 0) {
     // Each lane's padded signal (pad_into), interleaved. What a
     // lane has past its own length (left by an earlier call) only ever
@@ -293,13 +317,22 @@ void CodeFilter::max_abs_filtered(const std::vector<const std::vector<double>*>&
       }
       pad_into(*signals[l], p.pad, ws.padded.data() + l, kLanes);
     }
-    if (use_avx2(code)) forward_backward_avx2(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data());
-    else forward_backward_baseline(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data());
+    if (use_avx2(code)) forward_backward_avx2(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data(), sampled);
+    else forward_backward_baseline(b_, a_, plan, longest, ws.padded.data(), ws.reversed.data(), sampled);
   }
-  // The same samples as max_abs_filtered's, in reverse order: the same maximum.
-  for (std::size_t l = 0; l < signals.size(); ++l)
-    maxima[l] = plan[l].length == 0 ? refined_max_abs(signals[l]->data(), signals[l]->size())
-                                    : refined_max_abs(ws.reversed.data() + plan[l].pad * kLanes + l, plan[l].n, kLanes);
+  // The same samples as max_abs_filtered's, in reverse order: the same
+  // maximum. Each lane's samples side by side first (the refinement looks
+  // at contiguous samples four at a time).
+  for (std::size_t l = 0; l < signals.size(); ++l) {
+    if (plan[l].length == 0) {
+      maxima[l] = refined_max_abs(signals[l]->data(), signals[l]->size());
+      continue;
+    }
+    ws.lane.resize(plan[l].n);
+    const double* from = ws.reversed.data() + plan[l].pad * kLanes + l;
+    for (std::size_t i = 0; i < plan[l].n; ++i) ws.lane[i] = from[i * kLanes];
+    maxima[l] = refine_max_abs(ws.lane.data(), plan[l].n, 1, sampled[l]);
+  }
 }
 
 std::vector<double> code_low_pass(const std::vector<double>& signal, double dt_s, double cutoff_hz) {

@@ -66,9 +66,9 @@ class CodeFilter {
   // max_abs_filtered(*signals[i]) bit for bit.
   static constexpr int kLanes = 4;
   // The signals padded and the forward pass's output, kLanes doubles per
-  // sample (sized on first use).
+  // sample, and one lane's filtered samples (sized on first use).
   struct LaneWorkspace {
-    std::vector<double> padded, reversed;
+    std::vector<double> padded, reversed, lane;
   };
   void max_abs_filtered(const std::vector<const std::vector<double>*>& signals, double* maxima, LaneWorkspace& ws,
                         LaneCode code = LaneCode::kFastest) const;
