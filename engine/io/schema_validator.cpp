@@ -26,9 +26,14 @@ namespace {
 using nlohmann::json;
 using SchemaDocuments = std::map<std::string, json, std::less<>>;
 
-SchemaDocuments parse_embedded_schemas() {
-  SchemaDocuments docs;
-  for (const EmbeddedSchema& s : embedded_schemas()) docs.emplace(s.name, json::parse(s.text));
+// Every embedded schema, parsed once per process and never changed (each
+// validator reads the documents its schema refers to).
+const SchemaDocuments& embedded_schema_documents() {
+  static const SchemaDocuments docs = [] {
+    SchemaDocuments d;
+    for (const EmbeddedSchema& s : embedded_schemas()) d.emplace(s.name, json::parse(s.text));
+    return d;
+  }();
   return docs;
 }
 
@@ -228,7 +233,7 @@ json embedded_schema_json(std::string_view schema_name) {
 }
 
 struct SchemaValidator::Impl {
-  SchemaDocuments documents = parse_embedded_schemas();
+  const SchemaDocuments& documents = embedded_schema_documents();
   std::string root_name;
   valijson::Schema schema;
 };
