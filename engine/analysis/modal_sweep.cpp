@@ -239,7 +239,7 @@ template <class V>
 
 template <int L>
 [[gnu::always_inline]] inline void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
-                           Histories* histories, int history_stride) const {
+                           Histories* histories, int history_stride, LaneCode code) const {
   using V = typename LaneValue<L>::type;
   constexpr auto lanes_n = static_cast<std::size_t>(L);
   const auto n = static_cast<std::size_t>(n_modes_);
@@ -513,14 +513,16 @@ template <int L>
     o.max_abs_acceleration_mps2.resize(np);
     const auto lane = static_cast<std::size_t>(l);
     for (std::size_t i = 0; i < np; ++i) {
-      o.max_abs_displacement_m[i] = refine_max_abs(ws.displacement[lane][i].data(), samples, 1, lane_of(max_u[i], lane));
-      o.max_abs_acceleration_mps2[i] = refine_max_abs(ws.acceleration[lane][i].data(), samples, 1, lane_of(max_a[i], lane));
+      o.max_abs_displacement_m[i] =
+          refine_max_abs(ws.displacement[lane][i].data(), samples, 1, lane_of(max_u[i], lane), code);
+      o.max_abs_acceleration_mps2[i] =
+          refine_max_abs(ws.acceleration[lane][i].data(), samples, 1, lane_of(max_a[i], lane), code);
     }
   }
 }
 
 void ModalSweep::run_four_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws) const {
-  run_lanes<kSweepLanes>(lanes, count, out, ws, nullptr, 1);
+  run_lanes<kSweepLanes>(lanes, count, out, ws, nullptr, 1, LaneCode::kPortable);
 }
 
 // The same code for a processor with AVX2: a vector of four doubles is one
@@ -529,14 +531,14 @@ void ModalSweep::run_four_lanes(const SweepLane* lanes, int count, ModalSweepRun
 __attribute__((target("avx2"))) void ModalSweep::run_four_lanes_avx2(const SweepLane* lanes, int count,
                                                                       ModalSweepRun* out,
                                                                       ModalSweepWorkspace& ws) const {
-  run_lanes<kSweepLanes>(lanes, count, out, ws, nullptr, 1);
+  run_lanes<kSweepLanes>(lanes, count, out, ws, nullptr, 1, LaneCode::kFastest);
 }
 
 ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, ModalSweepWorkspace& ws,
                               Histories* histories, int history_stride) const {
   const SweepLane lane{x0_m, speed_mps, n_steps};
   ModalSweepRun out;
-  run_lanes<1>(&lane, 1, &out, ws, histories, history_stride);
+  run_lanes<1>(&lane, 1, &out, ws, histories, history_stride, LaneCode::kFastest);
   return out;
 }
 
@@ -546,7 +548,7 @@ std::vector<ModalSweepRun> ModalSweep::run_group(const std::vector<SweepLane>& l
     throw std::invalid_argument("ModalSweep::run_group: more runs than lanes");
   std::vector<ModalSweepRun> out(lanes.size());
   const int count = static_cast<int>(lanes.size());
-  if (count == 1) run_lanes<1>(lanes.data(), 1, out.data(), ws, nullptr, 1);
+  if (count == 1) run_lanes<1>(lanes.data(), 1, out.data(), ws, nullptr, 1, code);
   else if (count > 1 && use_avx2(code)) run_four_lanes_avx2(lanes.data(), count, out.data(), ws);
   else if (count > 1) run_four_lanes(lanes.data(), count, out.data(), ws);
   return out;

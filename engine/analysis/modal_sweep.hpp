@@ -136,8 +136,9 @@ class ModalSweep {
   void run_four_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws) const;
   void run_four_lanes_avx2(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws) const;
   template <int L>
+  // code: which copy of the peaks' refinement runs (the same bits).
   void run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
-                 Histories* histories, int history_stride) const;
+                 Histories* histories, int history_stride, LaneCode code) const;
 
   const ModalBasis& basis_;
   int n_modes_ = 0;

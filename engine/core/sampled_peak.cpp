@@ -5,11 +5,10 @@
 #include <limits>
 #include <numbers>
 
-#include "core/lane_code.hpp"
 
 namespace railvsi {
 
-double refined_max_abs(const double* s, std::size_t n, std::size_t stride) {
+double refined_max_abs(const double* s, std::size_t n, std::size_t stride, LaneCode code) {
   // The largest sample in four independent maxima (no chain of
   // dependent comparisons), then the vertices.
   double m[4] = {0.0, 0.0, 0.0, 0.0};
@@ -27,7 +26,7 @@ double refined_max_abs(const double* s, std::size_t n, std::size_t stride) {
     m[0] = v > m[0] ? v : m[0];
   }
   if (nan) return std::numeric_limits<double>::quiet_NaN();
-  return refine_max_abs(s, n, stride, std::max(std::max(m[0], m[1]), std::max(m[2], m[3])));
+  return refine_max_abs(s, n, stride, std::max(std::max(m[0], m[1]), std::max(m[2], m[3])), code);
 }
 
 namespace {
@@ -41,7 +40,10 @@ namespace {
 }
 [[gnu::always_inline]] inline double vertex(double y0, double y1, double y2) {
   const double a = 0.5 * (y0 + y2) - y1, b = 0.5 * (y2 - y0);
-  return y1 - b * b / (4.0 * a);
+  // Samples above about 1e154 would overflow b^2 (finite samples, an
+  // infinite peak): divide first there.
+  const double b2 = b * b;
+  return b2 <= std::numeric_limits<double>::max() ? y1 - b2 / (4.0 * a) : y1 - b * (b / (4.0 * a));
 }
 
 using Four = double __attribute__((vector_size(4 * sizeof(double))));
@@ -79,7 +81,7 @@ std::size_t refine_contiguous_baseline(const double* s, std::size_t n, double m,
 
 }  // namespace
 
-double refine_max_abs(const double* s, std::size_t n, std::size_t stride, double max_abs_sample) {
+double refine_max_abs(const double* s, std::size_t n, std::size_t stride, double max_abs_sample, LaneCode code) {
   if (n < 3 || std::isnan(max_abs_sample)) return max_abs_sample;
   // Over y = |s|, at each local maximum, the vertex of the parabola through
   // it and its neighbours: y0, y1, y2 at -1, 0, 1 give y(x) = y1 + b x +
@@ -95,7 +97,7 @@ double refine_max_abs(const double* s, std::size_t n, std::size_t stride, double
   double best = m;
   std::size_t first = 1;
   if (stride == 1)
-    first = use_avx2(LaneCode::kFastest) ? refine_contiguous_avx2(s, n, m, best) : refine_contiguous_baseline(s, n, m, best);
+    first = use_avx2(code) ? refine_contiguous_avx2(s, n, m, best) : refine_contiguous_baseline(s, n, m, best);
   for (std::size_t i = first; i + 1 < n; ++i) {
     const double y0 = std::abs(s[(i - 1) * stride]), y1 = std::abs(s[i * stride]), y2 = std::abs(s[(i + 1) * stride]);
     if (may_exceed(y0, y1, y2, m)) [[unlikely]]

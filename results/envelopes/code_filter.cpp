@@ -325,13 +325,13 @@ void CodeFilter::max_abs_filtered(const std::vector<const std::vector<double>*>&
   // at contiguous samples four at a time).
   for (std::size_t l = 0; l < signals.size(); ++l) {
     if (plan[l].length == 0) {
-      maxima[l] = refined_max_abs(signals[l]->data(), signals[l]->size());
+      maxima[l] = refined_max_abs(signals[l]->data(), signals[l]->size(), 1, code);
       continue;
     }
     ws.lane.resize(plan[l].n);
     const double* from = ws.reversed.data() + plan[l].pad * kLanes + l;
     for (std::size_t i = 0; i < plan[l].n; ++i) ws.lane[i] = from[i * kLanes];
-    maxima[l] = refine_max_abs(ws.lane.data(), plan[l].n, 1, sampled[l]);
+    maxima[l] = refine_max_abs(ws.lane.data(), plan[l].n, 1, sampled[l], code);
   }
 }
 

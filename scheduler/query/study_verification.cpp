@@ -1,5 +1,6 @@
 #include "query/study_verification.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "core/unix_time.hpp"
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
+#include "planning/effects_planner.hpp"
 #include "price/price_analysis.hpp"
 #include "query/price_sample.hpp"
 #include "queue/job_queue.hpp"
@@ -74,17 +76,33 @@ std::vector<JobSpec> verification_jobs(const std::string& job_id, const StoredJo
   // Only where a rung was pinned (by the planner or the study): a scene run
   // as its analysis gives has no rung to climb.
   if (!doc.contains("fidelity")) return out;
-  const ScenePlan plan = plan_scene(parse_scene(doc, "/", "job " + short_id), DeckFrequencies{});
+  const Scene scene = parse_scene(doc, "/", "job " + short_id);
+  const ScenePlan plan = plan_scene(scene, DeckFrequencies{});
   const std::optional<Rung> next = next_rung(plan.rung);
   if (!next) return out;
+  // A modal job on the planner's step for refined deck peaks has about
+  // three times the sampled rule's step; the next rung (FE) takes the
+  // largest sample, so it runs at half the sampled rule's step instead. (A
+  // step the study gave is halved as it is.)
+  if (plan.rung.exact_modal() && of.cutoff_hz > 0.0 &&
+      of.dt_s == modal_time_step_s(of.cutoff_hz, scene.fidelity.tolerance, ModalPeaks::kRefined)) {
+    const double sampled_dt_s = modal_time_step_s(of.cutoff_hz, scene.fidelity.tolerance, ModalPeaks::kSampled);
+    doc["analysis"]["dt_s"] = std::min(dt_s, 0.5 * sampled_dt_s);
+  }
+  const double up_dt_s = doc["analysis"]["dt_s"].get<double>();
   EffectsPlan up;
   up.rung = *next;
   up.reasons = {fmt::format("verification of job {} one rung up: {} -> {}", short_id, plan.rung.name() + " " +
                                                                                         plan.rung.contact_law,
                             next->name() + " " + next->contact_law)};
   doc["fidelity"] = pinned_fidelity_json(up);
-  out.push_back(verification_job(
-      doc, of, fmt::format("verification of job {}: its dt {:.4g} s halved, on the next rung", short_id, of.dt_s)));
+  out.push_back(verification_job(doc, of,
+                                 up_dt_s == dt_s ? fmt::format("verification of job {}: its dt {:.4g} s halved, on the next rung",
+                                                               short_id, of.dt_s)
+                                                 : fmt::format("verification of job {} on the next rung at dt {:.4g} s "
+                                                               "(its dt {:.4g} s refines the deck's peaks; the next "
+                                                               "rung samples them)",
+                                                               short_id, up_dt_s, of.dt_s)));
   return out;
 }
 

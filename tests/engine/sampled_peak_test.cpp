@@ -81,6 +81,50 @@ TEST(SampledPeak, ReversedOrStridedSamplesGiveTheSameBits) {
   EXPECT_GT(refined_max_abs(s.data(), s.size()), sampled);
 }
 
+// Every vertex, written out here without the skip of those below the
+// largest sample: what refined_max_abs must equal.
+double every_vertex(const std::vector<double>& s) {
+  double m = 0.0;
+  for (double v : s) m = std::max(m, std::abs(v));
+  for (std::size_t i = 1; i + 1 < s.size(); ++i) {
+    const double y0 = std::abs(s[i - 1]), y1 = std::abs(s[i]), y2 = std::abs(s[i + 1]);
+    const double a = 0.5 * (y0 + y2) - y1, b = 0.5 * (y2 - y0);
+    if (y1 >= y0 && y1 >= y2 && a < 0.0) m = std::max(m, y1 - b * b / (4.0 * a));
+  }
+  return m;
+}
+
+TEST(SampledPeak, PeakAtEveryIndexInEveryPathEqualsEveryVertex) {
+  // Short signals (3 to 12 samples) whose peak sits at each index in turn,
+  // half a step off: the ends of the four-at-a-time loop and of the scalar
+  // loop, forward, reversed and strided, in AVX2 and in the baseline code.
+  for (std::size_t n = 3; n <= 12; ++n)
+    for (std::size_t peak = 0; peak < n; ++peak) {
+      std::vector<double> s;
+      for (std::size_t i = 0; i < n; ++i) s.push_back(std::cos(0.7 * (static_cast<double>(i) - peak - 0.5)));
+      const double expected = every_vertex(s);
+      const std::vector<double> r(s.rbegin(), s.rend());
+      std::vector<double> strided;
+      for (double v : s) strided.insert(strided.end(), {v, 9.0});  // the other signal is larger: never read
+      for (const auto code : {LaneCode::kFastest, LaneCode::kPortable}) {
+        EXPECT_EQ(refined_max_abs(s.data(), n, 1, code), expected) << n << " " << peak;
+        EXPECT_EQ(refined_max_abs(r.data(), n, 1, code), expected) << n << " " << peak;
+        EXPECT_EQ(refined_max_abs(strided.data(), n, 2, code), expected) << n << " " << peak;
+      }
+      // An interior peak half a step off is raised above its samples.
+      if (peak >= 1 && peak + 2 < n) {
+        EXPECT_GT(expected, std::abs(s[peak])) << n << " " << peak;
+      }
+    }
+}
+
+TEST(SampledPeak, HugeSamplesDoNotOverflowTheVertex) {
+  // b^2 would overflow: the peak is finite, 1.125e200 (the parabola through
+  // 1e200, 1e200, 0 at -1, 0, 1 peaks at x = -1/2).
+  const std::vector<double> s{-1e200, 1e200, 0.0};
+  EXPECT_DOUBLE_EQ(refined_max_abs(s.data(), s.size()), 1.125e200);
+}
+
 TEST(SampledPeak, EndsPlateausAndNaNAreHandled) {
   EXPECT_EQ(refined_max_abs(nullptr, 0), 0.0);
   const std::vector<double> rising{0.0, 1.0, 2.0, 3.0};  // the peak is the last sample: no parabola past it

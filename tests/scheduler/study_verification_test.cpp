@@ -194,6 +194,40 @@ TEST_F(StudyVerification, AFractionVerifiesTheGoverningCasesAndAnEvenSample) {
   EXPECT_EQ(with_estimates, expected);
 }
 
+// A deck-alone study left to the planner runs on the step of refined deck
+// peaks (8 samples a period of the code frequency); its verification one
+// rung up (FE, which takes the largest sample) runs at half the sampled
+// rule's step (23 samples a period), not at half the job's.
+TEST_F(StudyVerification, NextRungOfARefinedPeakJobRunsAtHalfTheSampledStep) {
+  json doc = verified_study("governing");
+  doc["analysis"].erase("dt_s");
+  doc["asks"] = {"deck"};
+  submit_and_work(doc);
+  const VsiResult worked = vsi({"work", "--db", db_});
+  ASSERT_EQ(worked.exit_code, 0) << worked.err;
+  Database db(db_, OpenMode::kExisting);
+  Statement s = db.prepare(
+      "SELECT j.dt_s, j.cutoff_hz, v.refinement, r.dt_s, r.state FROM verification_jobs v JOIN jobs j ON j.id = v.job_id "
+      "JOIN jobs r ON r.id = v.verify_job_id ORDER BY v.job_id, v.refinement");
+  int rows = 0;
+  while (s.step()) {
+    ++rows;
+    const double job_dt = s.real(0), code_hz = s.real(1), verify_dt = s.real(3);
+    EXPECT_EQ(s.text(4), "done");
+    // The job's step: 8 samples a period of the code frequency, 3 significant digits.
+    EXPECT_LE(job_dt * code_hz, 1.0 / 8.0);
+    EXPECT_GT(job_dt * code_hz, 0.99 / 8.0);
+    if (s.int64(2) == 1) {
+      EXPECT_EQ(verify_dt, job_dt / 2.0) << "on its own rung: dt halved";
+    } else {
+      EXPECT_LE(verify_dt * code_hz, 0.5 / 23.0) << "one rung up: half of 23 samples a period";
+      EXPECT_GT(verify_dt * code_hz, 0.99 * 0.5 / 23.0);
+    }
+  }
+  EXPECT_GT(rows, 0);
+  EXPECT_EQ(rows % 2, 0);
+}
+
 TEST_F(StudyVerification, QueryAndReportShowTheEstimateAndFlagOneAboveTheTolerance) {
   json doc = verified_study("governing");
   // Far below what dt/2 and FE change: every estimate is flagged.
