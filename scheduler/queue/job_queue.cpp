@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "core/sha256.hpp"
 #include "core/unix_time.hpp"
@@ -200,28 +201,24 @@ std::size_t JobQueue::renew(const std::vector<std::string>& job_ids) {
 namespace {
 
 // The job's number in the store (jobs.seq) when `worker` still holds it.
-std::optional<std::int64_t> still_ours(Statement& s, const ClaimedJob& job, const std::string& worker) {
-  s.reset();
+std::optional<std::int64_t> still_ours(Database& db, const ClaimedJob& job, const std::string& worker) {
+  Statement s = db.prepare("SELECT state, worker, seq FROM jobs WHERE id = ?");
   if (!s.bind(1, job.id).step()) return std::nullopt;
   if (s.text(0) != "running" || s.text(1) != worker) return std::nullopt;
   return s.int64(2);
-}
-
-std::optional<std::int64_t> still_ours(Database& db, const ClaimedJob& job, const std::string& worker) {
-  Statement s = db.prepare("SELECT state, worker, seq FROM jobs WHERE id = ?");
-  return still_ours(s, job, worker);
 }
 
 // What completing a job runs, prepared once per transaction (a batch
 // completes many jobs in one).
 struct CompleteStatements {
   explicit CompleteStatements(Database& db)
-      : owner(db.prepare("SELECT state, worker, seq FROM jobs WHERE id = ?")),
-        insert(db.prepare("INSERT INTO job_envelopes (job_seq, quantity, location, value) VALUES (?, ?, ?, ?)")),
+      : insert(db.prepare("INSERT INTO job_envelopes (job_seq, quantity, location, value) VALUES (?, ?, ?, ?)")),
         fidelity(db.prepare("INSERT OR IGNORE INTO fidelity_records (id, record) VALUES (?, ?)")),
+        // Only while `worker` still holds the job; its number in the store for the envelopes.
         update(db.prepare(
             "UPDATE jobs SET state = ?, status = ?, error = ?, fidelity_id = ?, steps = ?, wall_s = ?, loop_s = ?, "
-            "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ?, warnings = ? WHERE id = ?")),
+            "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ?, warnings = ? "
+            "WHERE id = ? AND state = 'running' AND worker = ? RETURNING seq")),
         // WHERE true: SQLite's upsert after INSERT ... SELECT needs a WHERE clause.
         stats(db.prepare(
             "INSERT INTO cache_stats (study_id, jobs, factorizations, hits, factorization_s, evictions) "
@@ -229,10 +226,24 @@ struct CompleteStatements {
             "ON CONFLICT (study_id) DO UPDATE SET jobs = jobs + 1, "
             "factorizations = factorizations + excluded.factorizations, hits = hits + excluded.hits, "
             "factorization_s = factorization_s + excluded.factorization_s, evictions = evictions + excluded.evictions")) {}
-  Statement owner, insert, fidelity, update, stats;
+  Statement insert, fidelity, update, stats;
   // The last fidelity record stored and its id: the jobs of a batch share one.
   std::string fidelity_text, fidelity_id;
+  // Jobs stored that neither factorized nor evicted (cache hits): counted in
+  // cache_stats once per batch (count_cache_hits) rather than one by one.
+  std::vector<std::string> hits;
 };
+
+// Adds the batch's cache hits to the statistics of every study that holds them.
+void count_cache_hits(Database& db, const std::vector<std::string>& job_ids) {
+  if (job_ids.empty()) return;
+  db.prepare("INSERT INTO cache_stats (study_id, jobs, factorizations, hits, factorization_s, evictions) "
+             "SELECT study_id, count(*), 0, count(*), 0.0, 0 FROM study_jobs "
+             "WHERE job_id IN (SELECT value FROM json_each(?)) GROUP BY study_id "
+             "ON CONFLICT (study_id) DO UPDATE SET jobs = jobs + excluded.jobs, hits = hits + excluded.hits")
+      .bind(1, nlohmann::json(job_ids).dump())
+      .run();
+}
 
 // complete() of one job with prepared statements; false when the job is no longer `worker`'s.
 bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::string& worker, CompleteStatements& st);
@@ -251,33 +262,26 @@ std::vector<bool> JobQueue::complete_batch(const std::vector<ClaimedJob>& jobs, 
   CompleteStatements statements(db_);
   std::vector<bool> stored;
   for (std::size_t i = 0; i < jobs.size(); ++i) stored.push_back(complete_one(jobs[i], outcomes[i], worker_, statements));
+  count_cache_hits(db_, statements.hits);
   tx.commit();
   return stored;
 }
 
 bool JobQueue::complete_in_transaction(const ClaimedJob& job, const JobOutcome& outcome) {
   CompleteStatements statements(db_);
-  return complete_one(job, outcome, worker_, statements);
+  const bool stored = complete_one(job, outcome, worker_, statements);
+  count_cache_hits(db_, statements.hits);
+  return stored;
 }
 
 namespace {
 
 bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::string& worker, CompleteStatements& st) {
-  const std::optional<std::int64_t> seq = still_ours(st.owner, job, worker);
-  if (!seq) return false;
-  if (outcome.ok) {
-    for (const EnvelopeRow& e : outcome.envelopes) {
-      st.insert.bind(1, *seq).bind(2, e.quantity).bind(3, e.location);
-      if (e.value) st.insert.bind(4, *e.value);
-      else st.insert.bind_null(4);
-      st.insert.run();
-    }
-  }
   // Fidelity records are stored once, by content (SHA-256 of the text).
-  if (st.fidelity_id.empty() || st.fidelity_text != outcome.fidelity) {
+  const bool new_fidelity = st.fidelity_id.empty() || st.fidelity_text != outcome.fidelity;
+  if (new_fidelity) {
     st.fidelity_text = outcome.fidelity;
     st.fidelity_id = sha256_hex(outcome.fidelity);
-    st.fidelity.bind(1, st.fidelity_id).bind(2, st.fidelity_text).run();
   }
   st.update.bind(1, outcome.ok ? "done" : "failed")
       .bind(2, outcome.status)
@@ -291,7 +295,29 @@ bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::s
       .bind(10, unix_now_s())
       .bind(11, outcome.warnings)
       .bind(12, job.id)
-      .run();
+      .bind(13, worker);
+  if (!st.update.step()) {
+    // No longer this worker's (taken over or cancelled): nothing is
+    // written, and the next fidelity record is stored afresh.
+    st.update.reset();
+    if (new_fidelity) st.fidelity_id.clear();
+    return false;
+  }
+  const std::int64_t seq = st.update.int64(0);
+  st.update.run();  // to its end (one row: the id is the key), then reset
+  if (new_fidelity) st.fidelity.bind(1, st.fidelity_id).bind(2, st.fidelity_text).run();
+  if (outcome.ok) {
+    for (const EnvelopeRow& e : outcome.envelopes) {
+      st.insert.bind(1, seq).bind(2, e.quantity).bind(3, e.location);
+      if (e.value) st.insert.bind(4, *e.value);
+      else st.insert.bind_null(4);
+      st.insert.run();
+    }
+  }
+  if (!outcome.factorized && outcome.factorization_s == 0.0 && outcome.evictions == 0) {
+    st.hits.push_back(job.id);
+    return true;
+  }
   st.stats.bind(1, outcome.factorized ? 1 : 0)
       .bind(2, outcome.factorized ? 0 : 1)
       .bind(3, outcome.factorization_s)

@@ -127,6 +127,7 @@ TEST_F(ModalBatches, PlannerPutsMovingForceStudiesOnTheModalRungAndRecordsWhy) {
   // One basis for the structure: built once, every other job a cache hit.
   EXPECT_EQ(count_rows(db, "SELECT factorizations FROM cache_stats"), 1);
   EXPECT_EQ(count_rows(db, "SELECT hits FROM cache_stats"), 25);
+  EXPECT_EQ(count_rows(db, "SELECT jobs FROM cache_stats"), 26);  // the hits counted once per batch
   Statement s = db.prepare("SELECT fidelity, dt_s, dt_reason FROM job_records LIMIT 1");
   ASSERT_TRUE(s.step());
   const json f = json::parse(s.text(0));
