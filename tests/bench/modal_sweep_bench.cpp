@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "analysis/modal_moving_forces.hpp"
+#include "../engine/test_scenes.hpp"
 #include "cpu_time.hpp"
 #include "generators/bridge_2d.hpp"
 #include "io/train_loader.hpp"
@@ -27,13 +28,7 @@ double cpu_s() { return bench::thread_cpu_s(); }
 }  // namespace
 
 int main() {
-  Bridge2dOptions b;
-  b.spans_m = {15.0};
-  b.deck_first_frequency_hz = 5.0;
-  b.deck_mass_kg_per_m = 15000.0;
-  b.damping_ratio = 0.01;
-  b.output_points = {{"midspan", 7.5}};
-  const auto structure = make_bridge_2d(b);
+  const auto structure = make_bridge_2d(testing::hslm_check_span_options());
   const double dt = 1.0e-3;  // samples 45 Hz 22 times a period; the recurrence has no period error
   ModalMovingForceOptions mo;
   // The code frequency max(30 Hz, 1.5 f0, f3) = f3 = 45 Hz, with a margin of

@@ -1,5 +1,5 @@
 #pragma once
-// Small scenes shared by the engine tests.
+// Small scenes shared by the tests and benchmarks.
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -49,6 +49,18 @@ inline std::shared_ptr<const Irregularity> cosine_dip(double x0_m, double length
     r.push_back(s > 0.0 && s < 1.0 ? -0.5 * depth_m * (1.0 - std::cos(2.0 * std::numbers::pi * s)) : 0.0);
   }
   return std::make_shared<const Irregularity>(x, r, "cosine dip");
+}
+
+// The span of the standard EN 1991-2 HSLM check: 15 m simply supported,
+// f0 = 5 Hz, 15 t/m, 1 % damping, output at midspan.
+inline Bridge2dOptions hslm_check_span_options() {
+  Bridge2dOptions b;
+  b.spans_m = {15.0};
+  b.deck_first_frequency_hz = 5.0;
+  b.deck_mass_kg_per_m = 15000.0;
+  b.damping_ratio = 0.01;
+  b.output_points = {{"midspan", 7.5}};
+  return b;
 }
 
 // Two 10 m spans with ballasted track (24 m approach, 6 m exit).

@@ -12,6 +12,7 @@
 
 #include "analysis/modal_moving_forces.hpp"
 #include "envelopes/code_filter.hpp"
+#include "engine/test_scenes.hpp"
 #include "generators/bridge_2d.hpp"
 #include "io/train_loader.hpp"
 #include "planning/effects_planner.hpp"
@@ -41,15 +42,9 @@ Peaks run_at(const std::shared_ptr<const StructureModel>& structure, const Modal
 }
 
 TEST(RefinedModalStep, HslmPeaksOfA15mSpanStayWithinTheTolerance) {
-  Bridge2dOptions b;
-  b.spans_m = {15.0};
-  b.deck_first_frequency_hz = 5.0;
-  b.deck_mass_kg_per_m = 15000.0;
-  b.damping_ratio = 0.01;
-  b.output_points = {{"midspan", 7.5}};
   ModalBasisOptions mo;
   mo.max_frequency_hz = 54.0;  // 1.2 x the code frequency f3 = 45 Hz: 3 modes
-  const auto structure = make_bridge_2d(b);
+  const auto structure = make_bridge_2d(testing::hslm_check_span_options());
   const ModalBasis basis(structure, mo);
   ASSERT_EQ(basis.num_modes(), 3);
   const double code_hz = 45.0;
