@@ -219,13 +219,20 @@ namespace {
 
 // The document of a library train and its file.
 std::pair<json, std::filesystem::path> library_document(const std::string& name) {
-  // Only names listed in the library are opened: a name is never a path.
-  const auto names = library_train_names();
-  if (std::find(names.begin(), names.end(), name) == names.end())
-    throw InputError("", fmt::format("unknown train '{}'; the library {} has: {}", name,
-                                     train_library_dir().string(),
+  // A name is never a path: one file name of the library folder (no
+  // separator, not "." or ".."), opened there. The folder is listed only for
+  // the message (a sweep loads a train per scene: listing it each time cost
+  // more than reading the file).
+  const std::filesystem::path dir = train_library_dir();
+  const bool plain = !name.empty() && name.find_first_of(std::string_view("/\\\0", 3)) == std::string::npos &&
+                     name != "." && name != "..";
+  std::filesystem::path file = dir / (name + ".json");
+  std::error_code ec;
+  if (!plain || !std::filesystem::is_regular_file(file, ec)) {
+    const auto names = library_train_names();
+    throw InputError("", fmt::format("unknown train '{}'; the library {} has: {}", name, dir.string(),
                                      names.empty() ? std::string("no trains") : fmt::format("{}", fmt::join(names, ", "))));
-  auto file = train_library_dir() / (name + ".json");
+  }
   return {read_json_file(file), std::move(file)};
 }
 

@@ -38,4 +38,29 @@ std::string canonical_text(const nlohmann::json& doc) {
   return canonical_json(doc).dump(-1, ' ', false, nlohmann::json::error_handler_t::strict);
 }
 
+std::string canonical_number_text(double x) { return canonical_text(nlohmann::json(x)); }
+
+std::optional<CanonicalNumberSlot> CanonicalNumberSlot::make(nlohmann::json object, const std::string& key) {
+  if (!object.is_object()) return std::nullopt;
+  // A string no input holds marks the place; it must come out once.
+  const std::string mark = "\x01railvsi number slot\x01";
+  object[key] = mark;
+  const std::string text = canonical_text(object);
+  const std::string written = nlohmann::json(mark).dump(-1, ' ', false, nlohmann::json::error_handler_t::strict);
+  const std::size_t at = text.find(written);
+  if (at == std::string::npos || text.find(written, at + 1) != std::string::npos) return std::nullopt;
+  CanonicalNumberSlot slot;
+  slot.before_ = text.substr(0, at);
+  slot.after_ = text.substr(at + written.size());
+  return slot;
+}
+
+std::string CanonicalNumberSlot::text(double x) const {
+  const std::string number = canonical_number_text(x);
+  std::string out;
+  out.reserve(before_.size() + number.size() + after_.size());
+  out.append(before_).append(number).append(after_);
+  return out;
+}
+
 }  // namespace railvsi::scheduler

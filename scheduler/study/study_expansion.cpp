@@ -276,6 +276,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   std::map<std::string, DeckFrequencies> frequencies_of_structure;
   std::map<std::string, std::shared_ptr<const StructureOperator>> operators;
   std::map<std::string, int> modes_of_structure;
+  std::map<std::pair<std::string, double>, std::shared_ptr<const ModalBasis>> bases;
   std::size_t count = 0, most_speeds = 0;
   for (std::size_t n = 0; n < facts.size(); ++n) {
     const std::size_t i = n % trains.size();
@@ -333,10 +334,14 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     try {
       if (f.plan.rung.exact_modal()) {
         // The modal rung's setup: its modes and the train on its rails.
-        ModalBasisOptions mo;
-        mo.max_frequency_hz = f.plan.modal_cutoff_hz;
-        const ModalBasis basis(f.structure, mo);
-        const ModalSweep sweep(basis, dry.train, dry.analysis.contact.rail_lines, dry.analysis.dt_s);
+        // The modes once per structure and cut-off, as the workers share them.
+        auto& basis = bases[{f.structure_hash, f.plan.modal_cutoff_hz}];
+        if (!basis) {
+          ModalBasisOptions mo;
+          mo.max_frequency_hz = f.plan.modal_cutoff_hz;
+          basis = std::make_shared<const ModalBasis>(f.structure, mo);
+        }
+        const ModalSweep sweep(*basis, dry.train, dry.analysis.contact.rail_lines, dry.analysis.dt_s);
         (void)modal_run_steps(dry);
       } else {
         ScenePlan on_rung;
@@ -367,6 +372,9 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     const TrainFacts& f = facts[n];
     std::string modal_key;
     double modal_key_dt_s = 0.0;
+    // The scene text of each profile around its speed, for the dt it was made at.
+    std::vector<std::optional<CanonicalNumberSlot>> slots(profiles.size());
+    std::vector<double> slot_dt_s(profiles.size(), 0.0);
     for (double speed_kmh : f.speeds_kmh) {
       Scene at_speed = f.first_scene;
       at_speed.speed_mps = speed_kmh / 3.6;
@@ -386,13 +394,21 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
       const std::string key = f.plan.rung.exact_modal()
                                   ? modal_key
                                   : operator_key(f.structure_hash, at_speed.analysis, f.rail_flexibility);
-      for (const Profile& p : profiles) {
+      for (std::size_t k = 0; k < profiles.size(); ++k) {
+        const Profile& p = profiles[k];
         JobSpec job;
-        json scene = scene_doc(variant, trains[i], speed_kmh, p.value, dt.dt_s);
-        if (auto_fidelity) scene["fidelity"] = f.fidelity;
-        else if (modal && !scene["fidelity"].contains("modal_cutoff_hz"))
-          scene["fidelity"]["modal_cutoff_hz"] = f.plan.modal_cutoff_hz;  // the job runs without the frequencies
-        job.scene = canonical_text(scene);
+        const auto scene_at = [&](double at_speed_kmh) {
+          json scene = scene_doc(variant, trains[i], at_speed_kmh, p.value, dt.dt_s);
+          if (auto_fidelity) scene["fidelity"] = f.fidelity;
+          else if (modal && !scene["fidelity"].contains("modal_cutoff_hz"))
+            scene["fidelity"]["modal_cutoff_hz"] = f.plan.modal_cutoff_hz;  // the job runs without the frequencies
+          return scene;
+        };
+        if (!slots[k] || slot_dt_s[k] != dt.dt_s) {
+          slots[k] = CanonicalNumberSlot::make(scene_at(speed_kmh), "speed_kmh");
+          slot_dt_s[k] = dt.dt_s;
+        }
+        job.scene = slots[k] ? slots[k]->text(speed_kmh) : canonical_text(scene_at(speed_kmh));
         job.id = sha256_hex(job.scene);
         if (!ids.insert(job.id).second) continue;  // the same scene listed twice is one job
         job.train = train_labels[i];

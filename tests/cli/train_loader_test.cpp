@@ -79,6 +79,16 @@ TEST(TrainLoader, LibraryNamesAreListedFromTheTrainsFolder) {
   const auto names = library_train_names();
   EXPECT_NE(std::find(names.begin(), names.end(), "ICE3"), names.end());
   EXPECT_THROW(load_library_train("../trains/ICE3"), InputError) << "a name is never a path";
+  for (const char* name : {"", ".", "..", "./ICE3", "ICE3/", "ICE3\\x", "NoSuchTrain"}) {
+    try {
+      load_library_train(name);
+      ADD_FAILURE() << "'" << name << "' was loaded";
+    } catch (const InputError& e) {
+      // The message lists what the library has.
+      EXPECT_NE(std::string(e.what()).find("ICE3"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(load_library_train("ICE3").name, "ICE3");
 }
 
 // EN 1991-2 Annex E, HSLM-A table (N, D, d, P), and two

@@ -4,6 +4,7 @@
 // of the parameters, and one run through Simulation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -209,7 +210,15 @@ TEST(HhtParameters, ConsistentParametersAreAccepted) {
     EXPECT_DOUBLE_EQ(p.gamma, 0.5 - alpha);
     const auto problem = hht_stability_problem(p);
     EXPECT_FALSE(problem.has_value()) << "alpha " << alpha << ": " << *problem;
+    // Accepted without a scan (the 1977 proof); the scan agrees: the
+    // spectral radius never exceeds 1 over omega*dt = 1e-3 ... 1e7.
+    double rho = 0.0;
+    for (double lg = -3.0; lg <= 7.0; lg += 0.01) rho = std::max(rho, hht_spectral_radius(p, std::pow(10.0, lg)));
+    EXPECT_LE(rho, 1.0 + 1e-9) << "alpha " << alpha;
   }
+  // A pair a rounding away from the consistent one is scanned (and passes).
+  const HhtParameters near{-0.05, std::nextafter(0.275625, 1.0), 0.55};
+  EXPECT_FALSE(hht_stability_problem(near).has_value());
   // Hilber, Hughes & Taylor (1977): alpha = -0.05 gives beta = 0.275625, gamma = 0.55.
   const HhtParameters p = HhtParameters::from_alpha(-0.05);
   EXPECT_NEAR(p.beta, 0.275625, 1e-15);

@@ -1,6 +1,7 @@
 // A study expands into trains x speeds x profiles (x seeds) jobs with ids
 // that depend only on what each scene means; a study with any error
 // produces no job and names the JSON path of the error.
+#include <map>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -87,6 +88,44 @@ TEST(StudyExpansion, IdsAreHashesOfCanonicalScenesAndStableUnderReformatting) {
 TEST(StudyExpansion, CanonicalTextSortsKeysAndNormalizesNumbers) {
   EXPECT_EQ(scheduler::canonical_text(json::parse(R"({"b": 1.0, "a": [2.50, -0.0, 1e2, 0.1]})")),
             R"({"a":[2.5,0,100,0.1],"b":1})");
+}
+
+TEST(StudyExpansion, NumberSlotWritesTheCanonicalTextOfTheDocumentWithThatNumber) {
+  const json doc = json::parse(R"({"z": {"speed_kmh": [1, "x"]}, "speed_kmh": 0, "a": 0.25, "m": null})");
+  const auto slot = scheduler::CanonicalNumberSlot::make(doc, "speed_kmh");
+  ASSERT_TRUE(slot.has_value());
+  for (double x : {100.0, 100.30000000000001, 180.5, -0.0, 1e-7, 1e21, 123.456, 400.0 / 3.0}) {
+    json with = doc;
+    with["speed_kmh"] = x;
+    EXPECT_EQ(slot->text(x), scheduler::canonical_text(with)) << x;
+  }
+  // The slot's mark met elsewhere in the document: no slot.
+  json marked = doc;
+  marked["m"] = "\x01railvsi number slot\x01";
+  EXPECT_FALSE(scheduler::CanonicalNumberSlot::make(marked, "speed_kmh").has_value());
+  EXPECT_FALSE(scheduler::CanonicalNumberSlot::make(json::array({1}), "speed_kmh").has_value());
+}
+
+TEST(StudyExpansion, ScenesOfOneTrainDifferInTheirSpeedAloneAndAreCanonical) {
+  // Non-integral speeds and two profiles: each scene is written from its
+  // train's text around the speed, and reads back as the scene of its job.
+  json doc = tiny_study();
+  doc["speeds_kmh"] = {{"from", 100.5}, {"to", 103.2}, {"step", 0.9}};
+  doc["irregularities"] = json::parse(R"([null, {"x_m": [0, 5, 10], "r_m": [0, 0.001, 0]}])");
+  const StudyPlan plan = expand(doc);
+  ASSERT_EQ(plan.jobs.size(), 2u * 4u * 2u);
+  std::map<std::string, json> without_speed;
+  for (const scheduler::JobSpec& j : plan.jobs) {
+    json scene = json::parse(j.scene);
+    EXPECT_EQ(j.scene, scheduler::canonical_text(scene));
+    EXPECT_EQ(j.id, scheduler::sha256_hex(j.scene));
+    EXPECT_EQ(scene.at("speed_kmh").get<double>(), j.speed_kmh);
+    scene.erase("speed_kmh");
+    const auto [it, first] = without_speed.try_emplace(j.train + "/" + j.irregularity, scene);
+    if (!first) {
+      EXPECT_EQ(it->second, scene) << j.train;
+    }
+  }
 }
 
 TEST(StudyExpansion, BadTrainStiffnessIsReportedAtItsPathInTheStudy) {
