@@ -16,4 +16,6 @@ bool keep_freed_memory(std::size_t bytes) {
   return mmap_set && trim_set;
 }
 
+bool one_heap_for_all_threads() { return mallopt(M_ARENA_MAX, 1) == 1; }
+
 }  // namespace railvsi

@@ -111,9 +111,12 @@ int main(int argc, char** argv) {
   // commands that run jobs side by side (they call single_threaded_blas())
   // also start OpenBLAS with one thread; simulate, inspect and generate keep
   // its threads for their large factorizations.
-  railvsi::reexec_with_huge_pages(argv, runs_jobs_side_by_side(argc, argv));
-  // Workers reuse their buffers job after job: keep them mapped.
+  const bool workers = runs_jobs_side_by_side(argc, argv);
+  railvsi::reexec_with_huge_pages(argv, workers);
+  // Workers reuse their buffers job after job: keep them mapped, in the
+  // heap the main thread has faulted in already.
   railvsi::keep_freed_memory();
+  if (workers) railvsi::one_heap_for_all_threads();
   try {
     return run(argc, argv);
   } catch (const railvsi::InputError& e) {

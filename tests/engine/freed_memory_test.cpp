@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 #include <malloc.h>
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <cstring>
+#include <thread>
 
 #include "core/freed_memory.hpp"
 
@@ -39,6 +42,30 @@ std::size_t own_mappings_while_holding(std::size_t bytes) {
 TEST(FreedMemory, BlocksBelowTheThresholdComeFromTheHeap) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");  // a fresh process: glibc's defaults
   EXPECT_EXIT(check_thresholds(), ::testing::ExitedWithCode(0), "");
+}
+
+// Whether a block a new thread allocates (while the main thread holds one)
+// lies in the main heap, below the program break, rather than in an arena
+// mapped for the thread. Exits 0 when it is where `one_heap` says.
+[[noreturn]] void check_thread_block(bool one_heap) {
+  if (one_heap && !one_heap_for_all_threads()) std::_Exit(1);
+  void* held = std::malloc(64);
+  bool in_main_heap = false;
+  std::thread t([&] {
+    void* p = std::malloc(std::size_t{64} << 10);
+    std::memset(p, 1, std::size_t{64} << 10);
+    in_main_heap = static_cast<char*>(p) < static_cast<char*>(::sbrk(0));
+    std::free(p);
+  });
+  t.join();
+  std::free(held);
+  std::_Exit(in_main_heap == one_heap ? 0 : 2);
+}
+
+TEST(FreedMemory, ThreadsAllocateFromTheMainHeapWhenAskedElseFromAnArenaOfTheirOwn) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");  // a fresh process: glibc's defaults
+  EXPECT_EXIT(check_thread_block(false), ::testing::ExitedWithCode(0), "");
+  EXPECT_EXIT(check_thread_block(true), ::testing::ExitedWithCode(0), "");
 }
 
 TEST(FreedMemory, RefusesAThresholdGlibcCannotHold) {
