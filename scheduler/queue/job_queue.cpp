@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <tuple>
 
@@ -212,7 +213,7 @@ std::optional<std::int64_t> still_ours(Database& db, const ClaimedJob& job, cons
 // completes many jobs in one).
 struct CompleteStatements {
   explicit CompleteStatements(Database& db)
-      : insert(db.prepare("INSERT INTO job_envelopes (job_seq, quantity, location, value) VALUES (?, ?, ?, ?)")),
+      : db(db),
         fidelity(db.prepare("INSERT OR IGNORE INTO fidelity_records (id, record) VALUES (?, ?)")),
         // Only while `worker` still holds the job; its number in the store for the envelopes.
         update(db.prepare(
@@ -226,7 +227,22 @@ struct CompleteStatements {
             "ON CONFLICT (study_id) DO UPDATE SET jobs = jobs + 1, "
             "factorizations = factorizations + excluded.factorizations, hits = hits + excluded.hits, "
             "factorization_s = factorization_s + excluded.factorization_s, evictions = evictions + excluded.evictions")) {}
-  Statement insert, fidelity, update, stats;
+  // A job's envelope rows go in one statement of as many rows (up to
+  // kRowsPerInsert), prepared once per count: a statement per row cost a
+  // third more (8,080 rows of the 1,010-job HSLM sweep: 14 ms against 10).
+  static constexpr std::size_t kRowsPerInsert = 64;
+  Statement& insert(std::size_t rows) {
+    auto it = inserts.find(rows);
+    if (it == inserts.end()) {
+      std::string sql = "INSERT INTO job_envelopes (job_seq, quantity, location, value) VALUES (?, ?, ?, ?)";
+      for (std::size_t r = 1; r < rows; ++r) sql += ", (?, ?, ?, ?)";
+      it = inserts.emplace(rows, db.prepare(sql)).first;
+    }
+    return it->second;
+  }
+  Database& db;
+  std::map<std::size_t, Statement> inserts;
+  Statement fidelity, update, stats;
   // The last fidelity record stored and its id: the jobs of a batch share one.
   std::string fidelity_text, fidelity_id;
   // Jobs stored that neither factorized nor evicted (cache hits): counted in
@@ -307,11 +323,18 @@ bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::s
   st.update.run();  // to its end (one row: the id is the key), then reset
   if (new_fidelity) st.fidelity.bind(1, st.fidelity_id).bind(2, st.fidelity_text).run();
   if (outcome.ok) {
-    for (const EnvelopeRow& e : outcome.envelopes) {
-      st.insert.bind(1, seq).bind(2, e.quantity).bind(3, e.location);
-      if (e.value) st.insert.bind(4, *e.value);
-      else st.insert.bind_null(4);
-      st.insert.run();
+    const std::vector<EnvelopeRow>& rows = outcome.envelopes;
+    for (std::size_t first = 0; first < rows.size(); first += CompleteStatements::kRowsPerInsert) {
+      const std::size_t count = std::min(CompleteStatements::kRowsPerInsert, rows.size() - first);
+      Statement& insert = st.insert(count);
+      for (std::size_t r = 0; r < count; ++r) {
+        const EnvelopeRow& e = rows[first + r];
+        const int at = static_cast<int>(4 * r);
+        insert.bind(at + 1, seq).bind(at + 2, e.quantity).bind(at + 3, e.location);
+        if (e.value) insert.bind(at + 4, *e.value);
+        else insert.bind_null(at + 4);
+      }
+      insert.run();
     }
   }
   if (!outcome.factorized && outcome.factorization_s == 0.0 && outcome.evictions == 0) {

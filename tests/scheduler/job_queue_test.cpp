@@ -3,6 +3,11 @@
 // is stored only by the worker holding the job, and user text kept intact.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <optional>
+
+#include <fmt/format.h>
+
 #include "query/study_results.hpp"
 #include "queue/job_queue.hpp"
 #include "scheduler_test_support.hpp"
@@ -77,6 +82,44 @@ TEST_F(JobQueueTest, ExpiredLeaseReturnsTheJobAndCountsAttempts) {
   EXPECT_TRUE(live.complete(*second, outcome_with(2.0)));
   EXPECT_EQ(count_rows(*db_, "SELECT count(*) FROM envelopes"), 2);
   EXPECT_EQ(state_counts(*db_).done, 1);
+}
+
+TEST_F(JobQueueTest, EveryEnvelopeRowIsStoredWithItsValueWhateverTheirNumber) {
+  // Rows go in multi-row statements of up to 64: 1, 64, 65 and 150 rows,
+  // with missing values among them, in one batch.
+  json doc = tiny_study();
+  doc["trains"] = json::array({doc["trains"][0]});
+  doc["speeds_kmh"] = json::array({100, 150, 200, 250});
+  submit_study(*db_, plan(doc));
+  JobQueue queue(*db_, "w", 60.0);
+  std::vector<ClaimedJob> jobs;
+  std::vector<JobOutcome> outcomes;
+  for (const std::size_t rows : {1, 64, 65, 150}) {
+    const auto job = queue.claim();
+    ASSERT_TRUE(job);
+    JobOutcome o = outcome_with(0.0);
+    o.envelopes.clear();
+    for (std::size_t r = 0; r < rows; ++r)
+      o.envelopes.push_back({fmt::format("q{}", r), fmt::format("w{}", rows),
+                             r % 7 == 3 ? std::nullopt : std::optional<double>(0.5 * static_cast<double>(r))});
+    jobs.push_back(*job);
+    outcomes.push_back(std::move(o));
+  }
+  const std::vector<bool> stored = queue.complete_batch(jobs, outcomes);
+  EXPECT_EQ(stored, std::vector<bool>(4, true));
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    Statement s = db_->prepare("SELECT quantity, location, value FROM envelopes WHERE job_id = ? ORDER BY rowid");
+    s.bind(1, jobs[j].id);
+    std::size_t n = 0;
+    std::map<std::string, std::optional<double>> read;
+    while (s.step()) {
+      EXPECT_EQ(s.text(1), outcomes[j].envelopes.front().location);
+      read[s.text(0)] = s.optional_real(2);
+      ++n;
+    }
+    ASSERT_EQ(n, outcomes[j].envelopes.size());
+    for (const EnvelopeRow& e : outcomes[j].envelopes) EXPECT_EQ(read.at(e.quantity), e.value) << e.quantity;
+  }
 }
 
 TEST_F(JobQueueTest, JobWhoseWorkersKeepDyingEndsFailedWithItsError) {
