@@ -6,6 +6,7 @@
 
 #include "core/sha256.hpp"
 #include "core/unix_time.hpp"
+#include "store/fresh_store_schema.hpp"
 
 #include <stdexcept>
 #include <vector>
@@ -280,20 +281,27 @@ void migrate(Database& db, int up_to_version) {
   if (version > kStoreSchemaVersion)
     throw std::runtime_error(fmt::format("{} has schema version {}; this vsi knows up to {}: use a newer vsi",
                                          db.file(), version, kStoreSchemaVersion));
-  if (version == 0)
+  // A new, empty file up to the latest version: its schema in one step
+  // (fresh_store_schema.hpp), recorded as every migration applied.
+  const bool fresh = version == 0 && up_to_version == kStoreSchemaVersion && [&] {
+    Statement s = db.prepare("SELECT count(*) FROM sqlite_schema");
+    return s.step() && s.int64(0) == 0;
+  }();
+  if (fresh) db.exec(std::string(fresh_store_schema_sql()));
+  else if (version == 0)
     db.exec("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER PRIMARY KEY, applied_at REAL NOT NULL, "
             "description TEXT NOT NULL)");
   for (int v = version; v < up_to_version; ++v) {
     const Migration& m = migrations()[static_cast<std::size_t>(v)];
-    db.exec(m.sql);
+    if (!fresh) db.exec(m.sql);
     db.prepare("INSERT INTO schema_version (version, applied_at, description) VALUES (?, ?, ?)")
         .bind(1, v + 1)
         .bind(2, unix_now_s())
         .bind(3, m.description)
         .run();
-    // PRAGMA takes no parameters; the value is our own integer.
-    db.exec(fmt::format("PRAGMA user_version = {}", v + 1));
   }
+  // PRAGMA takes no parameters; the value is our own integer.
+  if (up_to_version > version) db.exec(fmt::format("PRAGMA user_version = {}", up_to_version));
   tx.commit();
 }
 

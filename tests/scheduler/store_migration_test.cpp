@@ -3,6 +3,8 @@
 // sees them (view job_records), unchanged to the byte. 9: the envelopes are
 // keyed by the job's number; view envelopes gives them by job id as before.
 #include <algorithm>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -21,6 +23,41 @@ using nlohmann::json;
 using namespace railvsi::scheduler;
 
 class StoreMigration : public ServiceTest {};
+
+// Every sqlite_schema entry (type, name, table, SQL text), the migrations
+// recorded and the version: what tells two stores' schemas apart.
+std::vector<std::string> schema_of(Database& db) {
+  std::vector<std::string> entries;
+  Statement s = db.prepare("SELECT type, name, tbl_name, coalesce(sql, '') FROM sqlite_schema ORDER BY type, name");
+  while (s.step()) entries.push_back(s.text(0) + " " + s.text(1) + " on " + s.text(2) + ": " + s.text(3));
+  Statement v = db.prepare("SELECT version, description FROM schema_version ORDER BY version");
+  while (v.step()) entries.push_back("migration " + std::to_string(v.int64(0)) + ": " + v.text(1));
+  entries.push_back("user_version " + std::to_string(count_rows(db, "PRAGMA user_version")));
+  return entries;
+}
+
+TEST_F(StoreMigration, ANewStoreGetsInOneStepTheSchemaOfEveryMigrationInTurn) {
+  Database fresh((dir_ / "fresh.sqlite").string());
+  migrate(fresh);
+  Database stepwise((dir_ / "stepwise.sqlite").string());
+  for (int v = 1; v <= kStoreSchemaVersion; ++v) migrate(stepwise, v);
+  const std::vector<std::string> expected = schema_of(stepwise);
+  EXPECT_EQ(schema_of(fresh), expected);
+  if (HasFailure()) {
+    // What fresh_store_schema.cpp must hold: the entries' SQL in order of creation.
+    std::string sql;
+    Statement s = stepwise.prepare("SELECT sql FROM sqlite_schema WHERE sql IS NOT NULL ORDER BY rowid");
+    while (s.step()) sql += s.text(0) + ";\n";
+    ADD_FAILURE() << "the schema of a new store after the last migration:\n" << sql;
+  }
+  EXPECT_EQ(count_rows(fresh, "SELECT count(*) FROM pragma_integrity_check WHERE integrity_check <> 'ok'"), 0);
+  // A file that is not empty never takes the one-step path: it is not a
+  // vsi store (version 0 with tables of its own), and the migrations refuse
+  // what they cannot create over.
+  Database other((dir_ / "other.sqlite").string());
+  other.exec("CREATE TABLE jobs (x)");
+  EXPECT_THROW(migrate(other), SqliteError);
+}
 
 TEST_F(StoreMigration, EightMovesScenesAndFidelityOutOfTheJobsRows) {
   const StudyPlan plan = expand_study(tiny_study(), dir_, (dir_ / "s.json").string());

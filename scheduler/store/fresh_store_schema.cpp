@@ -1,0 +1,146 @@
+#include "store/fresh_store_schema.hpp"
+
+namespace railvsi::scheduler {
+
+std::string_view fresh_store_schema_sql() {
+  // Each statement's text is stored as written: keep it byte for byte as
+  // the migrations leave it (ALTER TABLE's appended columns included).
+  static constexpr std::string_view kSql = R"sql(CREATE TABLE schema_version (version INTEGER PRIMARY KEY, applied_at REAL NOT NULL, description TEXT NOT NULL);
+CREATE TABLE studies (
+  id           TEXT PRIMARY KEY,      -- SHA-256 of the canonical study document
+  name         TEXT NOT NULL,         -- "name" of the study, else the file name
+  file         TEXT NOT NULL,         -- the study file as submitted
+  document     TEXT NOT NULL,         -- canonical JSON of the study
+  checks       TEXT NOT NULL,         -- JSON object of the study's "checks"
+  job_count    INTEGER NOT NULL,
+  submitted_at REAL NOT NULL          -- Unix time, s
+);
+CREATE TABLE jobs (
+  id              TEXT PRIMARY KEY,   -- SHA-256 of the canonical scene
+  train           TEXT NOT NULL,      -- train name
+  speed_kmh       REAL NOT NULL,
+  irregularity    TEXT NOT NULL,      -- profile label, 'none' for a perfect track
+  operator_key    TEXT NOT NULL,      -- SHA-256 of (structure model, dt, HHT, contact needs): jobs sharing a factorization
+  dt_s            REAL NOT NULL,
+  dt_reason       TEXT NOT NULL,
+  cutoff_hz       REAL NOT NULL,      -- low-pass cut-off of the deck acceleration envelope
+  state           TEXT NOT NULL DEFAULT 'queued'
+                  CHECK (state IN ('queued', 'running', 'done', 'failed', 'cancelled')),
+  attempts        INTEGER NOT NULL DEFAULT 0,
+  max_attempts    INTEGER NOT NULL DEFAULT 3,
+  worker          TEXT,               -- host:pid:thread of the last claim
+  lease_expires   REAL,               -- Unix time, s; a running job past it returns to the queue
+  error           TEXT,               -- why the job failed (last attempt)
+  status          TEXT,               -- engine status of the run: ok, diverged, no_convergence, invalid_input
+  steps           INTEGER,
+  wall_s          REAL,               -- whole job: model, setup, time loop, envelopes
+  loop_s          REAL,               -- time loop only
+  setup_s         REAL,               -- static equilibrium (and factorization when not shared)
+  factorization_s REAL,               -- spent factorizing for this job, 0 on a cache hit
+  enqueued_at     REAL NOT NULL,
+  started_at      REAL,
+  finished_at     REAL
+, warnings TEXT, rung TEXT, fidelity_id TEXT, seq INTEGER);
+CREATE INDEX jobs_lease ON jobs (state, lease_expires);
+CREATE TABLE study_jobs (
+  study_id TEXT NOT NULL REFERENCES studies (id),
+  job_id   TEXT NOT NULL REFERENCES jobs (id),
+  position INTEGER NOT NULL,          -- order of the job in the study: trains, then speeds, then profiles
+  PRIMARY KEY (study_id, job_id)
+) WITHOUT ROWID;
+CREATE INDEX study_jobs_job ON study_jobs (job_id);
+CREATE TABLE cache_stats (
+  study_id        TEXT PRIMARY KEY REFERENCES studies (id),
+  jobs            INTEGER NOT NULL DEFAULT 0,   -- jobs finished (done or failed after a run)
+  factorizations  INTEGER NOT NULL DEFAULT 0,
+  hits            INTEGER NOT NULL DEFAULT 0,
+  factorization_s REAL NOT NULL DEFAULT 0,
+  evictions       INTEGER NOT NULL DEFAULT 0
+);
+CREATE VIEW study_progress AS
+  SELECT sj.study_id, j.state, count(*) AS jobs
+  FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id GROUP BY sj.study_id, j.state;
+CREATE TABLE shard (                  -- one row in a store written by vsi shard, none elsewhere
+  study_id       TEXT PRIMARY KEY REFERENCES studies (id),
+  shard_index    INTEGER NOT NULL,    -- 0 .. shard_count - 1 (SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX)
+  shard_count    INTEGER NOT NULL,
+  estimated_cost REAL NOT NULL,       -- sum over its jobs of steps x model DOFs
+  created_at     REAL NOT NULL        -- Unix time, s
+);
+CREATE TABLE merged_shards (          -- in a store written by vsi merge: the shards merged into it
+  study_id        TEXT NOT NULL REFERENCES studies (id),
+  shard_index     INTEGER NOT NULL,
+  shard_count     INTEGER NOT NULL,
+  file            TEXT NOT NULL,      -- the shard file at the last merge
+  jobs_done       INTEGER NOT NULL,   -- jobs of the shard done at the last merge
+  -- the shard's factorization cache statistics at the last merge; cache_stats
+  -- of the study is their sum, so merging again counts nothing twice
+  cache_jobs      INTEGER NOT NULL,
+  factorizations  INTEGER NOT NULL,
+  hits            INTEGER NOT NULL,
+  factorization_s REAL NOT NULL,
+  evictions       INTEGER NOT NULL,
+  merged_at       REAL NOT NULL,
+  PRIMARY KEY (study_id, shard_index)
+) WITHOUT ROWID;
+CREATE TABLE verification_jobs (
+  study_id      TEXT NOT NULL REFERENCES studies (id),
+  job_id        TEXT NOT NULL REFERENCES jobs (id),  -- the study's job verified
+  verify_job_id TEXT NOT NULL REFERENCES jobs (id),  -- its re-run, a job of no study
+  refinement    INTEGER NOT NULL,                    -- 1: dt/2 on the job's rung; 2: dt/2 on the next rung
+  why           TEXT NOT NULL,                       -- e.g. "governing deck_acceleration_mps2", "sample"
+  PRIMARY KEY (study_id, job_id, verify_job_id)
+) WITHOUT ROWID;
+CREATE INDEX verification_jobs_verify ON verification_jobs (verify_job_id);
+CREATE TABLE price_rows (
+  study_id    TEXT NOT NULL REFERENCES studies (id),
+  job_id      TEXT NOT NULL REFERENCES jobs (id),  -- the priced job (its stored scene)
+  run         INTEGER NOT NULL,     -- index of the run in the job's ladder (rung, then decreasing dt)
+  model       TEXT NOT NULL,        -- moving-forces, interaction
+  structure   TEXT NOT NULL,        -- fe, modal
+  contact_law TEXT NOT NULL,        -- none, rigid, linear-hertz, hertz
+  modes       INTEGER,              -- modal rungs: modes kept; NULL for fe
+  dt_s        REAL NOT NULL,
+  status      TEXT NOT NULL,        -- the run's status, 'refused' when the rung cannot run the scene
+  cpu_s       REAL NOT NULL,        -- thread CPU time of the run alone (setup it shares included)
+  wall_s      REAL NOT NULL,
+  reference   INTEGER NOT NULL,     -- 1 for the run the errors are relative to
+  quantity    TEXT NOT NULL,        -- envelope quantity name (overall value)
+  value       REAL,                 -- NULL when the run has none
+  error       REAL,                 -- signed relative difference to the reference, fraction; NULL when none
+  pareto      INTEGER NOT NULL,     -- 1 on the Pareto front of |error| against cpu_s for this quantity
+  priced_at   REAL NOT NULL,        -- Unix time, s
+  PRIMARY KEY (study_id, job_id, run, quantity)
+) WITHOUT ROWID;
+CREATE INDEX jobs_claim ON jobs (state, operator_key, rung, train);
+CREATE TABLE job_scenes (
+  job_id TEXT PRIMARY KEY REFERENCES jobs (id),
+  scene  TEXT NOT NULL                -- canonical scene JSON (what the worker runs); its SHA-256 is job_id
+);
+CREATE TABLE fidelity_records (
+  id     TEXT PRIMARY KEY,            -- SHA-256 of record
+  record TEXT NOT NULL                -- JSON: model, contact law, solver path, DOFs, HHT parameters, modes, ...
+) WITHOUT ROWID;
+CREATE VIEW job_records AS
+  SELECT j.*, s.scene, f.record AS fidelity
+  FROM jobs j LEFT JOIN job_scenes s ON s.job_id = j.id LEFT JOIN fidelity_records f ON f.id = j.fidelity_id;
+CREATE UNIQUE INDEX jobs_seq ON jobs (seq);
+CREATE TABLE job_envelopes (
+  job_seq        INTEGER NOT NULL REFERENCES jobs (seq),
+  quantity       TEXT NOT NULL,       -- e.g. deck_acceleration_mps2 (unit in the name)
+  location       TEXT NOT NULL,       -- output point, wheel or vehicle name; '' for the whole job
+  value          REAL,                -- NULL when the run could not produce it (never NaN)
+  error_estimate REAL,                -- (value - verified) / verified; NULL: not verified
+  PRIMARY KEY (job_seq, quantity, location)
+) WITHOUT ROWID;
+CREATE VIEW envelopes AS
+  SELECT j.id AS job_id, e.quantity, e.location, e.value, e.error_estimate
+  FROM job_envelopes e JOIN jobs j ON j.seq = e.job_seq;
+CREATE VIEW study_envelopes AS
+  SELECT sj.study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
+  FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id JOIN job_envelopes e ON e.job_seq = j.seq;
+)sql";
+  return kSql;
+}
+
+}  // namespace railvsi::scheduler
