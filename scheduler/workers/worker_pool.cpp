@@ -20,6 +20,7 @@
 #include "core/terminal_text.hpp"
 #include "core/unix_time.hpp"
 #include "store/store_schema.hpp"
+#include "workers/held_jobs.hpp"
 #include "workers/job_runner.hpp"
 
 namespace railvsi::scheduler {
@@ -43,28 +44,6 @@ struct Tally {
     std::lock_guard lock(mutex);
     if (error.empty()) error = why;
   }
-};
-
-// The jobs each thread holds (one, or a batch), for the heartbeat: it
-// renews exactly these (by job id and worker name), nothing else the name
-// might match.
-class HeldJobs {
- public:
-  explicit HeldJobs(std::size_t threads) : jobs_of_thread_(threads) {}
-  void hold(std::size_t thread, std::vector<std::string> job_ids) {
-    std::lock_guard lock(mutex_);
-    jobs_of_thread_[thread] = std::move(job_ids);
-  }
-  void drop(std::size_t thread) { hold(thread, {}); }
-  // thread -> job ids; empty when it holds none.
-  std::vector<std::vector<std::string>> snapshot() {
-    std::lock_guard lock(mutex_);
-    return jobs_of_thread_;
-  }
-
- private:
-  std::mutex mutex_;
-  std::vector<std::vector<std::string>> jobs_of_thread_;
 };
 
 // A stop flag the heartbeat and the progress loop can sleep on.
@@ -136,6 +115,7 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
   const double idle_wait_s = std::clamp(options.lease_s / 4.0, 0.02, 0.2);
   for (;;) {
     std::vector<ClaimedJob> batch;
+    const std::uint64_t seen = held.generation();  // before the claim: no change is missed
     try {
       batch = queue.claim_batch(last_key, std::max<std::size_t>(1, options.max_batch_jobs));
       backoff.succeeded();
@@ -147,9 +127,10 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
       // Jobs still running elsewhere may come back if their worker dies:
       // wait for them rather than leave them behind. A job this process
       // could not put back is no longer renewed, so its lease expires and
-      // the next claim takes it: the wait ends.
+      // the next claim takes it: the wait ends. A sibling thread that
+      // finishes or puts back its batch ends the wait at once.
       if (nothing_left(db)) return;
-      std::this_thread::sleep_for(std::chrono::duration<double>(idle_wait_s));
+      held.wait_for_change(seen, idle_wait_s);
       continue;
     }
     std::vector<std::string> ids;
