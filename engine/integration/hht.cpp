@@ -75,7 +75,7 @@ std::optional<std::string> hht_stability_problem(const HhtParameters& p) {
   if (!(p.alpha >= -1.0 / 3.0 - 1e-15 && p.alpha <= 0.0))
     return fmt::format("hht_alpha = {} is outside [-1/3, 0]", p.alpha);
   if (!(p.beta > 0.0)) return fmt::format("hht_beta = {} must be > 0", p.beta);
-  if (p.gamma < 0.5 - 1e-12)
+  if (!(p.gamma >= 0.5 - 1e-12))  // NaN too
     return fmt::format("hht_gamma = {} < 1/2: the scheme has negative numerical damping and "
                        "amplifies the response (use gamma = (1-2 alpha)/2 = {})",
                        p.gamma, 0.5 * (1.0 - 2.0 * p.alpha));

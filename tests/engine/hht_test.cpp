@@ -219,6 +219,10 @@ TEST(HhtParameters, ConsistentParametersAreAccepted) {
   // A pair a rounding away from the consistent one is scanned (and passes).
   const HhtParameters near{-0.05, std::nextafter(0.275625, 1.0), 0.55};
   EXPECT_FALSE(hht_stability_problem(near).has_value());
+  // Not a number is refused (the scan would not see it).
+  EXPECT_TRUE(hht_stability_problem({-0.05, 0.275625, std::nan("")}).has_value());
+  EXPECT_TRUE(hht_stability_problem({-0.05, std::nan(""), 0.55}).has_value());
+  EXPECT_TRUE(hht_stability_problem({std::nan(""), 0.275625, 0.55}).has_value());
   // Hilber, Hughes & Taylor (1977): alpha = -0.05 gives beta = 0.275625, gamma = 0.55.
   const HhtParameters p = HhtParameters::from_alpha(-0.05);
   EXPECT_NEAR(p.beta, 0.275625, 1e-15);

@@ -128,6 +128,29 @@ TEST(StudyExpansion, ScenesOfOneTrainDifferInTheirSpeedAloneAndAreCanonical) {
   }
 }
 
+TEST(StudyExpansion, ScenesCarryTheirOwnTimeStepWhereItChangesWithTheSpeed) {
+  // The FE rung with the time step left to the policy, 0.1 m rail
+  // elements: a wheel's travel per step bounds dt, so it shrinks with the
+  // speed, and the scene text around the speed is made again for each dt.
+  json doc = tiny_study();
+  doc["analysis"].erase("dt_s");
+  doc["structure"]["deck"]["EI_Nm2"] = 5.0e8;
+  doc["structure"]["element_length_m"] = 0.1;
+  doc["fidelity"] = {{"model", "moving_forces"}, {"structure", "fe"}};
+  doc["speeds_kmh"] = {{"from", 100}, {"to", 400}, {"step", 50}};
+  const StudyPlan plan = expand(doc);
+  std::map<std::string, std::set<double>> steps_of_train;
+  for (const scheduler::JobSpec& j : plan.jobs) {
+    const json scene = json::parse(j.scene);
+    EXPECT_EQ(j.scene, scheduler::canonical_text(scene));
+    EXPECT_EQ(j.id, scheduler::sha256_hex(j.scene));
+    EXPECT_EQ(scene.at("speed_kmh").get<double>(), j.speed_kmh);
+    EXPECT_EQ(scene.at("analysis").at("dt_s").get<double>(), j.dt_s) << j.train << " at " << j.speed_kmh;
+    steps_of_train[j.train].insert(j.dt_s);
+  }
+  for (const auto& [train, steps] : steps_of_train) EXPECT_GE(steps.size(), 2u) << train << ": one dt for all speeds";
+}
+
 TEST(StudyExpansion, BadTrainStiffnessIsReportedAtItsPathInTheStudy) {
   json doc = tiny_study();
   doc["trains"].push_back({{"name", "bad"}, {"vehicles", json::array({car(-1.0)})}});
