@@ -90,7 +90,8 @@ void report_input_error(const InputError& e) {
   std::cerr << "error: " << scheduler::terminal_safe(e.describe()) << '\n';
 }
 
-// The command's name: the first argument that is not an option.
+// Whether the command (the first argument that is not an option; vsi's own
+// options are flags) runs jobs side by side.
 bool runs_jobs_side_by_side(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view a = argv[i];
