@@ -141,7 +141,8 @@ AnalysisOptions parse_analysis(const json& a) {
   return o;
 }
 
-Scene parse_scene(const json& doc, const std::filesystem::path& base_dir, const std::string& file_for_errors) {
+Scene parse_scene(const json& doc, const std::filesystem::path& base_dir, const std::string& file_for_errors,
+                  ImportedStructures* imports) {
   return parse_validated(doc, "scene.schema.json", file_for_errors, [&] {
     Scene scene;
     // Cheap checks first: a typo in the analysis should not wait for a big import.
@@ -150,7 +151,8 @@ Scene parse_scene(const json& doc, const std::filesystem::path& base_dir, const 
     scene.speed_mps = speed_mps(doc, scene.analysis);
     scene.train = scene_train(doc.at("train"));
     scene.fidelity = fidelity_request(doc, scene.train, scene.analysis.contact);
-    scene.structure = parse_structure(doc.at("structure"), doc.value("outputs", json::object()), base_dir, scene.train);
+    scene.structure =
+        parse_structure(doc.at("structure"), doc.value("outputs", json::object()), base_dir, scene.train, imports);
     scene.irregularity = scene_irregularity(doc, base_dir, scene);
     return scene;
   });

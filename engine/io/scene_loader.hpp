@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/imported_structures.hpp"
 #include "simulation/scene.hpp"
 
 namespace railvsi {
@@ -15,8 +16,9 @@ Scene load_scene(const std::filesystem::path& file);
 
 // `doc` already read; relative file names (profiles, matrices, maps) are
 // resolved from base_dir; file_for_errors names the document in errors.
+// An imported structure is read through `imports` when given.
 Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& base_dir,
-                  const std::string& file_for_errors);
+                  const std::string& file_for_errors, ImportedStructures* imports = nullptr);
 
 // The analysis options of a validated /analysis object (paths absolute).
 AnalysisOptions parse_analysis(const nlohmann::json& analysis);

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/imported_structures.hpp"
 #include "model/structure_model.hpp"
 #include "model/train.hpp"
 
@@ -14,10 +15,11 @@ namespace railvsi {
 // `structure` and `outputs` are the validated /structure and /outputs values
 // of a scene (outputs may be an empty object). InputError paths are absolute
 // in the scene; errors in the map file name that file. The train sizes the
-// default approach embankment of a generated track.
+// default approach embankment of a generated track. An import is read
+// through `imports` when given (once for the same files).
 std::shared_ptr<const StructureModel> parse_structure(const nlohmann::json& structure,
                                                       const nlohmann::json& outputs,
                                                       const std::filesystem::path& base_dir,
-                                                      const Train& train);
+                                                      const Train& train, ImportedStructures* imports = nullptr);
 
 }  // namespace railvsi

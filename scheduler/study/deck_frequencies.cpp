@@ -59,6 +59,7 @@ DeckFrequencies deck_frequencies(const StructureModel& structure) {
     }
     DeckFrequencies f = read_frequencies(structure, modes);
     f.modes_searched = static_cast<int>(modes.frequencies_hz.size());
+    f.lowest_hz = modes.frequencies_hz;
     const bool more = f.f3_hz == 0.0 && f.f0_hz > 0.0 && f.modes_searched == n && 2 * n <= kMaxModes &&
                       2.0 * n * structure.num_dofs() <= kModeBudget;
     // Not found among the modes computed: unknown (0), the code frequency

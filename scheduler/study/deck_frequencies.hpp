@@ -7,6 +7,8 @@
 // three or more half-waves in a span, found among the modes of the whole
 // structure with the track modes skipped (24 of them, doubled while f3 is
 // not among them, up to 96 for 20,000 DOFs).
+#include <vector>
+
 #include "analysis/span_supports.hpp"
 #include "core/status.hpp"
 #include "model/structure_model.hpp"
@@ -20,6 +22,9 @@ struct DeckFrequencies {
   // or read from its modes (analysis/span_supports.hpp); empty: one span.
   SpanSupports supports;
   int modes_searched = 0;  // the lowest modes f3 was looked for in
+  // Their frequencies, ascending: count_modes reads the modes below a
+  // cut-off from them when they reach past it.
+  std::vector<double> lowest_hz;
   Status status;           // of the modal analysis: not ok, nothing was found
 };
 

@@ -40,19 +40,27 @@ PlannerInput planner_input(const Scene& scene, const StudyAsks& asks, const Deck
   return in;
 }
 
-int count_modes(const std::shared_ptr<const StructureModel>& structure, double cutoff_hz, int max_dofs) {
-  if (structure->num_dofs() > max_dofs || !(cutoff_hz > 0.0)) return -1;
+int count_modes(const std::shared_ptr<const StructureModel>& structure, double cutoff_hz,
+                const std::vector<double>& lowest_hz, int max_dofs) {
+  if (!(cutoff_hz > 0.0)) return -1;
+  const auto below_cutoff = [&](const std::vector<double>& frequencies_hz) {
+    return static_cast<int>(
+        std::count_if(frequencies_hz.begin(), frequencies_hz.end(), [&](double f) { return f <= cutoff_hz; }));
+  };
+  const int known = below_cutoff(lowest_hz);
+  if (known < static_cast<int>(lowest_hz.size()) || known > kMaxModalModes) return known;
+  const int dofs = structure->num_dofs();
+  if (dofs > max_dofs) return -1;
   // In growing batches, and no further than the planner needs: beyond
   // kMaxModalModes the answer is FE however many there are (a track on
   // embankments has hundreds of modes below the cut-off).
-  const int dofs = structure->num_dofs();
-  for (int asked = 8;; asked *= 2) {
+  for (int asked = std::max(8, 2 * known);; asked *= 2) {
     ModalOptions o;
     o.modes = std::min(asked, dofs - 1);
+    if (dofs >= o.subspace_from_dofs) o.solver = ModeSolver::kSubspace;
     const ModalResult r = modal_analysis(*structure, o);
     if (!r.status.ok()) return -1;
-    const auto below = static_cast<int>(
-        std::count_if(r.frequencies_hz.begin(), r.frequencies_hz.end(), [&](double f) { return f <= cutoff_hz; }));
+    const int below = below_cutoff(r.frequencies_hz);
     if (below < static_cast<int>(r.frequencies_hz.size()) || o.modes >= dofs - 1) return below;
     if (below > kMaxModalModes) return below;  // at least this many
   }
@@ -84,7 +92,7 @@ ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f) {
     // Counted only where the modal rung could run (moving forces, until the
     // modal interaction rung is built in).
     const bool modal_possible = scene.train.is_moving_forces();
-    const int modes = modal_possible && f.f0_hz > 0.0 && f.f3_hz > 0.0 ? count_modes(scene.structure, cutoff) : -1;
+    const int modes = modal_possible && f.f0_hz > 0.0 && f.f3_hz > 0.0 ? count_modes(scene.structure, cutoff, f.lowest_hz) : -1;
     const EffectsPlan e = plan_effects(planner_input(scene, scene_asks(scene), f, modes));
     p.rung = e.rung;
     p.chosen_by = "planner";

@@ -18,22 +18,24 @@ StudyCostEstimate estimate_study_cost(const StudyPlan& plan) {
   std::map<std::string, Scene> by_train;  // the first job's scene of each train
   std::map<std::string, int> modes_of_train;  // on the exact modal rung
   std::set<std::string> operators;
+  ImportedStructures imports;  // a model's files read once for every train
   for (const JobSpec& job : plan.jobs) {
     auto it = by_train.find(job.train);
     if (it == by_train.end()) {
       // File names in a job are absolute (made so at submission).
       const std::string name = "job " + job.id.substr(0, 12);
-      it = by_train.emplace(job.train, parse_scene(parse_json_text(job.scene, name), "/", name)).first;
+      it = by_train.emplace(job.train, parse_scene(parse_json_text(job.scene, name), "/", name, &imports)).first;
     }
     Scene scene = it->second;
     scene.speed_mps = job.speed_kmh / 3.6;
     scene.analysis.dt_s = job.dt_s;
     // Jobs on the exact modal rung cost their modes, not the FE operator.
     const bool modal = job.rung == "moving_forces/modal" && scene.fidelity.modal_cutoff_hz;
-    int modes = 0;
-    if (modal) {
+    int modes = job.modes;
+    if (modal && modes == 0) {
+      // Not expanded here: counted, up to the size where Lanczos is cheap.
       auto [m, fresh] = modes_of_train.try_emplace(job.train, 0);
-      if (fresh) m->second = std::max(1, count_modes(scene.structure, *scene.fidelity.modal_cutoff_hz));
+      if (fresh) m->second = std::max(1, count_modes(scene.structure, *scene.fidelity.modal_cutoff_hz, {}, 20000));
       modes = m->second;
     }
     const CostPrediction p = predict_cost(cost_inputs(scene, modal, modes));

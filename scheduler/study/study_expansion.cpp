@@ -138,6 +138,7 @@ struct TrainFacts {
   std::shared_ptr<const StructureModel> structure;
   Scene first_scene;
   EffectsPlan plan;             // the rung of this train's jobs
+  int modes = 0;                // the exact modal rung: the modes of its basis
   nlohmann::json fidelity;      // what the job scenes say of it (null: the study's own)
   std::vector<double> speeds_kmh;
 };
@@ -259,9 +260,10 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     scene["analysis"]["dt_s"] = dt_s;
     return scene;
   };
+  ImportedStructures imports;  // a model's files read once for every train
   const auto parse = [&](const json& scene, const std::string& train_path, const std::string& profile_path) {
     try {
-      return parse_scene(scene, base_dir, file);
+      return parse_scene(scene, base_dir, file, &imports);
     } catch (const InputError& e) {
       throw in_study(e, file, train_path, profile_path);
     }
@@ -299,7 +301,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
       int modes = -1;
       if (f.first_scene.train.is_moving_forces() && f.frequencies.f0_hz > 0.0 && f.frequencies.f3_hz > 0.0) {
         auto [m, fresh] = modes_of_structure.try_emplace(f.structure_hash, -1);
-        if (fresh) m->second = count_modes(f.structure, modal_cutoff_hz);
+        if (fresh) m->second = count_modes(f.structure, modal_cutoff_hz, f.frequencies.lowest_hz);
         modes = m->second;
       }
       f.plan = plan_effects(planner_input(f.first_scene, study_asks(doc, f.first_scene.train.is_moving_forces()),
@@ -343,6 +345,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
         }
         const ModalSweep sweep(*basis, dry.train, dry.analysis.contact.rail_lines, dry.analysis.dt_s);
         (void)modal_run_steps(dry);
+        f.modes = basis->num_modes();
       } else {
         ScenePlan on_rung;
         on_rung.rung = f.plan.rung;
@@ -420,6 +423,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
         job.dt_reason = dt.reason;
         job.cutoff_hz = f.cutoff_hz;
         job.rung = f.plan.rung.name();
+        job.modes = f.modes;
         plan.jobs.push_back(std::move(job));
       }
     }

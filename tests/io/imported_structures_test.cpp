@@ -1,0 +1,57 @@
+// ImportedStructures: a study's trains share one read of a model's files,
+// and a model named differently (other files) is read anew.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "beam_files.hpp"
+#include "core/input_error.hpp"
+#include "io/imported_structures.hpp"
+#include "io/structure_import.hpp"
+
+namespace railvsi::test {
+namespace {
+
+nlohmann::json beam_import(const char* K, const char* M, const char* map) {
+  return {{"import", {{"K", K}, {"M", M}, {"map", map}}}};
+}
+
+TEST(ImportedStructures, TheSameFilesAreReadOnceAndGiveTheModelOfAReadOfTheirOwn) {
+  ASSERT_FALSE(beam_files_dir().empty()) << "write_beam_files.py failed (python3-scipy?)";
+  const auto s = beam_import("beam_K_sym.mtx", "beam_M_sym.mtx", "map_index.json");
+  const auto none = nlohmann::json::object();
+  ImportedStructures imports;
+  const auto first = imports.import(s, none, beam_files_dir());
+  const auto again = imports.import(s, none, beam_files_dir());
+  EXPECT_EQ(first.get(), again.get());
+  EXPECT_EQ(imports.reads(), 1);
+  // What import_structure reads by itself.
+  const auto alone = import_structure(s, none, beam_files_dir());
+  EXPECT_EQ(first->num_dofs(), alone->num_dofs());
+  EXPECT_EQ((first->K() - alone->K()).norm(), 0.0);
+  EXPECT_EQ((first->M() - alone->M()).norm(), 0.0);
+}
+
+TEST(ImportedStructures, OtherFilesAreAnotherModel) {
+  ASSERT_FALSE(beam_files_dir().empty()) << "write_beam_files.py failed (python3-scipy?)";
+  ImportedStructures imports;
+  const auto none = nlohmann::json::object();
+  const auto by_equation = imports.import(beam_import("beam_K_sym.mtx", "beam_M_sym.mtx", "map_index.json"), none,
+                                          beam_files_dir());
+  const auto abaqus =
+      imports.import(beam_import("beam_K.abq", "beam_M.abq", "map_abaqus.json"), none, beam_files_dir());
+  EXPECT_EQ(imports.reads(), 2);
+  EXPECT_NE(by_equation.get(), abaqus.get());
+  EXPECT_NE(abaqus->info().import_notes, by_equation->info().import_notes);
+}
+
+TEST(ImportedStructures, AFileThatCannotBeReadFailsOnEveryCall) {
+  ASSERT_FALSE(beam_files_dir().empty()) << "write_beam_files.py failed (python3-scipy?)";
+  const auto s = beam_import("missing_K.mtx", "beam_M_sym.mtx", "map_index.json");
+  ImportedStructures imports;
+  for (int call = 0; call < 2; ++call)
+    EXPECT_THROW(imports.import(s, nlohmann::json::object(), beam_files_dir()), InputError);
+  EXPECT_EQ(imports.reads(), 0);
+}
+
+}  // namespace
+}  // namespace railvsi::test
