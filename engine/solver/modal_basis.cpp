@@ -15,6 +15,7 @@ namespace {
 // model has no more).
 ModalResult modes_up_to(const StructureModel& s, const ModalBasisOptions& o) {
   int asked = std::max(8, o.min_modes);
+  while (o.modes_below_cutoff >= asked && asked < s.num_dofs() - 1) asked *= 2;  // these would not reach past it
   for (;;) {
     ModalOptions mo;
     mo.modes = std::min(asked, s.num_dofs() - 1);

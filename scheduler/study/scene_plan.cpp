@@ -53,8 +53,12 @@ int count_modes(const std::shared_ptr<const StructureModel>& structure, double c
   if (dofs > max_dofs) return -1;
   // In growing batches, and no further than the planner needs: beyond
   // kMaxModalModes the answer is FE however many there are (a track on
-  // embankments has hundreds of modes below the cut-off).
-  for (int asked = std::max(8, 2 * known);; asked *= 2) {
+  // embankments has hundreds of modes below the cut-off). The batches are
+  // those of a ModalBasis (8, 16, 32, ...), from the first that can reach
+  // past the known modes: its last solve is then the basis's own.
+  int first = 8;
+  while (first <= known) first *= 2;
+  for (int asked = first;; asked *= 2) {
     ModalOptions o;
     o.modes = std::min(asked, dofs - 1);
     if (dofs >= o.subspace_from_dofs) o.solver = ModeSolver::kSubspace;
@@ -100,6 +104,7 @@ ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f) {
     p.escalate_below_fraction = e.escalate_below_fraction;
     p.escalation_dt_factor = e.escalation_dt_factor;
     p.reasons = e.reasons;
+    p.modes_below_cutoff = modes;
     return p;
   }
   p.rung = rung_of_analysis(scene);

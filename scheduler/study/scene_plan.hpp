@@ -23,6 +23,7 @@ struct ScenePlan {
   std::optional<double> escalate_below_fraction;
   std::optional<double> escalation_dt_factor;  // the escalated run's dt / the plan's; absent: 1
   std::vector<std::string> reasons;
+  int modes_below_cutoff = -1;  // as the planner counted them ("auto"), else -1
 };
 
 // The analysis options on the plan's structure: interaction on the modes

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "generators/bridge_2d.hpp"
+#include "solver/modal_basis.hpp"
 #include "study/deck_frequencies.hpp"
 #include "study/scene_plan.hpp"
 
@@ -54,6 +55,24 @@ TEST(ModeCount, NoCutoffCountsNothing) {
   const auto structure = three_equal_spans();
   EXPECT_EQ(count_modes(structure, 0.0), -1);
   EXPECT_EQ(count_modes(structure, std::nan("")), -1);
+}
+
+TEST(ModeCount, ABasisGivenTheCountHasTheModesOfOneCountedInBatchesToTheBit) {
+  const auto structure = three_equal_spans();
+  const double cutoff_hz = 0.5 * (span_hz(4) + span_hz(5));
+  const int count = count_modes(structure, cutoff_hz);
+  ASSERT_EQ(count, 12);
+  ModalBasisOptions o;
+  o.max_frequency_hz = cutoff_hz;
+  const ModalBasis batches(structure, o);  // 8 modes, then 16
+  o.modes_below_cutoff = count;
+  const ModalBasis known(structure, o);  // 16 at once
+  ASSERT_EQ(batches.num_modes(), 12);
+  ASSERT_EQ(known.num_modes(), 12);
+  EXPECT_EQ(batches.omega_rad_s(), known.omega_rad_s());
+  EXPECT_EQ(batches.zeta(), known.zeta());
+  for (int dof : structure->rail_dofs())
+    for (int k = 0; k < 12; ++k) ASSERT_EQ(batches.row(dof)[k], known.row(dof)[k]) << "DOF " << dof << ", mode " << k;
 }
 
 }  // namespace
