@@ -142,7 +142,7 @@ AnalysisOptions parse_analysis(const json& a) {
 }
 
 Scene parse_scene(const json& doc, const std::filesystem::path& base_dir, const std::string& file_for_errors,
-                  ImportedStructures* imports) {
+                  ImportedStructures* imports, const std::string& content_key) {
   return parse_validated(doc, "scene.schema.json", file_for_errors, [&] {
     Scene scene;
     // Cheap checks first: a typo in the analysis should not wait for a big import.
@@ -152,7 +152,8 @@ Scene parse_scene(const json& doc, const std::filesystem::path& base_dir, const 
     scene.train = scene_train(doc.at("train"));
     scene.fidelity = fidelity_request(doc, scene.train, scene.analysis.contact);
     scene.structure =
-        parse_structure(doc.at("structure"), doc.value("outputs", json::object()), base_dir, scene.train, imports);
+        parse_structure(doc.at("structure"), doc.value("outputs", json::object()), base_dir, scene.train, imports,
+                        content_key);
     scene.irregularity = scene_irregularity(doc, base_dir, scene);
     return scene;
   });

@@ -16,9 +16,11 @@ Scene load_scene(const std::filesystem::path& file);
 
 // `doc` already read; relative file names (profiles, matrices, maps) are
 // resolved from base_dir; file_for_errors names the document in errors.
-// An imported structure is read through `imports` when given.
+// An imported structure is read through `imports` when given (see
+// ImportedStructures::import for content_key).
 Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& base_dir,
-                  const std::string& file_for_errors, ImportedStructures* imports = nullptr);
+                  const std::string& file_for_errors, ImportedStructures* imports = nullptr,
+                  const std::string& content_key = "");
 
 // The analysis options of a validated /analysis object (paths absolute).
 AnalysisOptions parse_analysis(const nlohmann::json& analysis);

@@ -100,9 +100,11 @@ Bridge2dOptions bridge_options(const json& s, const json& outputs, double min_ap
 
 std::shared_ptr<const StructureModel> parse_structure(const json& structure, const json& outputs,
                                                       const std::filesystem::path& base_dir,
-                                                      const Train& train, ImportedStructures* imports) {
+                                                      const Train& train, ImportedStructures* imports,
+                                                      const std::string& content_key) {
   if (structure.contains("import"))
-    return imports ? imports->import(structure, outputs, base_dir) : import_structure(structure, outputs, base_dir);
+    return imports ? imports->import(structure, outputs, base_dir, content_key)
+                   : import_structure(structure, outputs, base_dir);
   // A multibody train starts wholly on the track (static equilibrium, no
   // entry transient) when the approach is not given explicitly.
   const double min_approach_m = train.is_moving_forces() ? 0.0 : train.length_m() + 10.0;

@@ -96,7 +96,8 @@ ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f) {
     // Counted only where the modal rung could run (moving forces, until the
     // modal interaction rung is built in).
     const bool modal_possible = scene.train.is_moving_forces();
-    const int modes = modal_possible && f.f0_hz > 0.0 && f.f3_hz > 0.0 ? count_modes(scene.structure, cutoff, f.lowest_hz) : -1;
+    const int modes =
+        modal_possible && f.f0_hz > 0.0 && f.f3_hz > 0.0 ? count_modes(scene.structure, cutoff, f.lowest_hz) : -1;
     const EffectsPlan e = plan_effects(planner_input(scene, scene_asks(scene), f, modes));
     p.rung = e.rung;
     p.chosen_by = "planner";

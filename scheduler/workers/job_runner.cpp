@@ -29,10 +29,12 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 
 std::string job_name(const ClaimedJob& job) { return "job " + job.id.substr(0, 12); }
 
-// File names in a job are absolute (made so at submission).
-Scene parse_job_scene(const ClaimedJob& job) {
+// File names in a job are absolute (made so at submission). An imported
+// model is shared between the jobs of one operator key, which hashes the
+// matrices the study read at submission.
+Scene parse_job_scene(const ClaimedJob& job, ImportedStructures* imports) {
   const std::string name = job_name(job);
-  return parse_scene(parse_json_text(job.scene, name), "/", name);
+  return parse_scene(parse_json_text(job.scene, name), "/", name, imports, job.operator_key);
 }
 
 // The outcome's record of a run and its envelopes; fidelity_text: the
@@ -199,7 +201,7 @@ void run_group_on_pass(ModalPass& pass, const std::vector<GroupMember>& group, c
 }
 
 std::vector<JobOutcome> run_modal_jobs(const std::vector<ClaimedJob>& jobs, FactorizationCache& cache,
-                                       std::optional<std::pair<Scene, ScenePlan>> first) {
+                                       std::optional<std::pair<Scene, ScenePlan>> first, ImportedStructures* imports) {
   std::vector<JobOutcome> outcomes(jobs.size());
   std::unique_ptr<ModalPass> pass;
   ModalSweepWorkspace ws;
@@ -213,12 +215,12 @@ std::vector<JobOutcome> run_modal_jobs(const std::vector<ClaimedJob>& jobs, Fact
       if (!scene) {
         // A new pass: this job's scene, parsed (or as the caller parsed it).
         std::pair<Scene, ScenePlan> parsed = first && i == 0 ? std::move(*first) : [&] {
-          Scene s = parse_job_scene(jobs[i]);
+          Scene s = parse_job_scene(jobs[i], imports);
           ScenePlan p = plan_scene(s, DeckFrequencies{});
           return std::make_pair(std::move(s), std::move(p));
         }();
         if (parsed.second.rung.name() != kBatchedRung) {
-          out = run_job(jobs[i], cache);  // not modal after all (an edited scene): alone
+          out = run_job(jobs[i], cache, imports);  // not modal after all (an edited scene): alone
           ++i;
           continue;
         }
@@ -258,16 +260,16 @@ std::vector<JobOutcome> run_modal_jobs(const std::vector<ClaimedJob>& jobs, Fact
 
 }  // namespace
 
-JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache) {
+JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache, ImportedStructures* imports) {
   const auto start = Clock::now();
   JobOutcome out;
   try {
-    Scene scene = parse_job_scene(job);
+    Scene scene = parse_job_scene(job, imports);
     // Job scenes carry their rung (pinned at submission) or none (the
     // analysis as given): no frequencies needed.
     ScenePlan plan = plan_scene(scene, DeckFrequencies{});
     if (plan.rung.name() == kBatchedRung)
-      return run_modal_jobs({job}, cache, std::make_pair(std::move(scene), std::move(plan))).front();
+      return run_modal_jobs({job}, cache, std::make_pair(std::move(scene), std::move(plan)), imports).front();
     CacheLookup lookup;
     RungModels models;
     models.fe_operator = [&](const Scene& s) {
@@ -300,9 +302,10 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache) {
   return out;
 }
 
-std::vector<JobOutcome> run_jobs(const std::vector<ClaimedJob>& jobs, FactorizationCache& cache) {
-  if (jobs.size() == 1 && jobs.front().rung != kBatchedRung) return {run_job(jobs.front(), cache)};
-  return run_modal_jobs(jobs, cache, std::nullopt);
+std::vector<JobOutcome> run_jobs(const std::vector<ClaimedJob>& jobs, FactorizationCache& cache,
+                                 ImportedStructures* imports) {
+  if (jobs.size() == 1 && jobs.front().rung != kBatchedRung) return {run_job(jobs.front(), cache, imports)};
+  return run_modal_jobs(jobs, cache, std::nullopt, imports);
 }
 
 }  // namespace railvsi::scheduler

@@ -112,6 +112,8 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
   JobQueue queue(db, name, options.lease_s);
   ClaimBackoff backoff(options.db_retry_s);
   std::string last_key;
+  // The last model this thread read (a study's trains share it).
+  ImportedStructures imports(1);
   const double idle_wait_s = std::clamp(options.lease_s / 4.0, 0.02, 0.2);
   for (;;) {
     std::vector<ClaimedJob> batch;
@@ -138,7 +140,7 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
     held.hold(thread, ids);
     last_key = batch.front().operator_key;
     try {
-      const std::vector<JobOutcome> outcomes = run_jobs(batch, cache);
+      const std::vector<JobOutcome> outcomes = run_jobs(batch, cache, &imports);
       // One transaction for the whole batch: all stored, or (a crash) none.
       const std::vector<bool> stored = queue.complete_batch(batch, outcomes);
       for (std::size_t i = 0; i < batch.size(); ++i) {

@@ -53,5 +53,36 @@ TEST(ImportedStructures, AFileThatCannotBeReadFailsOnEveryCall) {
   EXPECT_EQ(imports.reads(), 0);
 }
 
+TEST(ImportedStructures, AnotherContentKeyIsReadAgain) {
+  ASSERT_FALSE(beam_files_dir().empty()) << "write_beam_files.py failed (python3-scipy?)";
+  const auto s = beam_import("beam_K_sym.mtx", "beam_M_sym.mtx", "map_index.json");
+  const auto none = nlohmann::json::object();
+  ImportedStructures imports;
+  const auto first = imports.import(s, none, beam_files_dir(), "operator key 1");
+  const auto second = imports.import(s, none, beam_files_dir(), "operator key 2");
+  EXPECT_EQ(imports.reads(), 2);
+  EXPECT_NE(first.get(), second.get());
+  EXPECT_EQ(imports.import(s, none, beam_files_dir(), "operator key 1").get(), first.get());
+  EXPECT_EQ(imports.reads(), 2);
+}
+
+TEST(ImportedStructures, KeepsAtMostItsCapacityAndLetsTheOldestGo) {
+  ASSERT_FALSE(beam_files_dir().empty()) << "write_beam_files.py failed (python3-scipy?)";
+  const auto a = beam_import("beam_K_sym.mtx", "beam_M_sym.mtx", "map_index.json");
+  const auto b = beam_import("beam_K.abq", "beam_M.abq", "map_abaqus.json");
+  const auto none = nlohmann::json::object();
+  ImportedStructures one(1);
+  const auto first_a = one.import(a, none, beam_files_dir());
+  EXPECT_EQ(one.import(a, none, beam_files_dir()).get(), first_a.get());
+  one.import(b, none, beam_files_dir());  // a goes
+  EXPECT_EQ(one.reads(), 2);
+  EXPECT_NE(one.import(a, none, beam_files_dir()).get(), first_a.get());
+  EXPECT_EQ(one.reads(), 3);
+  ImportedStructures none_kept(0);
+  none_kept.import(a, none, beam_files_dir());
+  none_kept.import(a, none, beam_files_dir());
+  EXPECT_EQ(none_kept.reads(), 2);
+}
+
 }  // namespace
 }  // namespace railvsi::test
