@@ -17,7 +17,7 @@ using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
-Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis) {
+Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis, DeckOutputCorrection correction) {
   const auto t_start = Clock::now();
   if (!scene.train.is_moving_forces())
     throw InputError("/train", "the modal moving-force rung needs a train of moving forces");
@@ -25,7 +25,8 @@ Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis) {
     throw InputError("/structure", "the modal basis was computed for another structure");
   const auto& rails = scene.analysis.contact.rail_lines;
   const ModalSweep sweep(basis, scene.train, rails, scene.analysis.dt_s,
-                         scene.fidelity.asks_section_forces() ? modal_section_forces(basis, rails) : nullptr);
+                         scene.fidelity.asks_section_forces() ? modal_section_forces(basis, rails) : nullptr,
+                         correction);
   ModalSweepWorkspace ws;
   Result result;
   const long n_steps = modal_run_steps(scene);
@@ -55,8 +56,11 @@ void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSu
   f.model = "moving-forces";
   f.contact_law = "none";
   f.solver_path = "modal-exact";
-  f.structure_backend = fmt::format("modal ({} modes up to {:.4g} Hz, exact recurrence)", sweep.num_modes(),
-                                    sweep.basis().max_frequency_hz());
+  f.structure_backend = fmt::format("modal ({} modes up to {:.4g} Hz, exact recurrence{})", sweep.num_modes(),
+                                    sweep.basis().max_frequency_hz(),
+                                    sweep.correction() == DeckOutputCorrection::kStatic
+                                        ? ", static correction of the modes above at the output points"
+                                        : "");
   f.structure_dofs = s.num_dofs();
   f.dt_s = sweep.dt_s();
   f.modes = sweep.num_modes();

@@ -23,7 +23,11 @@ using ModalMovingForceOptions = ModalBasisOptions;
 // is not a train of moving forces or whose modes cannot be computed.
 // `basis` must be of scene.structure (else InputError): runs on one
 // structure share one basis, so a sweep computes its modes once.
-Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis);
+// `correction`: whether the outputs get the static response of the modes
+// above the cut-off (modal_sweep.hpp; kNone is the kept modes alone, as a
+// truncated modal series).
+Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis,
+                               DeckOutputCorrection correction = DeckOutputCorrection::kStatic);
 // Convenience: computes the basis for this run alone.
 Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions& options = {});
 

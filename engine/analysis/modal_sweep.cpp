@@ -15,9 +15,11 @@
 namespace railvsi {
 
 ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::vector<int>& rail_lines, double dt_s,
-                       std::shared_ptr<const ModalSectionForces> sections)
-    : basis_(basis), n_modes_(basis.num_modes()), dt_s_(dt_s), sections_(std::move(sections)) {
-  width_ = n_modes_ + (sections_ ? sections_->num_forms() : 0);
+                       std::shared_ptr<const ModalSectionForces> sections, DeckOutputCorrection correction)
+    : basis_(basis), n_modes_(basis.num_modes()), correction_(correction), dt_s_(dt_s), sections_(std::move(sections)) {
+  n_forms_ = sections_ ? sections_->num_forms() : 0;
+  if (correction_ == DeckOutputCorrection::kStatic) n_corrected_ = static_cast<int>(basis.structure().outputs().size());
+  width_ = n_modes_ + n_forms_ + 2 * n_corrected_;
   for (double w : basis.omega_rad_s()) inverse_omega2_.push_back(1.0 / (w * w));
   if (!train.is_moving_forces()) throw InputError("/train", "the modal moving-force rung needs a train of moving forces");
   if (rail_lines.empty()) throw InputError("/analysis/contact/rail_lines", "no rail line to load");
@@ -43,6 +45,23 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) vandermonde(i, j) = std::pow(xi_fit[static_cast<std::size_t>(i)], j);
   const Eigen::Matrix4d fit = vandermonde.inverse();
+  // The residual flexibility of the outputs, by rail DOF.
+  const DenseMatrix* residual = n_corrected_ > 0 ? &basis.output_residual_flexibility() : nullptr;
+  std::vector<int> rail_index;
+  if (residual) {
+    rail_index.assign(static_cast<std::size_t>(s.num_dofs()), -1);
+    for (std::size_t i = 0; i < s.rail_dofs().size(); ++i)
+      rail_index[static_cast<std::size_t>(s.rail_dofs()[i])] = static_cast<int>(i);
+  }
+  const auto hermite = [&](const double phi[4], double h, double* c) {
+    // Hermite: N1 = 1 - 3xi^2 + 2xi^3, N2 = h(xi - 2xi^2 + xi^3),
+    // N3 = 3xi^2 - 2xi^3, N4 = h(xi^3 - xi^2), collected by powers of xi.
+    const double f = -share_;  // downward force, shared between the rails
+    c[0] = f * phi[0];
+    c[1] = f * h * phi[1];
+    c[2] = f * (-3.0 * phi[0] - 2.0 * h * phi[1] + 3.0 * phi[2] - h * phi[3]);
+    c[3] = f * (2.0 * phi[0] + h * phi[1] - 2.0 * phi[2] + h * phi[3]);
+  };
   for (int r : rail_lines) {
     if (r < 0 || r >= static_cast<int>(s.rails().size()))
       throw InputError("/analysis/contact/rail_lines", fmt::format("the structure has no rail line {}", r));
@@ -62,14 +81,24 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
           const int dof = line.element_dofs[e][j];
           phi[j] = dof < 0 ? 0.0 : basis.row(dof)[k];
         }
-        // Hermite: N1 = 1 - 3xi^2 + 2xi^3, N2 = h(xi - 2xi^2 + xi^3),
-        // N3 = 3xi^2 - 2xi^3, N4 = h(xi^3 - xi^2), collected by powers of xi.
-        double* c = rail.cubic.data() + (e * width + k) * 4;
-        const double f = -share_;  // downward force, shared between the rails
-        c[0] = f * phi[0];
-        c[1] = f * h * phi[1];
-        c[2] = f * (-3.0 * phi[0] - 2.0 * h * phi[1] + 3.0 * phi[2] - h * phi[3]);
-        c[3] = f * (2.0 * phi[0] + h * phi[1] - 2.0 * phi[2] + h * phi[3]);
+        hermite(phi, h, rail.cubic.data() + (e * width + k) * 4);
+      }
+      for (int i = 0; i < n_corrected_; ++i) {
+        // Output i's residual displacement under the axle, and its second
+        // derivative in x: (2 c2 + 6 c3 xi) / h^2.
+        double ends[4];
+        for (std::size_t j = 0; j < 4; ++j) {
+          const int dof = line.element_dofs[e][j];
+          const int at = dof < 0 ? -1 : rail_index[static_cast<std::size_t>(dof)];
+          ends[j] = at < 0 ? 0.0 : (*residual)(i, at);
+        }
+        const std::size_t column = n + static_cast<std::size_t>(n_forms_ + i);
+        double* c = rail.cubic.data() + (e * width + column) * 4;
+        hermite(ends, h, c);
+        double* c2 = rail.cubic.data() + (e * width + column + static_cast<std::size_t>(n_corrected_)) * 4;
+        c2[0] = 2.0 * c[2] / (h * h);
+        c2[1] = 6.0 * c[3] / (h * h);
+        c2[2] = c2[3] = 0.0;
       }
       for (int form = 0; sections_ && form < sections_->num_forms(); ++form) {
         Eigen::Vector4d values;
@@ -185,10 +214,13 @@ void ModalSweep::add_axle_loads(const Rail& rail, double x, double* p, std::size
     const double* c = rail.cubic.data() + i * width * 4;
     // On a node the forms are evaluated exactly (a shear cut there may
     // exclude the load); inside an element, by their cubics.
-    const std::size_t cubic_columns = (sections_ && xi == 0.0) ? n : width;
-    for (std::size_t k = 0; k < cubic_columns; ++k, c += 4)
+    const bool exact_forms = sections_ && xi == 0.0;
+    const std::size_t forms_end = n + static_cast<std::size_t>(n_forms_);
+    for (std::size_t k = 0; k < width; ++k, c += 4) {
+      if (exact_forms && k >= n && k < forms_end) continue;
       p[k * stride] += load * (((c[3] * xi + c[2]) * xi + c[1]) * xi + c[0]);
-    if (cubic_columns < width) {
+    }
+    if (exact_forms) {
       std::fill(ws.form_values.begin(), ws.form_values.end(), 0.0);
       sections_->statics().add_form_values(rail.line, xa, share_ * load, ws.form_values);
       for (std::size_t f = 0; f < ws.form_values.size(); ++f) p[(n + f) * stride] += ws.form_values[f];
@@ -246,7 +278,8 @@ template <int L>
   const auto width = static_cast<std::size_t>(width_);
   ws.p.assign(width * lanes_n, 0.0);
   for (auto* v : {&ws.q, &ws.qd, &ws.qdd}) v->assign(n * lanes_n, 0.0);
-  ws.lane_values.assign((width - n) * lanes_n, 0.0);
+  const auto n_forms = static_cast<std::size_t>(n_forms_);
+  ws.lane_values.assign(n_forms * lanes_n, 0.0);
   ws.form_values.assign(sections_ ? static_cast<std::size_t>(sections_->num_forms()) : 0, 0.0);
   ws.piece.assign(rails_.size() * lanes_n, 0);
   const StructureModel& s = basis_.structure();
@@ -310,7 +343,6 @@ template <int L>
   // largest value of others over the steps: with each form's two maxima
   // kept over the run (every lane at once), it is updated once at the end
   // with the same result (a maximum is exact in any order).
-  const std::size_t n_forms = width - n;
   const bool fold_forms = sections_ && forms_fold_;
   std::vector<double> form_maxima(2 * n_forms * lanes_n, 0.0);
   V* max_abs_form = reinterpret_cast<V*>(form_maxima.data());
@@ -331,6 +363,10 @@ template <int L>
       displacement_of[i * lanes_n + l] = ws.displacement[l][i].data();
       acceleration_of[i * lanes_n + l] = ws.acceleration[l][i].data();
     }
+  const bool corrected = n_corrected_ > 0;
+  const std::size_t corrected_u = n + n_forms;
+  V speed2{};
+  for (std::size_t l = 0; l < lanes_n; ++l) lane_of(speed2, l) = lane[l].speed_mps * lane[l].speed_mps;
   const auto record = [&](long step, double t, bool store) __attribute__((always_inline)) {
     const bool all = step <= all_until;
     if (store) histories->t_s.push_back(t);
@@ -341,6 +377,11 @@ template <int L>
         const V phi = phi_rows[i * n + k];
         u += phi * q[k];
         a += phi * qdd[k];
+      }
+      if (corrected) {
+        // The modes left out, quasi-static: u + F r_i(x_a), a + v^2 F r_i''(x_a).
+        u += p[corrected_u + i];
+        a += speed2 * p[corrected_u + np + i];
       }
       if (all) {
         raise_max_abs(max_u[i], u);
@@ -379,7 +420,7 @@ template <int L>
     if (!sections_) return;
     // The exact static value of each form under the loads (the last
     // columns of p) plus the modes' dynamic part, every lane at once.
-    const std::size_t nf = width - n;
+    const std::size_t nf = n_forms;
     V* values = reinterpret_cast<V*>(ws.lane_values.data());
     for (std::size_t f = 0; f < nf; ++f) values[f] = p[n + f];
     sections_->add_dynamic_part_of<V>(q, qd, qdd, p, values);

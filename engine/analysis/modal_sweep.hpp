@@ -35,6 +35,20 @@
 
 namespace railvsi {
 
+// How the deck displacement and acceleration at the output points are
+// formed. The kept modes alone miss the static response of the modes above
+// the cut-off: under a moving axle the local deformation of a plate or of
+// the track, and a share of a beam's deflection. kStatic adds it exactly
+// (the mode-acceleration method, Cornwell, Craig & Johnson, Earthquake Eng.
+// Struct. Dyn. 11, 1983): u_i = Phi_i q + sum over axles of F r_i(x_a), with
+// r_i the output's residual influence line (ModalBasis::
+// output_residual_flexibility, interpolated on the rails as the modes are),
+// and its acceleration v^2 F r_i''(x_a) for axles moving at speed v.
+enum class DeckOutputCorrection {
+  kNone,    // Phi q and Phi q'' alone
+  kStatic,  // plus the static response of the modes left out (the default)
+};
+
 // Speeds a sweep runs together, one per lane: their recurrences are
 // independent, so the processor overlaps them (and the compiler may put
 // them in one vector register); each lane's arithmetic is the same as
@@ -82,7 +96,8 @@ class ModalSweep {
   // sections: the section forces to evaluate every step (null: none); of
   // the same basis and rail lines.
   ModalSweep(const ModalBasis& basis, const Train& train, const std::vector<int>& rail_lines, double dt_s,
-             std::shared_ptr<const ModalSectionForces> sections = nullptr);
+             std::shared_ptr<const ModalSectionForces> sections = nullptr,
+             DeckOutputCorrection correction = DeckOutputCorrection::kStatic);
 
   // First axle at x0_m at t = 0, moving at speed_mps >= 0, for n_steps steps
   // from the static modal response. Keeps the deck displacement and
@@ -100,6 +115,7 @@ class ModalSweep {
 
   const ModalBasis& basis() const { return basis_; }
   int num_modes() const { return n_modes_; }
+  DeckOutputCorrection correction() const { return correction_; }
   const ModalSectionForces* sections() const { return sections_.get(); }
   const DeckTwistGauge& twist_gauge() const { return twist_; }
   double dt_s() const { return dt_s_; }
@@ -115,7 +131,9 @@ class ModalSweep {
     // sign): c0 + c1 xi + c2 xi^2 + c3 xi^3, stored [element][column][4];
     // columns: the modes, then the unit static value of each section form
     // (a cubic inside an element; at its first node a load may be excluded
-    // from a shear cut, which the exact evaluation handles).
+    // from a shear cut, which the exact evaluation handles), then with the
+    // static correction the residual displacement of each output point and
+    // its second derivative in x.
     std::vector<double> cubic;
     // The train's load on this rail against the first axle's position s:
     // piece i covers [breaks[i], breaks[i+1]) and holds, per column, the
@@ -142,7 +160,10 @@ class ModalSweep {
 
   const ModalBasis& basis_;
   int n_modes_ = 0;
-  int width_ = 0;  // columns of the cubics: modes, then section forms
+  int width_ = 0;  // columns of the cubics: modes, section forms, corrections
+  int n_forms_ = 0;
+  int n_corrected_ = 0;  // output points with the static correction (all or none)
+  DeckOutputCorrection correction_ = DeckOutputCorrection::kStatic;
   double dt_s_ = 0.0;
   std::shared_ptr<const ModalSectionForces> sections_;
   // Per section form: read signed by the envelope (a support reaction);

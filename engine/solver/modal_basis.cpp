@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "core/input_error.hpp"
+#include "solver/cholmod_operator.hpp"
 #include "solver/residual_flexibility.hpp"
 
 namespace railvsi {
@@ -95,6 +96,29 @@ const DenseMatrix& ModalBasis::rail_residual_flexibility() const {
     residual_ = residual_flexibility(static_rail_flexibility(*structure_), rail_shapes_.leftCols(nr), omega_);
   });
   return residual_;
+}
+
+const DenseMatrix& ModalBasis::output_residual_flexibility() const {
+  std::call_once(output_residual_once_, [this] {
+    const StructureModel& s = *structure_;
+    std::vector<int> outputs;
+    for (const OutputPoint& o : s.outputs()) outputs.push_back(o.dof);
+    output_residual_ = DenseMatrix::Zero(static_cast<Eigen::Index>(outputs.size()),
+                                         static_cast<Eigen::Index>(s.rail_dofs().size()));
+    if (outputs.empty() || s.rail_dofs().empty()) return;
+    // K is symmetric: one solve per output point gives its row at every rail DOF.
+    CholmodOperatorOptions no_rail_flexibility;
+    no_rail_flexibility.rail_flexibility = false;
+    const CholmodOperator K(s, EffectiveMatrixFactors{0.0, 0.0, 1.0}, no_rail_flexibility);
+    const auto ws = K.make_workspace();
+    const DenseMatrix F = K.inverse_block(s.rail_dofs(), outputs, *ws).transpose();
+    Vector inv_w2(static_cast<Eigen::Index>(omega_.size()));
+    for (std::size_t k = 0; k < omega_.size(); ++k) inv_w2[static_cast<Eigen::Index>(k)] = 1.0 / (omega_[k] * omega_[k]);
+    const auto nr = static_cast<Eigen::Index>(s.rail_dofs().size());
+    output_residual_ = F;
+    output_residual_.noalias() -= at_outputs_ * inv_w2.asDiagonal() * rail_shapes_.leftCols(nr);
+  });
+  return output_residual_;
 }
 
 std::size_t ModalBasis::memory_bytes() const {

@@ -60,6 +60,16 @@ class ModalBasis {
   // then shared by every operator on this basis, for every dt; safe to call
   // from several threads. Throws InputError when K cannot be factorized.
   const DenseMatrix& rail_residual_flexibility() const;
+  // The same between the output points and the rail DOFs: row i holds the
+  // static displacement of output point i under a unit force at each rail
+  // DOF (StructureModel::rail_dofs() order) that the kept modes leave out,
+  // e_i^T K^-1 - Phi_i Omega^-2 Phi_r^T. Under the loads of a moving train
+  // it adds to the outputs the quasi-static response of the dropped modes
+  // (the static correction of the mode-acceleration method). Computed at
+  // the first call from one factor of K and one solve per output point,
+  // then shared; safe from several threads. Throws InputError when K
+  // cannot be factorized.
+  const DenseMatrix& output_residual_flexibility() const;
 
  private:
   void set_modes(const ModalResult& modes);
@@ -74,6 +84,8 @@ class ModalBasis {
   // A cache filled once, not state: the basis stays immutable in meaning.
   mutable std::once_flag residual_once_;
   mutable DenseMatrix residual_;
+  mutable std::once_flag output_residual_once_;
+  mutable DenseMatrix output_residual_;
 };
 
 }  // namespace railvsi

@@ -81,7 +81,12 @@ EffectsPlan plan_effects(const PlannerInput& in) {
 std::vector<FidelityRecord::Ignored> rung_ignores(const Rung& r, bool irregularity, double modal_cutoff_hz,
                                                   std::optional<double> escalate_below) {
   std::vector<FidelityRecord::Ignored> out;
-  if (r.structure == "modal")
+  if (r.structure == "modal" && r.model == "moving_forces")
+    out.push_back({fmt::format("the dynamic response of the structural modes above {:.1f} Hz", modal_cutoff_hz),
+                   "the deck acceleration envelope keeps frequencies up to the code frequency (EN 1990 A2.4.4.2.1); "
+                   "every mode up to the cut-off, with a 20 % margin, is kept, and the static response of the modes "
+                   "above is added at the output points (mode-acceleration method)"});
+  else if (r.structure == "modal")
     out.push_back({fmt::format("structural modes above {:.1f} Hz", modal_cutoff_hz),
                    "the deck acceleration envelope keeps frequencies up to the code frequency (EN 1990 A2.4.4.2.1); "
                    "every mode up to the cut-off, with a 20 % margin, is kept"});
