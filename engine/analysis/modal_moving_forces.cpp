@@ -17,6 +17,14 @@ using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
+DeckOutputCorrection deck_output_correction(const Scene& scene) {
+  return scene.analysis.modal_static_correction ? DeckOutputCorrection::kStatic : DeckOutputCorrection::kNone;
+}
+
+Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis) {
+  return run_modal_moving_forces(scene, basis, deck_output_correction(scene));
+}
+
 Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis, DeckOutputCorrection correction) {
   const auto t_start = Clock::now();
   if (!scene.train.is_moving_forces())
@@ -64,6 +72,7 @@ void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSu
   f.structure_dofs = s.num_dofs();
   f.dt_s = sweep.dt_s();
   f.modes = sweep.num_modes();
+  f.static_correction = sweep.correction() == DeckOutputCorrection::kStatic;
   f.modal_cutoff_hz = sweep.basis().max_frequency_hz();
   sum.supports.clear();
   sum.section_forces_note.clear();

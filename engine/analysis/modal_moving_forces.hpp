@@ -25,9 +25,12 @@ using ModalMovingForceOptions = ModalBasisOptions;
 // structure share one basis, so a sweep computes its modes once.
 // `correction`: whether the outputs get the static response of the modes
 // above the cut-off (modal_sweep.hpp; kNone is the kept modes alone, as a
-// truncated modal series).
-Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis,
-                               DeckOutputCorrection correction = DeckOutputCorrection::kStatic);
+// truncated modal series); without it, as the scene says
+// (deck_output_correction).
+Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis);
+Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis, DeckOutputCorrection correction);
+// The scene's analysis.static_correction (default true) on this rung.
+DeckOutputCorrection deck_output_correction(const Scene& scene);
 // Convenience: computes the basis for this run alone.
 Result run_modal_moving_forces(const Scene& scene, const ModalMovingForceOptions& options = {});
 

@@ -71,6 +71,8 @@ struct FidelityRecord {
   double modal_cutoff_hz = 0.0;
   // Modal interaction: the dropped modes' static flexibility at the rails
   // was added to the contact's (ModalOperatorOptions::static_correction).
+  // Modal moving forces: their static response was added at the output
+  // points (DeckOutputCorrection::kStatic).
   bool static_correction = false;
   std::vector<std::string> reasons;
   struct Ignored {

@@ -134,7 +134,8 @@ std::unique_ptr<ModalPass> make_modal_pass(const ClaimedJob& job, Scene scene, S
   pass->basis = lookup.basis;
   const Scene& s = pass->scene;
   pass->sweep = std::make_unique<ModalSweep>(*pass->basis, s.train, rails, s.analysis.dt_s,
-                                             scene_asks(s).section_forces ? lookup.sections : nullptr);
+                                             scene_asks(s).section_forces ? lookup.sections : nullptr,
+                                             deck_output_correction(s));
   if (0.5 / s.analysis.dt_s < job.cutoff_hz)
     pass->obstacle = fmt::format("the Nyquist frequency 1/(2 dt) = {:.3g} Hz is below the code cut-off {:.3g} Hz",
                                  0.5 / s.analysis.dt_s, job.cutoff_hz);

@@ -169,6 +169,33 @@ TEST(ModalMovingForceBasis, OneSharedBasisGivesTheSameBitsAsABasisPerRun) {
   EXPECT_THROW(run_modal_moving_forces(other, basis), InputError);
 }
 
+TEST(ModalMovingForceBasis, SceneWithoutStaticCorrectionRunsTheModesAloneAndSaysSo) {
+  Bridge2dOptions o;
+  o.spans_m = {15.0};
+  o.deck_first_frequency_hz = 5.0;
+  o.deck_mass_kg_per_m = 15000.0;
+  o.damping_ratio = 0.01;
+  Scene scene;
+  scene.structure = make_bridge_2d(o);
+  scene.train.moving_forces = {{0.0, 170e3}, {3.0, 170e3}};
+  scene.speed_mps = 250 / 3.6;
+  scene.analysis.dt_s = 1e-3;
+  ModalMovingForceOptions mo;
+  mo.max_frequency_hz = 54.0;
+  const ModalBasis basis(scene.structure, mo);
+  const Result corrected = run_modal_moving_forces(scene, basis);
+  scene.analysis.modal_static_correction = false;  // "analysis": {"static_correction": false}
+  const Result alone = run_modal_moving_forces(scene, basis);
+  const Result explicit_alone = run_modal_moving_forces(scene, basis, DeckOutputCorrection::kNone);
+  EXPECT_TRUE(corrected.summary.fidelity.static_correction);
+  EXPECT_NE(corrected.summary.fidelity.structure_backend.find("static correction"), std::string::npos);
+  EXPECT_FALSE(alone.summary.fidelity.static_correction);
+  EXPECT_EQ(alone.summary.fidelity.structure_backend.find("static correction"), std::string::npos);
+  EXPECT_EQ(alone.histories.deck_displacement_m, explicit_alone.histories.deck_displacement_m);
+  // The correction adds the dropped modes' static share: the histories differ.
+  EXPECT_NE(alone.histories.deck_displacement_m, corrected.histories.deck_displacement_m);
+}
+
 INSTANTIATE_TEST_SUITE_P(SpeedParameters, ModalMovingForce,
                          ::testing::Values(Case{0.1, 0.0}, Case{0.3, 0.02}, Case{0.5, 0.0}, Case{1.0, 0.02}),
                          [](const ::testing::TestParamInfo<Case>& info) {
