@@ -418,8 +418,8 @@ template <int L>
       }
     }
     if (!sections_) return;
-    // The exact static value of each form under the loads (the last
-    // columns of p) plus the modes' dynamic part, every lane at once.
+    // The exact static value of each form under the loads (the columns of
+    // p after the modes) plus the modes' dynamic part, every lane at once.
     const std::size_t nf = n_forms;
     V* values = reinterpret_cast<V*>(ws.lane_values.data());
     for (std::size_t f = 0; f < nf; ++f) values[f] = p[n + f];

@@ -18,7 +18,9 @@
 // same bits whether it is the first of a sweep or alone.
 // With section forces (a beam deck), the influence line of each section
 // form rides along as one more column of the same cubics, so the exact
-// static part costs what one more mode costs per axle.
+// static part costs what one more mode costs per axle; so do the residual
+// influence line of each output point and its second derivative, for the
+// static correction of the deck outputs (DeckOutputCorrection).
 #include <array>
 #include <memory>
 #include <optional>
@@ -64,7 +66,9 @@ struct SweepLane {
 // What one run reuses from the previous one (sized on first use).
 struct ModalSweepWorkspace {
   // Lane-minor: p[column * lanes + lane]. p: the modal loads,
-  // then (with section forces) the static value of each form under them.
+  // then (with section forces) the static value of each form under them,
+  // then (with the static correction) each output's residual displacement
+  // and its second derivative in x under them.
   std::vector<double> p, q, qd, qdd;
   // The loads of a chunk of steps, evaluated before their recurrence.
   std::vector<double> chunk;
