@@ -41,7 +41,7 @@ std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_
   std::size_t new_jobs = 0;
   Statement insert_job = db.prepare(
       "INSERT OR IGNORE INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
-      "cutoff_hz, max_attempts, enqueued_at, rung, seq) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
+      "cutoff_hz, max_attempts, enqueued_at, rung, planned_modes, seq) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
       "(SELECT coalesce(max(seq), 0) + 1 FROM jobs))");
   // The scene lives apart from the jobs row, which claims and completions rewrite.
   Statement insert_scene = db.prepare("INSERT OR IGNORE INTO job_scenes (job_id, scene) VALUES (?, ?)");
@@ -57,6 +57,7 @@ std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_
         .bind(9, max_attempts)
         .bind(10, now)
         .bind(11, j.rung.empty() ? SqlValue(Null{}) : SqlValue(j.rung))
+        .bind(12, j.modes > 0 ? SqlValue(static_cast<std::int64_t>(j.modes)) : SqlValue(Null{}))
         .run();
     const auto added = static_cast<std::size_t>(db.changes());
     new_jobs += added;
@@ -91,11 +92,12 @@ std::optional<ClaimedJob> JobQueue::claim_row(const std::string& id, double now_
       .run();
   Statement s = db_.prepare(
       "SELECT j.id, s.scene, j.operator_key, j.train, j.irregularity, j.speed_kmh, j.dt_s, j.cutoff_hz, j.attempts, "
-      "coalesce(j.rung, '') FROM jobs j JOIN job_scenes s ON s.job_id = j.id WHERE j.id = ?");
+      "coalesce(j.rung, ''), coalesce(j.planned_modes, -1) FROM jobs j JOIN job_scenes s ON s.job_id = j.id "
+      "WHERE j.id = ?");
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
   return ClaimedJob{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5), s.real(6), s.real(7),
-                    static_cast<int>(s.int64(8)), s.text(9)};
+                    static_cast<int>(s.int64(8)), s.text(9), static_cast<int>(s.int64(10))};
 }
 
 std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, std::size_t max_jobs) {
@@ -112,7 +114,7 @@ std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, 
           "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker = ?, lease_expires = ?, started_at = ? "
           "WHERE id IN (SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? AND rung = ? "
           "ORDER BY train, irregularity, speed_kmh LIMIT ?) RETURNING id, operator_key, train, irregularity, speed_kmh, dt_s, "
-          "cutoff_hz, attempts, rung");
+          "cutoff_hz, attempts, rung, coalesce(planned_modes, -1)");
       s.bind(1, worker_)
           .bind(2, now + lease_s_)
           .bind(3, now)
@@ -122,7 +124,7 @@ std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, 
       batch.push_back(std::move(*first));
       while (s.step())
         batch.push_back(ClaimedJob{s.text(0), {}, s.text(1), s.text(2), s.text(3), s.real(4), s.real(5), s.real(6),
-                                   static_cast<int>(s.int64(7)), s.text(8)});
+                                   static_cast<int>(s.int64(7)), s.text(8), static_cast<int>(s.int64(9))});
       Statement scene = db_.prepare("SELECT scene FROM job_scenes WHERE job_id = ?");
       for (std::size_t k = 1; k < batch.size(); ++k) {
         scene.reset();

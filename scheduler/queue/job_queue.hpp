@@ -51,6 +51,9 @@ struct ClaimedJob {
   double cutoff_hz = 0.0;
   int attempt = 0;  // 1 for the first claim
   std::string rung;  // planned at submission; empty for older jobs
+  // The modal moving-force rung: the modes counted up to the cut-off at
+  // submission (ModalBasisOptions::modes_below_cutoff); -1 when not known.
+  int planned_modes = -1;
 };
 
 // Jobs on this rung are claimed and run in batches (claim_batch).

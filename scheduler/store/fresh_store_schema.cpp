@@ -40,7 +40,7 @@ CREATE TABLE jobs (
   enqueued_at     REAL NOT NULL,
   started_at      REAL,
   finished_at     REAL
-, warnings TEXT, rung TEXT, fidelity_id TEXT, seq INTEGER);
+, warnings TEXT, rung TEXT, fidelity_id TEXT, seq INTEGER, planned_modes INTEGER);
 CREATE INDEX jobs_lease ON jobs (state, lease_expires);
 CREATE TABLE study_jobs (
   study_id TEXT NOT NULL REFERENCES studies (id),

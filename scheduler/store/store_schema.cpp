@@ -229,6 +229,11 @@ CREATE VIEW study_envelopes AS
   SELECT sj.study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
   FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id JOIN job_envelopes e ON e.job_seq = j.seq;
 )sql"},
+      {"jobs.planned_modes: on the modal moving-force rung, the modes the submission counted up to the cut-off, "
+       "so that a worker's modal basis starts at the batch of modes that reaches past it",
+       R"sql(
+ALTER TABLE jobs ADD COLUMN planned_modes INTEGER;  -- NULL: not counted (FE rungs, jobs of an older vsi)
+)sql"},
   };
   return all;
 }

@@ -26,8 +26,9 @@ struct JobSpec {
   std::string dt_reason;
   double cutoff_hz = 0.0;  // deck acceleration low-pass cut-off of the code
   std::string rung;        // the planned rung (Rung::name()), e.g. "moving_forces/modal"
-  // The exact modal rung: the modes its dry run kept (0 otherwise, and for
-  // a job read back from a store, which does not keep them).
+  // The exact modal rung: the modes its dry run kept, all up to the cut-off
+  // (0 otherwise, and for a job read back from a store); stored as
+  // jobs.planned_modes for the workers' bases.
   int modes = 0;
 };
 

@@ -134,6 +134,10 @@ TEST_F(ModalBatches, PlannerPutsMovingForceStudiesOnTheModalRungAndRecordsWhy) {
   EXPECT_EQ(f["rung"], "moving_forces/modal");
   EXPECT_EQ(f["chosen_by"], "planner");
   EXPECT_GE(f["modes"].get<int>(), 1);
+  // The submission stored the count the workers' basis starts from, and
+  // the basis kept that many.
+  EXPECT_EQ(count_rows(db, fmt::format("SELECT count(*) FROM jobs WHERE planned_modes = {}", f["modes"].get<int>())),
+            26);
   EXPECT_GT(f["modal_cutoff_hz"].get<double>(), 30.0);
   EXPECT_EQ(f["dt_s"].get<double>(), s.real(1));
   EXPECT_NE(s.text(2).find("modal rung"), std::string::npos) << s.text(2);
