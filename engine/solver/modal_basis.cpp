@@ -112,11 +112,9 @@ const DenseMatrix& ModalBasis::output_residual_flexibility() const {
     const CholmodOperator K(s, EffectiveMatrixFactors{0.0, 0.0, 1.0}, no_rail_flexibility);
     const auto ws = K.make_workspace();
     const DenseMatrix F = K.inverse_block(s.rail_dofs(), outputs, *ws).transpose();
-    Vector inv_w2(static_cast<Eigen::Index>(omega_.size()));
-    for (std::size_t k = 0; k < omega_.size(); ++k) inv_w2[static_cast<Eigen::Index>(k)] = 1.0 / (omega_[k] * omega_[k]);
+    // The rail DOFs are the first columns of the kept rows.
     const auto nr = static_cast<Eigen::Index>(s.rail_dofs().size());
-    output_residual_ = F;
-    output_residual_.noalias() -= at_outputs_ * inv_w2.asDiagonal() * rail_shapes_.leftCols(nr);
+    output_residual_ = residual_flexibility(F, at_outputs_.transpose(), rail_shapes_.leftCols(nr), omega_);
   });
   return output_residual_;
 }

@@ -20,6 +20,11 @@ namespace railvsi {
 // kept modes at the same n DOFs (one column per DOF, one row per mode).
 DenseMatrix residual_flexibility(const DenseMatrix& F_rail, const DenseMatrix& rail_rows,
                                  const std::vector<double>& omega_rad_s);
+// The same between two sets of DOFs: F - Phi_a^T diag(omega^-2) Phi_b, with
+// F = K^-1 at rows a and columns b, `rows_a` and `rows_b` the kept modes
+// there (one column per DOF, one row per mode).
+DenseMatrix residual_flexibility(const DenseMatrix& F, const DenseMatrix& rows_a, const DenseMatrix& rows_b,
+                                 const std::vector<double>& omega_rad_s);
 
 // K^-1 at the model's rail DOFs (StructureModel::rail_dofs() order), from a
 // CHOLMOD factor of K. Throws InputError when K cannot be factorized.
