@@ -20,6 +20,7 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
   n_forms_ = sections_ ? sections_->num_forms() : 0;
   if (correction_ == DeckOutputCorrection::kStatic) n_corrected_ = static_cast<int>(basis.structure().outputs().size());
   width_ = n_modes_ + n_forms_ + 2 * n_corrected_;
+  groups_ = (static_cast<std::size_t>(width_) + kColumnGroup - 1) / kColumnGroup;
   for (double w : basis.omega_rad_s()) inverse_omega2_.push_back(1.0 / (w * w));
   if (!train.is_moving_forces()) throw InputError("/train", "the modal moving-force rung needs a train of moving forces");
   if (rail_lines.empty()) throw InputError("/analysis/contact/rail_lines", "no rail line to load");
@@ -150,11 +151,10 @@ void ModalSweep::tabulate_train_load(Rail& rail) const {
   std::sort(b.begin(), b.end());
   b.erase(std::unique(b.begin(), b.end()), b.end());
   const std::size_t n_pieces = b.size() - 1;
-  rail.pieces.assign(n_pieces * width * 4, 0.0);
+  rail.pieces.assign(n_pieces * groups_ * kColumnGroup * 4, 0.0);
   for (std::size_t i = 0; i < n_pieces; ++i) {
     // Inside the piece no axle is on a node: its midpoint places them all.
     const double mid = 0.5 * (b[i] + b[i + 1]);
-    double* d = rail.pieces.data() + i * width * 4;
     for (std::size_t a = 0; a < offsets_.size(); ++a) {
       const double xa = mid - offsets_[a];
       if (!(xa > rail.start_m && xa < rail.end_m)) continue;
@@ -167,10 +167,10 @@ void ModalSweep::tabulate_train_load(Rail& rail) const {
       const double load = loads_N_[a];
       const double* c = rail.cubic.data() + e * width * 4;
       for (std::size_t k = 0; k < width; ++k, c += 4) {
-        d[4 * k + 0] += load * (((c[3] * alpha + c[2]) * alpha + c[1]) * alpha + c[0]);
-        d[4 * k + 1] += load * ((3.0 * c[3] * alpha + 2.0 * c[2]) * alpha + c[1]) * beta;
-        d[4 * k + 2] += load * (3.0 * c[3] * alpha + c[2]) * beta * beta;
-        d[4 * k + 3] += load * c[3] * beta * beta * beta;
+        rail.pieces[piece_index(i, k, 0)] += load * (((c[3] * alpha + c[2]) * alpha + c[1]) * alpha + c[0]);
+        rail.pieces[piece_index(i, k, 1)] += load * ((3.0 * c[3] * alpha + 2.0 * c[2]) * alpha + c[1]) * beta;
+        rail.pieces[piece_index(i, k, 2)] += load * (3.0 * c[3] * alpha + c[2]) * beta * beta;
+        rail.pieces[piece_index(i, k, 3)] += load * c[3] * beta * beta * beta;
       }
     }
   }
@@ -193,8 +193,11 @@ void ModalSweep::modal_load(double x, double* p, std::size_t stride, std::size_t
       add_axle_loads(rail, x, p, stride, ws);
       continue;
     }
-    const double* d = rail.pieces.data() + i * width * 4;
-    for (std::size_t k = 0; k < width; ++k, d += 4) p[k * stride] += ((d[3] * u + d[2]) * u + d[1]) * u + d[0];
+    for (std::size_t k = 0; k < width; ++k) {
+      const double* d = rail.pieces.data() + piece_index(i, k, 0);
+      constexpr std::size_t g = kColumnGroup;  // from one power to the next
+      p[k * stride] += ((d[3 * g] * u + d[2 * g]) * u + d[g]) * u + d[0];
+    }
   }
 }
 
@@ -273,10 +276,15 @@ template <int L>
 [[gnu::always_inline]] inline void ModalSweep::run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
                            Histories* histories, int history_stride, LaneCode code) const {
   using V = typename LaneValue<L>::type;
+  static_assert(kColumnGroup == 4, "a group of columns is one vector of four doubles");
+  using Columns = LaneValue<4>::type;  // a group of columns of the train-load table
   constexpr auto lanes_n = static_cast<std::size_t>(L);
   const auto n = static_cast<std::size_t>(n_modes_);
   const auto width = static_cast<std::size_t>(width_);
-  ws.p.assign(width * lanes_n, 0.0);
+  // The loads' columns padded to whole groups of the train-load table
+  // (the padding's coefficients are 0: it holds 0 and is never read).
+  const std::size_t padded_width = groups_ * kColumnGroup;
+  ws.p.assign(padded_width * lanes_n, 0.0);
   for (auto* v : {&ws.q, &ws.qd, &ws.qdd}) v->assign(n * lanes_n, 0.0);
   const auto n_forms = static_cast<std::size_t>(n_forms_);
   ws.lane_values.assign(n_forms * lanes_n, 0.0);
@@ -460,7 +468,7 @@ template <int L>
   // per lane. Each value is the same expression as when it is evaluated in
   // its step.
   constexpr long kChunkSteps = 64;
-  const std::size_t row = width * lanes_n;
+  const std::size_t row = padded_width * lanes_n;
   ws.chunk.assign(static_cast<std::size_t>(kChunkSteps) * row, 0.0);
   for (long first = 0; first < steps; first += kChunkSteps) {
     const long end = std::min(steps, first + kChunkSteps);
@@ -468,7 +476,7 @@ template <int L>
       // A lane that has ended (or idles) gets zero loads: finite, unread.
       const long own_end = std::min(end, std::max(first, last_step[l]));
       for (long step = own_end; step < end; ++step)
-        for (std::size_t k = 0; k < width; ++k) ws.chunk[static_cast<std::size_t>(step - first) * row + k * lanes_n + l] = 0.0;
+        for (std::size_t k = 0; k < padded_width; ++k) ws.chunk[static_cast<std::size_t>(step - first) * row + k * lanes_n + l] = 0.0;
       for (long step = first; step < own_end; ++step) {
         // One cubic per column from the train's table (modal_load for a
         // position on a breakpoint or off the table).
@@ -491,12 +499,21 @@ template <int L>
         for (std::size_t r = 0; r < n_rails; ++r) {
           const std::size_t i = ws.piece[r * lanes_n + l];
           const double u = x - rails_[r].breaks[i];
-          const double* d = rails_[r].pieces.data() + i * width * 4;
-          // The first rail's loads are the sum's first terms (0 + v == v, bit for bit).
-          if (r == 0)
-            for (std::size_t k = 0; k < width; ++k, d += 4) pn[k * lanes_n] = ((d[3] * u + d[2]) * u + d[1]) * u + d[0];
-          else
-            for (std::size_t k = 0; k < width; ++k, d += 4) pn[k * lanes_n] += ((d[3] * u + d[2]) * u + d[1]) * u + d[0];
+          const double* d = rails_[r].pieces.data() + piece_index(i, 0, 0);
+          for (std::size_t k0 = 0; k0 < width; k0 += kColumnGroup, d += 4 * kColumnGroup) {
+            // Horner's rule on a group of columns at once: in each the
+            // scalar expression of modal_load, so the same bits.
+            const Columns c0 = *reinterpret_cast<const Columns*>(d);
+            const Columns c1 = *reinterpret_cast<const Columns*>(d + kColumnGroup);
+            const Columns c2 = *reinterpret_cast<const Columns*>(d + 2 * kColumnGroup);
+            const Columns c3 = *reinterpret_cast<const Columns*>(d + 3 * kColumnGroup);
+            const Columns v = ((c3 * u + c2) * u + c1) * u + c0;
+            // The first rail's loads are the sum's first terms (0 + v == v, bit for bit).
+            for (std::size_t j = 0; j < kColumnGroup; ++j) {
+              double& to = pn[(k0 + j) * lanes_n];
+              to = r == 0 ? v[j] : to + v[j];
+            }
+          }
         }
       }
     }

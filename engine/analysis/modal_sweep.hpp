@@ -141,9 +141,16 @@ class ModalSweep {
     std::vector<double> cubic;
     // The train's load on this rail against the first axle's position s:
     // piece i covers [breaks[i], breaks[i+1]) and holds, per column, the
-    // cubic in u = s - breaks[i]: pieces[(i * width + column) * 4 + power].
+    // cubic in u = s - breaks[i], in groups of kColumnGroup columns (the
+    // last padded with zeros) so that one vector evaluates a group:
+    // pieces[piece_index(i, column, power)].
     std::vector<double> breaks, pieces;
   };
+  // Columns of the train-load table evaluated together, one vector.
+  static constexpr std::size_t kColumnGroup = 4;
+  std::size_t piece_index(std::size_t piece, std::size_t column, std::size_t power) const {
+    return ((piece * groups_ + column / kColumnGroup) * 4 + power) * kColumnGroup + column % kColumnGroup;
+  }
   // Tabulates the train's load on `rail` (its cubics built).
   void tabulate_train_load(Rail& rail) const;
   // p[column * stride] = Phi^T f for the first axle at x, then the static
@@ -165,6 +172,7 @@ class ModalSweep {
   const ModalBasis& basis_;
   int n_modes_ = 0;
   int width_ = 0;  // columns of the cubics: modes, section forms, corrections
+  std::size_t groups_ = 0;  // of kColumnGroup columns in the train-load table
   int n_forms_ = 0;
   int n_corrected_ = 0;  // output points with the static correction (all or none)
   DeckOutputCorrection correction_ = DeckOutputCorrection::kStatic;
