@@ -60,8 +60,8 @@ EffectsPlan plan_effects(const PlannerInput& in) {
   else if (in.modes_below_cutoff > kMaxModalModes)
     fe_because = fmt::format("{} modes lie below the modal cut-off {:.1f} Hz, more than the modal rung's {}",
                              in.modes_below_cutoff, plan.modal_cutoff_hz, kMaxModalModes);
-  else if (r.model == "interaction" && !in.modal_interaction_available)
-    fe_because = "the modal interaction rung is not available in this build";
+  else if (r.model == "interaction" && !in.modal_interaction_trusted)
+    fe_because = kModalInteractionNotTrusted;
   if (fe_because.empty()) {
     r.structure = "modal";
     plan.reasons.push_back(fmt::format(

@@ -36,7 +36,7 @@ PlannerInput planner_input(const Scene& scene, const StudyAsks& asks, const Deck
   in.f3_hz = f.f3_hz;
   in.modes_below_cutoff = modes_below_cutoff;
   in.tolerance = scene.fidelity.tolerance;
-  in.modal_interaction_available = false;  // the hook: true once the modal interaction rung is built in
+  in.modal_interaction_trusted = false;  // kModalInteractionNotTrusted: the planner keeps interaction on FE
   return in;
 }
 
@@ -93,8 +93,8 @@ ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f) {
   ScenePlan p;
   if (req.mode == FidelityRequest::Mode::kAuto) {
     const double cutoff = kModalCutoffMargin * code_cutoff_hz(f.f0_hz, f.f3_hz);
-    // Counted only where the modal rung could run (moving forces, until the
-    // modal interaction rung is built in).
+    // Counted only where the planner may choose a modal rung: moving forces
+    // (interaction stays on FE, kModalInteractionNotTrusted).
     const bool modal_possible = scene.train.is_moving_forces();
     const int modes =
         modal_possible && f.f0_hz > 0.0 && f.f3_hz > 0.0 ? count_modes(scene.structure, cutoff, f.lowest_hz) : -1;

@@ -61,9 +61,11 @@ TEST(EffectsPlanner, WheelUnloadingComfortOrIrregularityNeedInteractionWithLinea
     ASSERT_TRUE(plan.escalate_below_fraction) << kind;
     // Wheel unloading asked: linear Hertz answers only above 70 % of the static load.
     EXPECT_DOUBLE_EQ(*plan.escalate_below_fraction, kind == 0 ? 0.7 : kEscalationFraction) << kind;
-    // Until the modal interaction rung is built in, interaction runs on FE.
+    // Interaction on the modes misses the tolerance at the planner's
+    // cut-off: interaction runs on FE, and the reason says so.
     EXPECT_EQ(plan.rung.structure, "fe") << kind;
-    EXPECT_NE(plan.reasons.back().find("modal interaction rung is not available"), std::string::npos);
+    EXPECT_EQ(plan.reasons.back(), std::string("FE structure: ") + kModalInteractionNotTrusted);
+    EXPECT_NE(plan.reasons.back().find("misses the tolerance"), std::string::npos);
     EXPECT_TRUE(ignores(plan, "nonlinearity and unilaterality of Hertz"));
   }
 }
@@ -76,11 +78,11 @@ TEST(EffectsPlanner, MultibodyDeckOnlyStillNeedsTheVehicles) {
   EXPECT_NE(plan.reasons.front().find("suspensions"), std::string::npos);
 }
 
-TEST(EffectsPlanner, ModalInteractionIsChosenOnceAvailable) {
+TEST(EffectsPlanner, ModalInteractionIsChosenWhereTrusted) {
   PlannerInput in = span_15m();
   in.load_model = false;
   in.asks.wheel_unloading = true;
-  in.modal_interaction_available = true;
+  in.modal_interaction_trusted = true;
   EXPECT_EQ(plan_effects(in).rung.name(), "interaction/modal");
 }
 
