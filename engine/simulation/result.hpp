@@ -96,7 +96,28 @@ struct RunWarning {
 // section_forces_note of a modal run whose asks leave section forces out.
 inline constexpr const char* kSectionForcesNotAsked = "section forces were not asked (asks without \"section_forces\")";
 
-struct RunSummary {
+// How a run went, beside its values: its steps, Newton work, times, the
+// fidelity it ran at and its health. One record for the engine's summary
+// and the stored envelopes, which both are one (RunSummary, JobEnvelopes).
+struct RunRecord {
+  long steps = 0;
+  double dt_s = 0.0;
+  long newton_iterations = 0;
+  int max_newton_iterations_in_step = 0;
+  double wall_s = 0.0;
+  double setup_s = 0.0;  // factorization, flexibility, static equilibrium
+  FidelityRecord fidelity;
+  // Run health: warnings, and the energy balance residual (work of external
+  // and contact forces against kinetic + strain + damping + HHT-dissipated
+  // energy, relative); NaN when not computed.
+  std::vector<RunWarning> warnings;
+  double energy_residual = std::numeric_limits<double>::quiet_NaN();
+};
+
+// The run's values as the engine finds them (0 where a train of moving
+// forces has no wheel or car body: summary_json prints null there), and
+// its record.
+struct RunSummary : RunRecord {
   std::vector<PointSummary> points;
   double max_abs_displacement_m = 0.0;
   double max_abs_acceleration_mps2 = 0.0;  // unfiltered
@@ -117,19 +138,6 @@ struct RunSummary {
   std::optional<double> max_abs_deck_twist_m;
   double deck_twist_x_m = 0.0;  // start of the 3 m base where it occurs
   std::string deck_twist_note;
-  // Run
-  long steps = 0;
-  double dt_s = 0.0;
-  long newton_iterations = 0;
-  int max_newton_iterations_in_step = 0;
-  double wall_s = 0.0;
-  double setup_s = 0.0;  // factorization, flexibility, static equilibrium
-  FidelityRecord fidelity;
-  // Run health: warnings, and the energy balance residual (work of external
-  // and contact forces against kinetic + strain + damping + HHT-dissipated
-  // energy, relative); NaN when not computed.
-  std::vector<RunWarning> warnings;
-  double energy_residual = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct Result {

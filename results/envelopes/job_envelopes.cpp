@@ -131,16 +131,11 @@ JobEnvelopes envelopes_of(const Status& status, const RunSummary& s, double dt_s
   if (!s.wheels.empty())  // a train of moving forces has neither wheels nor bodies
     e.max_abs_carbody_acceleration_mps2 = finite(s.max_abs_carbody_acceleration_mps2, "car-body acceleration");
 
-  // Run.
-  e.steps = s.steps;
+  // Run: the summary's record, at the envelopes' dt, with times that can be stored.
+  static_cast<RunRecord&>(e) = s;
   e.dt_s = dt_s;
-  e.newton_iterations = s.newton_iterations;
-  e.max_newton_iterations_in_step = s.max_newton_iterations_in_step;
-  e.wall_s = std::isfinite(s.wall_s) ? s.wall_s : 0.0;
-  e.setup_s = std::isfinite(s.setup_s) ? s.setup_s : 0.0;
-  e.fidelity = s.fidelity;
-  e.warnings = s.warnings;
-  e.energy_residual = s.energy_residual;
+  if (!std::isfinite(e.wall_s)) e.wall_s = 0.0;
+  if (!std::isfinite(e.setup_s)) e.setup_s = 0.0;
   return e;
 }
 

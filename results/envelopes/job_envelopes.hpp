@@ -50,9 +50,11 @@ struct WheelEnvelope {
   std::optional<double> contact_loss_s;   // total time without contact
 };
 
-// The model the run used (RunSummary), recorded with each job.
-
-struct JobEnvelopes {
+// A job's stored values: the run's summary values, absent where there is
+// none (std::nullopt, not the summary's 0), plus the filtered deck
+// acceleration; and the run's record as its summary has it (dt_s: the
+// envelopes').
+struct JobEnvelopes : RunRecord {
   std::string status = "ok";  // Status::name() of the run, or "diverged" for a non-finite value
   std::string message;
   std::vector<std::string> notes;  // values left out and why
@@ -81,18 +83,6 @@ struct JobEnvelopes {
 
   // Car bodies inside the evaluation window (absent for moving forces).
   std::optional<double> max_abs_carbody_acceleration_mps2;
-
-  // Run.
-  long steps = 0;
-  double dt_s = 0.0;
-  long newton_iterations = 0;
-  int max_newton_iterations_in_step = 0;
-  double wall_s = 0.0;
-  double setup_s = 0.0;
-  FidelityRecord fidelity;
-  // Run health (RunSummary): stored with the job.
-  std::vector<RunWarning> warnings;
-  double energy_residual = 0.0;
 
   bool ok() const { return status == "ok"; }
 };

@@ -90,6 +90,34 @@ TEST(JobEnvelopes, KnownMaximaOfASyntheticRun) {
   EXPECT_EQ(e.fidelity.contact_law, "hertz");
 }
 
+TEST(JobEnvelopes, KeepTheSummarysRunRecordAtTheirOwnDt) {
+  Result r = synthetic_run();
+  RunSummary& s = r.summary;
+  s.wall_s = 1.25;
+  s.setup_s = 0.5;
+  s.energy_residual = 3e-4;
+  s.warnings = {{"dt_above_policy", "the step is above the policy's", 0.1, std::nullopt, 2.0}};
+  s.fidelity.reasons = {"pinned in the scene"};
+  const JobEnvelopes e = compute_envelopes(r, 2.0 * kDt, 1, 30.0);
+  EXPECT_EQ(e.steps, s.steps);
+  EXPECT_EQ(e.newton_iterations, s.newton_iterations);
+  EXPECT_EQ(e.max_newton_iterations_in_step, s.max_newton_iterations_in_step);
+  EXPECT_EQ(e.wall_s, 1.25);
+  EXPECT_EQ(e.setup_s, 0.5);
+  EXPECT_EQ(e.energy_residual, 3e-4);
+  ASSERT_EQ(e.warnings.size(), 1u);
+  EXPECT_EQ(e.warnings[0].code, "dt_above_policy");
+  EXPECT_EQ(*e.warnings[0].factor, 2.0);
+  EXPECT_EQ(e.fidelity.reasons, s.fidelity.reasons);
+  EXPECT_EQ(e.dt_s, 2.0 * kDt);  // the envelopes' step, not the summary's
+  // A time that cannot be stored as a number is stored as 0.
+  s.wall_s = std::numeric_limits<double>::quiet_NaN();
+  s.setup_s = std::numeric_limits<double>::infinity();
+  const JobEnvelopes f = compute_envelopes(r, kDt, 1, 30.0);
+  EXPECT_EQ(f.wall_s, 0.0);
+  EXPECT_EQ(f.setup_s, 0.0);
+}
+
 TEST(JobEnvelopes, NonFiniteValueIsLeftOutNamedAndTheRunIsNotOk) {
   Result r = synthetic_run();
   r.summary.points[1].max_abs_displacement_m = std::numeric_limits<double>::quiet_NaN();
