@@ -7,7 +7,7 @@
 //     implausible for the structure, the energy balance broken;
 //   warnings: energy_balance, tensile_contact (inside the evaluation
 //     window), newton_iterations_high, irregularity_ignored,
-//     entry_inside_window, exit_inside_window.
+//     entry_inside_window, exit_inside_window, modal_interaction_unverified.
 // Part of the per-run state: one monitor per run.
 #include <optional>
 #include <vector>
