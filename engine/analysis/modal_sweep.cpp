@@ -290,6 +290,7 @@ template <int L>
   ws.lane_values.assign(n_forms * lanes_n, 0.0);
   ws.form_values.assign(sections_ ? static_cast<std::size_t>(sections_->num_forms()) : 0, 0.0);
   ws.piece.assign(rails_.size() * lanes_n, 0);
+  ws.offset.assign(rails_.size() * lanes_n, 0.0);
   const StructureModel& s = basis_.structure();
   const DenseMatrix& Phi_out = basis_.at_outputs();
   const std::size_t np = s.outputs().size();
@@ -472,15 +473,20 @@ template <int L>
   ws.chunk.assign(static_cast<std::size_t>(kChunkSteps) * row, 0.0);
   for (long first = 0; first < steps; first += kChunkSteps) {
     const long end = std::min(steps, first + kChunkSteps);
-    for (std::size_t l = 0; l < lanes_n; ++l) {
-      // A lane that has ended (or idles) gets zero loads: finite, unread.
-      const long own_end = std::min(end, std::max(first, last_step[l]));
-      for (long step = own_end; step < end; ++step)
-        for (std::size_t k = 0; k < padded_width; ++k) ws.chunk[static_cast<std::size_t>(step - first) * row + k * lanes_n + l] = 0.0;
-      for (long step = first; step < own_end; ++step) {
-        // One cubic per column from the train's table (modal_load for a
-        // position on a breakpoint or off the table).
-        double* pn = ws.chunk.data() + static_cast<std::size_t>(step - first) * row + l;
+    for (long step = first; step < end; ++step) {
+      double* const loads = ws.chunk.data() + static_cast<std::size_t>(step - first) * row;
+      // Each lane's position on its rails' tables. A lane that has ended (or
+      // idles) gets zero loads: finite, unread. A position on a breakpoint
+      // or off the table takes modal_load.
+      bool all_inside = lanes_n == kColumnGroup;
+      std::array<bool, L> inside{};
+      for (std::size_t l = 0; l < lanes_n; ++l) {
+        double* pn = loads + l;
+        if (step >= std::max(first, last_step[l])) {
+          for (std::size_t k = 0; k < padded_width; ++k) pn[k * lanes_n] = 0.0;
+          all_inside = false;
+          continue;
+        }
         const double x = lane[l].x0_m + lane[l].speed_mps * (static_cast<double>(step + 1) * dt_s_);
         bool inline_ok = true;
         for (std::size_t r = 0; r < n_rails && inline_ok; ++r) {
@@ -490,25 +496,72 @@ template <int L>
           else {
             while (x >= b[i + 1]) ++i;  // x < b.back(): stops at the last piece
             inline_ok = x != b[i];
+            ws.offset[r * lanes_n + l] = x - b[i];
           }
         }
         if (!inline_ok) {
           modal_load(x, pn, lanes_n, ws.piece.data() + l, ws);
+          all_inside = false;
           continue;
         }
+        inside[l] = true;
+      }
+      // One cubic per column from the train's table, by Horner's rule on a
+      // group of columns at once: in each the scalar expression of
+      // modal_load, so the same bits. The first rail's loads are the sum's
+      // first terms (0 + v == v, bit for bit).
+      if constexpr (L == 4) {
+        if (all_inside) {
+          // Every lane inside: the four lanes' values of a group, transposed
+          // into the lane-minor row (moves only: the same bits), one
+          // vector store per column.
+          using Mask = long long __attribute__((vector_size(4 * sizeof(long long))));
+          for (std::size_t r = 0; r < n_rails; ++r) {
+            const double* d[4];
+            Columns u[4];
+            for (std::size_t l = 0; l < 4; ++l) {
+              d[l] = rails_[r].pieces.data() + piece_index(ws.piece[r * 4 + l], 0, 0);
+              u[l] = Columns{} + ws.offset[r * 4 + l];
+            }
+            for (std::size_t k0 = 0; k0 < width; k0 += kColumnGroup) {
+              Columns v[4];
+              for (std::size_t l = 0; l < 4; ++l) {
+                const Columns c0 = *reinterpret_cast<const Columns*>(d[l]);
+                const Columns c1 = *reinterpret_cast<const Columns*>(d[l] + kColumnGroup);
+                const Columns c2 = *reinterpret_cast<const Columns*>(d[l] + 2 * kColumnGroup);
+                const Columns c3 = *reinterpret_cast<const Columns*>(d[l] + 3 * kColumnGroup);
+                v[l] = ((c3 * u[l] + c2) * u[l] + c1) * u[l] + c0;
+                d[l] += 4 * kColumnGroup;
+              }
+              const Columns t0 = __builtin_shuffle(v[0], v[1], Mask{0, 4, 2, 6});
+              const Columns t1 = __builtin_shuffle(v[0], v[1], Mask{1, 5, 3, 7});
+              const Columns t2 = __builtin_shuffle(v[2], v[3], Mask{0, 4, 2, 6});
+              const Columns t3 = __builtin_shuffle(v[2], v[3], Mask{1, 5, 3, 7});
+              const Columns by_column[4] = {__builtin_shuffle(t0, t2, Mask{0, 1, 4, 5}),
+                                            __builtin_shuffle(t1, t3, Mask{0, 1, 4, 5}),
+                                            __builtin_shuffle(t0, t2, Mask{2, 3, 6, 7}),
+                                            __builtin_shuffle(t1, t3, Mask{2, 3, 6, 7})};
+              for (std::size_t j = 0; j < kColumnGroup; ++j) {
+                V& to = *reinterpret_cast<V*>(loads + (k0 + j) * 4);
+                to = r == 0 ? by_column[j] : to + by_column[j];
+              }
+            }
+          }
+          continue;
+        }
+      }
+      for (std::size_t l = 0; l < lanes_n; ++l) {
+        if (!inside[l]) continue;
+        double* pn = loads + l;
         for (std::size_t r = 0; r < n_rails; ++r) {
-          const std::size_t i = ws.piece[r * lanes_n + l];
-          const double u = x - rails_[r].breaks[i];
-          const double* d = rails_[r].pieces.data() + piece_index(i, 0, 0);
+          const double u = ws.offset[r * lanes_n + l];
+          const double* d = rails_[r].pieces.data() + piece_index(ws.piece[r * lanes_n + l], 0, 0);
           for (std::size_t k0 = 0; k0 < width; k0 += kColumnGroup, d += 4 * kColumnGroup) {
-            // Horner's rule on a group of columns at once: in each the
-            // scalar expression of modal_load, so the same bits.
             const Columns c0 = *reinterpret_cast<const Columns*>(d);
             const Columns c1 = *reinterpret_cast<const Columns*>(d + kColumnGroup);
             const Columns c2 = *reinterpret_cast<const Columns*>(d + 2 * kColumnGroup);
             const Columns c3 = *reinterpret_cast<const Columns*>(d + 3 * kColumnGroup);
             const Columns v = ((c3 * u + c2) * u + c1) * u + c0;
-            // The first rail's loads are the sum's first terms (0 + v == v, bit for bit).
             for (std::size_t j = 0; j < kColumnGroup; ++j) {
               double& to = pn[(k0 + j) * lanes_n];
               to = r == 0 ? v[j] : to + v[j];

@@ -79,6 +79,7 @@ struct ModalSweepWorkspace {
   // (core/sampled_peak.hpp) and the code filter reads the acceleration.
   std::array<std::vector<std::vector<double>>, kSweepLanes> displacement, acceleration;
   std::vector<std::size_t> piece;  // per rail and lane: the piece of its train load the first axle is on
+  std::vector<double> offset;      // per rail and lane: the first axle's distance from that piece's start
 };
 
 struct ModalSweepRun {
