@@ -550,6 +550,8 @@ template <int L>
           continue;
         }
       }
+      // Lane by lane (one lane alone, or a group with a lane off the
+      // table): column by column, the columns alone (no padding).
       for (std::size_t l = 0; l < lanes_n; ++l) {
         if (!inside[l]) continue;
         double* pn = loads + l;
@@ -557,14 +559,12 @@ template <int L>
           const double u = ws.offset[r * lanes_n + l];
           const double* d = rails_[r].pieces.data() + piece_index(ws.piece[r * lanes_n + l], 0, 0);
           for (std::size_t k0 = 0; k0 < width; k0 += kColumnGroup, d += 4 * kColumnGroup) {
-            const Columns c0 = *reinterpret_cast<const Columns*>(d);
-            const Columns c1 = *reinterpret_cast<const Columns*>(d + kColumnGroup);
-            const Columns c2 = *reinterpret_cast<const Columns*>(d + 2 * kColumnGroup);
-            const Columns c3 = *reinterpret_cast<const Columns*>(d + 3 * kColumnGroup);
-            const Columns v = ((c3 * u + c2) * u + c1) * u + c0;
-            for (std::size_t j = 0; j < kColumnGroup; ++j) {
+            constexpr std::size_t g = kColumnGroup;  // from one power to the next
+            const std::size_t in_group = std::min(g, width - k0);
+            for (std::size_t j = 0; j < in_group; ++j) {
+              const double v = ((d[3 * g + j] * u + d[2 * g + j]) * u + d[g + j]) * u + d[j];
               double& to = pn[(k0 + j) * lanes_n];
-              to = r == 0 ? v[j] : to + v[j];
+              to = r == 0 ? v : to + v;
             }
           }
         }
