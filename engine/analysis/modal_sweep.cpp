@@ -463,11 +463,11 @@ template <int L>
   for (std::size_t k = 0; k < n; ++k) q[k] = p[k] * inverse_omega2_[k];
   record(0, 0.0, histories != nullptr);
   const std::size_t n_rails = rails_.size();
-  // The loads of a chunk of steps are evaluated first, lane by lane, into
-  // ws.chunk (row per step: width columns of every lane): those cubics do
-  // not wait for each other, while the recurrence that follows is one chain
-  // per lane. Each value is the same expression as when it is evaluated in
-  // its step.
+  // The loads of a chunk of steps are evaluated first into ws.chunk (a row
+  // per step: the padded columns of every lane, lane-minor): those cubics
+  // do not wait for each other, while the recurrence that follows is one
+  // chain per lane. Each value is the same expression as when it is
+  // evaluated in its step.
   constexpr long kChunkSteps = 64;
   const std::size_t row = padded_width * lanes_n;
   ws.chunk.assign(static_cast<std::size_t>(kChunkSteps) * row, 0.0);
