@@ -52,7 +52,11 @@ EffectsPlan plan_effects(const PlannerInput& in) {
   }
   // The structure: modal unless its cut-off cannot be honoured.
   std::string fe_because;
-  if (!(in.f0_hz > 0.0) || !(in.f3_hz > 0.0))
+  // Interaction first: on the modes it misses the tolerance whatever the
+  // count (so its modes are not counted, and that is not the reason).
+  if (r.model == "interaction" && !in.modal_interaction_trusted)
+    fe_because = kModalInteractionNotTrusted;
+  else if (!(in.f0_hz > 0.0) || !(in.f3_hz > 0.0))
     fe_because = "the deck frequencies f0 and f3 were not computed, so the modal cut-off max(30 Hz, 1.5 f0, f3) "
                  "cannot be set";
   else if (in.modes_below_cutoff < 0)
@@ -60,8 +64,6 @@ EffectsPlan plan_effects(const PlannerInput& in) {
   else if (in.modes_below_cutoff > kMaxModalModes)
     fe_because = fmt::format("{} modes lie below the modal cut-off {:.1f} Hz, more than the modal rung's {}",
                              in.modes_below_cutoff, plan.modal_cutoff_hz, kMaxModalModes);
-  else if (r.model == "interaction" && !in.modal_interaction_trusted)
-    fe_because = kModalInteractionNotTrusted;
   if (fe_because.empty()) {
     r.structure = "modal";
     plan.reasons.push_back(fmt::format(

@@ -70,6 +70,16 @@ TEST(EffectsPlanner, WheelUnloadingComfortOrIrregularityNeedInteractionWithLinea
   }
 }
 
+TEST(EffectsPlanner, InteractionGivesItsOwnReasonForFeWhenItsModesWereNotCounted) {
+  // Scene plans count the modes for moving forces only.
+  PlannerInput in = span_15m();
+  in.load_model = false;
+  in.modes_below_cutoff = -1;
+  const EffectsPlan plan = plan_effects(in);
+  EXPECT_EQ(plan.rung.name(), "interaction/fe");
+  EXPECT_EQ(plan.reasons.back(), std::string("FE structure: ") + kModalInteractionNotTrusted);
+}
+
 TEST(EffectsPlanner, MultibodyDeckOnlyStillNeedsTheVehicles) {
   PlannerInput in = span_15m();
   in.load_model = false;
