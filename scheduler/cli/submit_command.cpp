@@ -2,9 +2,11 @@
 
 #include <iostream>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.hpp"
+#include "core/input_error.hpp"
 #include "cli/progress_display.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/service_store.hpp"
@@ -36,6 +38,15 @@ Submitted submit(const ServiceArgs& args) {
   spdlog::info("study {}: {}", plan.id.substr(0, 12), scheduler::describe(scheduler::estimate_study_cost(plan)));
   Submitted s{open_store(args.db, scheduler::OpenMode::kCreate), {}};
   s.result = scheduler::submit_study(*s.db, plan, args.max_attempts);
+  const scheduler::SubmitResult& r = s.result;
+  if (r.jobs_not_in_study > 0)
+    throw InputError("",
+                     fmt::format("{} holds this study (the same document, {}) with other jobs: {} of the {} jobs this "
+                                 "vsi makes of it are not among its {} (vsi's planning, or a file the study reads, "
+                                 "changed since it was submitted); nothing was added, its stored results stay as "
+                                 "they are; run the study into a new database (--db) for this expansion's results",
+                                 args.db, r.study_id.substr(0, 12), r.jobs_not_in_study, r.jobs, r.stored_jobs),
+                     args.study_file);
   return s;
 }
 

@@ -31,6 +31,22 @@ SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts)
       .bind(7, now)
       .run();
   result.new_study = db.changes() > 0;
+  if (!result.new_study) {
+    // A study's jobs were linked in the transaction that stored it: a job
+    // of the plan that is not linked belongs to another expansion.
+    Statement stored = db.prepare("SELECT count(*) FROM study_jobs WHERE study_id = ?");
+    stored.bind(1, plan.id).step();
+    result.stored_jobs = static_cast<std::size_t>(stored.int64(0));
+    Statement linked = db.prepare("SELECT 1 FROM study_jobs WHERE study_id = ? AND job_id = ?");
+    for (const JobSpec& j : plan.jobs) {
+      linked.reset();
+      if (!linked.bind(1, plan.id).bind(2, j.id).step()) ++result.jobs_not_in_study;
+    }
+    if (result.jobs_not_in_study > 0) {
+      tx.commit();  // nothing was written
+      return result;
+    }
+  }
   db.prepare("INSERT OR IGNORE INTO cache_stats (study_id) VALUES (?)").bind(1, plan.id).run();
   result.new_jobs = insert_study_jobs(db, plan.id, plan.jobs, 0, max_attempts, now);
   tx.commit();

@@ -25,10 +25,17 @@ struct SubmitResult {
   std::size_t jobs = 0;        // jobs of the study
   std::size_t new_jobs = 0;    // jobs not in the database before
   bool new_study = false;
+  // The study was there already (the same document) with other jobs: this
+  // many of the plan's jobs are not among the `stored_jobs` it holds
+  // (another vsi planned it, or a file its expansion reads changed). Then
+  // nothing is written: one study never mixes two expansions.
+  std::size_t jobs_not_in_study = 0;
+  std::size_t stored_jobs = 0;
 };
 
 // Inserts the study and its jobs in one transaction; what is there already
-// stays as it is (re-submitting adds nothing).
+// stays as it is (re-submitting adds nothing, and a study stored with other
+// jobs gets none of the plan's: jobs_not_in_study).
 SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts = 3);
 
 // Inserts jobs (INSERT OR IGNORE: a job already stored stays as it is) in

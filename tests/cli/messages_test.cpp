@@ -32,6 +32,32 @@ TEST_F(Messages, SubmitOfATrainSaysWhatAStudyIs) {
   EXPECT_NE(run.err.find("this is a train document, not a study"), std::string::npos) << run.err;
 }
 
+// A store holding the study as another vsi planned it (its job ids
+// rewritten here, as a changed planner would make them): submitting it
+// again adds nothing and says to use a new database; before, the study got
+// a second set of jobs, and its seed statistics counted each seed twice.
+TEST_F(Messages, ResubmittingAStudyStoredWithOtherJobsAddsNothingAndSaysSo) {
+  const auto file = (kJobs / "examples/hslm-sweep.json").string();
+  const auto db = (dir_ / "r.sqlite").string();
+  ASSERT_EQ(vsi("submit '" + file + "' --db '" + db + "'").exit_code, 0);
+  const auto sql = [&](const std::string& statement) {
+    return std::system(("sqlite3 '" + db + "' \"" + statement + "\" >'" + (dir_ / "sql.txt").string() + "'").c_str());
+  };
+  ASSERT_EQ(sql("UPDATE jobs SET id = 'old' || substr(id, 4); UPDATE job_scenes SET job_id = 'old' || "
+                "substr(job_id, 4); UPDATE study_jobs SET job_id = 'old' || substr(job_id, 4);"),
+            0);
+  for (const char* command : {"submit", "run"}) {
+    const VsiRun run = vsi(std::string(command) + " '" + file + "' --db '" + db + "'");
+    EXPECT_EQ(run.exit_code, 2) << command;
+    EXPECT_NE(run.err.find(file + ": /: " + db + " holds this study"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("330 of the 330 jobs this vsi makes of it are not among its 330"), std::string::npos)
+        << run.err;
+    EXPECT_NE(run.err.find("run the study into a new database (--db)"), std::string::npos) << run.err;
+  }
+  ASSERT_EQ(sql("SELECT count(*) FROM jobs; SELECT count(*) FROM study_jobs;"), 0);
+  EXPECT_EQ(read_text(dir_ / "sql.txt"), "330\n330\n");
+}
+
 TEST_F(Messages, InspectReadsAStudyStructureTrainsSpeedsAndResonances) {
   const auto file = (kJobs / "examples/hslm-sweep.json").string();
   const VsiRun run = vsi("inspect --format json '" + file + "'");

@@ -60,6 +60,25 @@ TEST_F(JobQueueTest, ResubmittingAddsNothing) {
   EXPECT_EQ(count_rows(*db_, "SELECT count(*) FROM jobs"), 10);
 }
 
+// The same study document planned into other jobs (as another vsi's
+// planner would): the stored study keeps its jobs, none is added, and the
+// result says how many differ.
+TEST_F(JobQueueTest, AnotherExpansionOfAStoredStudyAddsNothingAndIsCounted) {
+  const StudyPlan p = plan(tiny_study());
+  submit_study(*db_, p);
+  StudyPlan other = p;
+  for (std::size_t i = 0; i < 3; ++i) other.jobs[i].id = std::string(64, static_cast<char>('a' + i));
+  const SubmitResult again = submit_study(*db_, other);
+  EXPECT_FALSE(again.new_study);
+  EXPECT_EQ(again.jobs_not_in_study, 3u);
+  EXPECT_EQ(again.stored_jobs, 10u);
+  EXPECT_EQ(again.new_jobs, 0u);
+  EXPECT_EQ(count_rows(*db_, "SELECT count(*) FROM jobs"), 10);
+  EXPECT_EQ(count_rows(*db_, "SELECT count(*) FROM study_jobs"), 10);
+  // The same expansion again is no conflict.
+  EXPECT_EQ(submit_study(*db_, p).jobs_not_in_study, 0u);
+}
+
 TEST_F(JobQueueTest, ExpiredLeaseReturnsTheJobAndCountsAttempts) {
   json doc = tiny_study();
   doc["trains"] = json::array({doc["trains"][0]});
