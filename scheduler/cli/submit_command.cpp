@@ -39,13 +39,14 @@ Submitted submit(const ServiceArgs& args) {
   Submitted s{open_store(args.db, scheduler::OpenMode::kCreate), {}};
   s.result = scheduler::submit_study(*s.db, plan, args.max_attempts);
   const scheduler::SubmitResult& r = s.result;
-  if (r.jobs_not_in_study > 0)
+  if (r.differing_jobs > 0)
     throw InputError("",
-                     fmt::format("{} holds this study (the same document, {}) with other jobs: {} of the {} jobs this "
-                                 "vsi makes of it are not among its {} (vsi's planning, or a file the study reads, "
-                                 "changed since it was submitted); nothing was added, its stored results stay as "
-                                 "they are; run the study into a new database (--db) for this expansion's results",
-                                 args.db, r.study_id.substr(0, 12), r.jobs_not_in_study, r.jobs, r.stored_jobs),
+                     fmt::format("{} holds this study (the same document, {}) with other jobs: {} of its {} stored "
+                                 "jobs differ from the {} this vsi makes of it (vsi's planning changed since it was "
+                                 "submitted, or files the study names moved or changed); nothing was added, its "
+                                 "stored results stay as they are (vsi work --db finishes its stored jobs); run the "
+                                 "study into a new database (--db) for this expansion's results",
+                                 args.db, r.study_id.substr(0, 12), r.differing_jobs, r.stored_jobs, r.jobs),
                      args.study_file);
   return s;
 }

@@ -32,17 +32,20 @@ SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts)
       .run();
   result.new_study = db.changes() > 0;
   if (!result.new_study) {
-    // A study's jobs were linked in the transaction that stored it: a job
-    // of the plan that is not linked belongs to another expansion.
-    Statement stored = db.prepare("SELECT count(*) FROM study_jobs WHERE study_id = ?");
-    stored.bind(1, plan.id).step();
-    result.stored_jobs = static_cast<std::size_t>(stored.int64(0));
-    Statement linked = db.prepare("SELECT 1 FROM study_jobs WHERE study_id = ? AND job_id = ?");
-    for (const JobSpec& j : plan.jobs) {
-      linked.reset();
-      if (!linked.bind(1, plan.id).bind(2, j.id).step()) ++result.jobs_not_in_study;
+    // Each link keeps its job's position in the study's plan (a shard or a
+    // partial merge holds some positions; refinement appends beyond the
+    // plan). Another job at a position of this plan is another expansion
+    // of the same document.
+    Statement links = db.prepare("SELECT job_id, position FROM study_jobs WHERE study_id = ?");
+    links.bind(1, plan.id);
+    const auto planned = static_cast<std::int64_t>(plan.jobs.size());
+    while (links.step()) {
+      ++result.stored_jobs;
+      const std::int64_t at = links.int64(1);
+      if (at >= 0 && at < planned && links.text(0) != plan.jobs[static_cast<std::size_t>(at)].id)
+        ++result.differing_jobs;
     }
-    if (result.jobs_not_in_study > 0) {
+    if (result.differing_jobs > 0) {
       tx.commit();  // nothing was written
       return result;
     }

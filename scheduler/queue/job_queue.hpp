@@ -25,17 +25,19 @@ struct SubmitResult {
   std::size_t jobs = 0;        // jobs of the study
   std::size_t new_jobs = 0;    // jobs not in the database before
   bool new_study = false;
-  // The study was there already (the same document) with other jobs: this
-  // many of the plan's jobs are not among the `stored_jobs` it holds
-  // (another vsi planned it, or a file its expansion reads changed). Then
-  // nothing is written: one study never mixes two expansions.
-  std::size_t jobs_not_in_study = 0;
+  // The study was there already (the same document): of the `stored_jobs`
+  // it holds, this many are other jobs than this plan's at their position
+  // in it (another vsi planned it, or files it names moved or changed).
+  // Then nothing is written: one study never mixes two expansions. A store
+  // that holds only some of the plan's jobs (a shard, a partial merge) is
+  // completed as usual.
+  std::size_t differing_jobs = 0;
   std::size_t stored_jobs = 0;
 };
 
 // Inserts the study and its jobs in one transaction; what is there already
 // stays as it is (re-submitting adds nothing, and a study stored with other
-// jobs gets none of the plan's: jobs_not_in_study).
+// jobs gets none of the plan's: differing_jobs).
 SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts = 3);
 
 // Inserts jobs (INSERT OR IGNORE: a job already stored stays as it is) in

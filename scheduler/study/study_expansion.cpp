@@ -297,8 +297,9 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     f.cutoff_hz = code_cutoff_hz(f.frequencies.f0_hz, f.frequencies.f3_hz);
     if (auto_fidelity) {
       const double modal_cutoff_hz = kModalCutoffMargin * f.cutoff_hz;
-      // Counted once per structure, and only where the modal rung could run
-      // (moving forces, until the modal interaction rung is built in).
+      // Counted once per structure, and only where the planner may choose a
+      // modal rung: moving forces (interaction stays on FE,
+      // kModalInteractionNotTrusted).
       int modes = -1;
       if (f.first_scene.train.is_moving_forces() && f.frequencies.f0_hz > 0.0 && f.frequencies.f3_hz > 0.0) {
         auto [m, fresh] = modes_of_structure.try_emplace(f.structure_hash, -1);

@@ -3,9 +3,10 @@
 #   core -> model -> contact, integration, generators -> solver ->
 #   simulation -> io, analysis -> results -> scheduler
 # (engine/<layer>, results/*, scheduler/*). A quoted include "a/b.hpp" is
-# the file of that name under engine/, results/ or scheduler/, searched in
-# that order as the build's include path does. Folders of one layer may
-# include each other.
+# the file of that name under engine/, results/ or scheduler/; a name
+# under two of them is reported too (which one the compiler takes depends
+# on the includer's target).
+# Folders of one layer may include each other.
 #
 #   tests/architecture/include_layers.sh SOURCE_ROOT
 #
@@ -36,7 +37,12 @@ mapfile -t sources < <(find engine results scheduler \( -name '*.cpp' -o -name '
 while IFS=: read -r file included; do
   target=""
   for root in engine results scheduler; do
-    if [[ -f $root/$included ]]; then target=$root/$included; break; fi
+    [[ -f $root/$included ]] || continue
+    if [[ -n $target ]]; then
+      echo "$file includes \"$included\": both $target and $root/$included (rename one)"
+      up=1
+    fi
+    target=$root/$included
   done
   [[ -n $target ]] || continue  # a system or third-party header
   rank "$file"

@@ -50,7 +50,7 @@ TEST_F(Messages, ResubmittingAStudyStoredWithOtherJobsAddsNothingAndSaysSo) {
     const VsiRun run = vsi(std::string(command) + " '" + file + "' --db '" + db + "'");
     EXPECT_EQ(run.exit_code, 2) << command;
     EXPECT_NE(run.err.find(file + ": /: " + db + " holds this study"), std::string::npos) << run.err;
-    EXPECT_NE(run.err.find("330 of the 330 jobs this vsi makes of it are not among its 330"), std::string::npos)
+    EXPECT_NE(run.err.find("330 of its 330 stored jobs differ from the 330 this vsi makes of it"), std::string::npos)
         << run.err;
     EXPECT_NE(run.err.find("run the study into a new database (--db)"), std::string::npos) << run.err;
   }

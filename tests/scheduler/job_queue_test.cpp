@@ -70,13 +70,25 @@ TEST_F(JobQueueTest, AnotherExpansionOfAStoredStudyAddsNothingAndIsCounted) {
   for (std::size_t i = 0; i < 3; ++i) other.jobs[i].id = std::string(64, static_cast<char>('a' + i));
   const SubmitResult again = submit_study(*db_, other);
   EXPECT_FALSE(again.new_study);
-  EXPECT_EQ(again.jobs_not_in_study, 3u);
+  EXPECT_EQ(again.differing_jobs, 3u);
   EXPECT_EQ(again.stored_jobs, 10u);
   EXPECT_EQ(again.new_jobs, 0u);
   EXPECT_EQ(count_rows(*db_, "SELECT count(*) FROM jobs"), 10);
   EXPECT_EQ(count_rows(*db_, "SELECT count(*) FROM study_jobs"), 10);
   // The same expansion again is no conflict.
-  EXPECT_EQ(submit_study(*db_, p).jobs_not_in_study, 0u);
+  EXPECT_EQ(submit_study(*db_, p).differing_jobs, 0u);
+}
+
+// A store with some of the study's jobs (as a shard or a partial merge
+// holds them, at their positions in the whole study) is completed.
+TEST_F(JobQueueTest, AStoreWithPartOfAStudyIsCompletedBySubmittingIt) {
+  const StudyPlan p = plan(tiny_study());
+  submit_study(*db_, p);
+  db_->exec("DELETE FROM study_jobs WHERE position < 4");
+  const SubmitResult again = submit_study(*db_, p);
+  EXPECT_EQ(again.differing_jobs, 0u);
+  EXPECT_EQ(again.stored_jobs, 6u);
+  EXPECT_EQ(count_rows(*db_, "SELECT count(*) FROM study_jobs"), 10);
 }
 
 TEST_F(JobQueueTest, ExpiredLeaseReturnsTheJobAndCountsAttempts) {

@@ -1,0 +1,2 @@
+#pragma once
+// A fixture for include_layers.sh: a header of the contact/integration layer.
