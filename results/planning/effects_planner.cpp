@@ -54,7 +54,7 @@ EffectsPlan plan_effects(const PlannerInput& in) {
   std::string fe_because;
   // Interaction first: on the modes it misses the tolerance whatever the
   // count (so its modes are not counted, and that is not the reason).
-  if (r.model == "interaction" && !in.modal_interaction_trusted)
+  if (r.model == "interaction")
     fe_because = kModalInteractionNotTrusted;
   else if (!(in.f0_hz > 0.0) || !(in.f3_hz > 0.0))
     fe_because = "the deck frequencies f0 and f3 were not computed, so the modal cut-off max(30 Hz, 1.5 f0, f3) "

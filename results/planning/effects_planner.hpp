@@ -85,10 +85,6 @@ struct PlannerInput {
   double f0_hz = 0.0, f3_hz = 0.0;  // deck frequencies; 0 when not computed
   int modes_below_cutoff = -1;      // modes up to the modal cut-off; -1 when not counted
   double tolerance = 0.01;          // relative, of every governing envelope value
-  // Whether interaction may run on the modes at the planner's cut-off. The
-  // scene plans say no (scene_plan.cpp): measured against the FE structure,
-  // that rung misses the tolerance there (kModalInteractionNotTrusted).
-  bool modal_interaction_trusted = false;
 };
 
 struct EffectsPlan {

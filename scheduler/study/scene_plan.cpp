@@ -36,7 +36,6 @@ PlannerInput planner_input(const Scene& scene, const StudyAsks& asks, const Deck
   in.f3_hz = f.f3_hz;
   in.modes_below_cutoff = modes_below_cutoff;
   in.tolerance = scene.fidelity.tolerance;
-  in.modal_interaction_trusted = false;  // kModalInteractionNotTrusted: the planner keeps interaction on FE
   return in;
 }
 

@@ -88,14 +88,6 @@ TEST(EffectsPlanner, MultibodyDeckOnlyStillNeedsTheVehicles) {
   EXPECT_NE(plan.reasons.front().find("suspensions"), std::string::npos);
 }
 
-TEST(EffectsPlanner, ModalInteractionIsChosenWhereTrusted) {
-  PlannerInput in = span_15m();
-  in.load_model = false;
-  in.asks.wheel_unloading = true;
-  in.modal_interaction_trusted = true;
-  EXPECT_EQ(plan_effects(in).rung.name(), "interaction/modal");
-}
-
 TEST(EffectsPlanner, FeWhenTheModalCutoffCannotBeHonoured) {
   PlannerInput unknown_frequencies = span_15m();
   unknown_frequencies.f3_hz = 0.0;
