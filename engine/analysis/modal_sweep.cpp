@@ -193,10 +193,21 @@ void ModalSweep::modal_load(double x, double* p, std::size_t stride, std::size_t
       add_axle_loads(rail, x, p, stride, ws);
       continue;
     }
-    for (std::size_t k = 0; k < width; ++k) {
-      const double* d = rail.pieces.data() + piece_index(i, k, 0);
-      constexpr std::size_t g = kColumnGroup;  // from one power to the next
-      p[k * stride] += ((d[3 * g] * u + d[2 * g]) * u + d[g]) * u + d[0];
+    piece_load(rail, i, u, p, stride, false);
+  }
+}
+
+void ModalSweep::piece_load(const Rail& rail, std::size_t i, double u, double* p, std::size_t stride,
+                            bool assign) const {
+  const auto width = static_cast<std::size_t>(width_);
+  const double* d = rail.pieces.data() + piece_index(i, 0, 0);
+  constexpr std::size_t g = kColumnGroup;  // from one power to the next
+  for (std::size_t k0 = 0; k0 < width; k0 += g, d += 4 * g) {
+    const std::size_t in_group = std::min(g, width - k0);
+    for (std::size_t j = 0; j < in_group; ++j) {
+      const double v = ((d[3 * g + j] * u + d[2 * g + j]) * u + d[g + j]) * u + d[j];
+      double& to = p[(k0 + j) * stride];
+      to = assign ? v : to + v;
     }
   }
 }
@@ -554,20 +565,8 @@ template <int L>
       // table): column by column, the columns alone (no padding).
       for (std::size_t l = 0; l < lanes_n; ++l) {
         if (!inside[l]) continue;
-        double* pn = loads + l;
-        for (std::size_t r = 0; r < n_rails; ++r) {
-          const double u = ws.offset[r * lanes_n + l];
-          const double* d = rails_[r].pieces.data() + piece_index(ws.piece[r * lanes_n + l], 0, 0);
-          for (std::size_t k0 = 0; k0 < width; k0 += kColumnGroup, d += 4 * kColumnGroup) {
-            constexpr std::size_t g = kColumnGroup;  // from one power to the next
-            const std::size_t in_group = std::min(g, width - k0);
-            for (std::size_t j = 0; j < in_group; ++j) {
-              const double v = ((d[3 * g + j] * u + d[2 * g + j]) * u + d[g + j]) * u + d[j];
-              double& to = pn[(k0 + j) * lanes_n];
-              to = r == 0 ? v : to + v;
-            }
-          }
-        }
+        for (std::size_t r = 0; r < n_rails; ++r)
+          piece_load(rails_[r], ws.piece[r * lanes_n + l], ws.offset[r * lanes_n + l], loads + l, lanes_n, r == 0);
       }
     }
     for (long step = first; step < end; ++step) {

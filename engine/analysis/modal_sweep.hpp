@@ -158,6 +158,9 @@ class ModalSweep {
   // form values; piece[r * stride]: where the last call left rail r (x
   // never decreases between calls with the same pieces).
   void modal_load(double x, double* p, std::size_t stride, std::size_t* piece, ModalSweepWorkspace& ws) const;
+  // The load of `rail`'s table in piece i at u from its start, column by
+  // column: p[column * stride] = (assign) or += its cubic by Horner's rule.
+  void piece_load(const Rail& rail, std::size_t i, double u, double* p, std::size_t stride, bool assign) const;
   // The same for one rail, axle by axle (at a breakpoint of its table).
   void add_axle_loads(const Rail& rail, double x, double* p, std::size_t stride, ModalSweepWorkspace& ws) const;
   // The runs of one group, L lanes (lanes[i] for i < count, the rest idle).
