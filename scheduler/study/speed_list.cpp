@@ -24,12 +24,17 @@ std::vector<double> expand_speeds(const nlohmann::json& speeds_kmh, std::size_t 
                step = speeds_kmh.at("step").get<double>();
   if (to < from) throw InputError("/speeds_kmh/to", fmt::format("must be >= from ({})", from));
   // Both ends included; the tolerance keeps 'to' when (to - from)/step is a
-  // whole number spoilt by round-off.
+  // whole number spoilt by round-off. A 'to' off the step's grid is added
+  // after the last step below it: the top of a range is usually the maximum
+  // design speed, the one speed a study must not drop.
   const double intervals = std::floor((to - from) / step + 1e-9);
-  if (intervals + 1.0 > static_cast<double>(max_count))
+  const bool to_off_grid = to - rounded(from + intervals * step) > 1e-9 * std::max(1.0, std::abs(to));
+  const double count = intervals + 1.0 + (to_off_grid ? 1.0 : 0.0);
+  if (count > static_cast<double>(max_count))
     throw InputError("/speeds_kmh/step",
-                     fmt::format("gives {:.0f} speeds, more than the {} jobs a study may have", intervals + 1.0, max_count));
+                     fmt::format("gives {:.0f} speeds, more than the {} jobs a study may have", count, max_count));
   for (long k = 0; k <= static_cast<long>(intervals); ++k) speeds.push_back(rounded(from + static_cast<double>(k) * step));
+  if (to_off_grid) speeds.push_back(rounded(to));
   return speeds;
 }
 
@@ -68,7 +73,6 @@ std::vector<double> line_speed_speeds(const LineSpeedRange& range, double f0_hz,
   } catch (const InputError& e) {
     throw InputError("/speed_step_kmh", e.what());
   }
-  if (speeds.back() != max_kmh) speeds.push_back(max_kmh);
   const double zeta = damping_ratio > 0.0 ? damping_ratio : 0.005;
   for (double v_r : resonance_speeds_kmh(f0_hz, spacing_m, range.min_kmh, max_kmh))
     for (int k = -4; k <= 4; ++k) {

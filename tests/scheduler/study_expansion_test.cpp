@@ -64,6 +64,18 @@ TEST(StudyExpansion, SpeedRangeIncludesBothEndsWithoutRoundOff) {
   EXPECT_EQ(listed.jobs[1].speed_kmh, 180.5);
 }
 
+TEST(StudyExpansion, SpeedRangeWhoseEndIsOffTheStepKeepsItsEnd) {
+  // 200, 250, 300, 350 on the step, then the range's end 380: the top of a
+  // range is the maximum design speed, never dropped.
+  json doc = tiny_study();
+  doc["trains"] = json::array({doc["trains"][0]});
+  doc["speeds_kmh"] = {{"from", 200}, {"to", 380}, {"step", 50}};
+  const StudyPlan plan = expand(doc);
+  std::vector<double> speeds;
+  for (const scheduler::JobSpec& j : plan.jobs) speeds.push_back(j.speed_kmh);
+  EXPECT_EQ(speeds, (std::vector<double>{200, 250, 300, 350, 380}));
+}
+
 TEST(StudyExpansion, IdsAreHashesOfCanonicalScenesAndStableUnderReformatting) {
   const StudyPlan a = expand(tiny_study());
   // The same study written differently: keys in another order, 1.0e-3 as
