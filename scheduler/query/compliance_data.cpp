@@ -343,12 +343,15 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   report.model.push_back({"output points", std::to_string(structure.outputs().size())});
 
   // Rungs and time steps.
-  // Grouped by model and time step; the reason shown is the first job's
-  // (the binding bound may differ between speeds of one group).
+  // Grouped by model and the step the answers ran at; the reason shown is
+  // the first job's (the binding bound may differ between speeds of one
+  // group), with its planned step when it escalated to a finer one.
   std::map<std::pair<std::string, double>, std::pair<std::string, int>> rungs;
   for (const JobResult& j : jobs) {
-    auto& [reason, n] = rungs[{fidelity_text(j), j.dt_s}];
-    if (n++ == 0) reason = j.dt_reason;
+    auto& [reason, n] = rungs[{fidelity_text(j), j.ran_dt_s}];
+    if (n++ == 0)
+      reason = j.ran_dt_s == j.dt_s ? j.dt_reason
+                                    : fmt::format("escalated from its planned {:g} s: {}", j.dt_s, j.dt_reason);
   }
   for (const auto& [key, value] : rungs)
     report.rungs.push_back({key.first, fmt::format("{:g} s (first job: {})", key.second, value.first), value.second});

@@ -243,7 +243,7 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
   out += table_line(heading + "  state");
   for (const JobResult& j : jobs) {
     std::string line = fmt::format("{:<{}}  {:>5}  {:<{}}  {:>8.3g}", fit(j.train, train_w), train_w,
-                                   speed_text(j.speed_kmh), fit(case_label(j, variants), irr_w), irr_w, j.dt_s);
+                                   speed_text(j.speed_kmh), fit(case_label(j, variants), irr_w), irr_w, j.ran_dt_s);
     for (std::size_t k = 0; k < columns.size(); ++k)
       line += fmt::format("  {:>{}}", marked(shown(j.overall(columns[k]->quantity), columns[k]->scale),
                                             j.has_warnings() && j.overall(columns[k]->quantity).has_value()),

@@ -60,7 +60,8 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
       "j.cutoff_hz, j.wall_s, j.loop_s, j.fidelity, j.warnings, "
       "CASE WHEN json_extract(j.scene, '$.irregularity.seed') IS NOT NULL "
       "THEN json_remove(json_extract(j.scene, '$.irregularity'), '$.seed') END, "
-      "json_extract(j.scene, '$.irregularity.spectrum'), json_extract(j.scene, '$.structure.variant') "
+      "json_extract(j.scene, '$.irregularity.spectrum'), json_extract(j.scene, '$.structure.variant'), "
+      "json_extract(j.fidelity, '$.dt_s') "
       "FROM study_jobs sj JOIN job_records j ON j.id = sj.job_id "
       "WHERE {} ORDER BY sj.position",
       kFilter));
@@ -84,6 +85,7 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     r.profile_family = s.text(14);
     if (!r.profile_family.empty()) r.family_label = s.text(15);
     if (!s.is_null(16)) r.variant = variant_label(nlohmann::json::parse(s.text(16)));
+    r.ran_dt_s = s.optional_real(17).value_or(r.dt_s);
     index.emplace(r.id, jobs.size());
     jobs.push_back(std::move(r));
   }

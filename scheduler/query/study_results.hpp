@@ -30,8 +30,11 @@ struct JobResult {
   std::string state;
   std::string status;  // engine status, empty before a run
   std::string error;
-  double dt_s = 0.0;
+  double dt_s = 0.0;  // planned (jobs.dt_s), and why
   std::string dt_reason;
+  // The step the answer ran at (its fidelity record's): an escalated job
+  // re-ran at a fraction of the planned step. The planned one before a run.
+  double ran_dt_s = 0.0;
   double cutoff_hz = 0.0;
   std::optional<double> wall_s, loop_s;
   std::string fidelity;  // JSON, empty before a run

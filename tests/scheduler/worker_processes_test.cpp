@@ -1,6 +1,8 @@
 // The real vsi binary as users run it: several worker processes on one
 // database, a worker killed with SIGKILL in the middle of a study, the
 // factorization cache, and the exit codes of the service commands.
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 
@@ -200,6 +202,18 @@ TEST_F(WorkerProcesses, WheelEscalationRunsAtHalfTheStepAndTheJobRecordSaysSo) {
   EXPECT_NE(fidelity["escalation"].get<std::string>().find("at dt = 5e-05 s (0.5 x 0.0001 s)"), std::string::npos)
       << fidelity["escalation"];
   EXPECT_EQ(jobs[0]["dt_s"].get<double>(), 1.0e-4) << "the job's planned step stays in the jobs table";
+  // The table and the report show the step the answer ran at, not the planned one.
+  const VsiResult table = vsi({"query", "--db", db_file, "--study", id});
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.out.find("   5e-05  "), std::string::npos) << table.out;
+  EXPECT_EQ(table.out.find("0.0001"), std::string::npos) << table.out;
+  const auto html = dir_ / "dip.html";
+  const VsiResult report = vsi({"report", "--db", db_file, "--study", id, "--no-histories", "--out", html.string()});
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  std::ifstream in(html);
+  const std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(page.find("5e-05 s (first job: escalated from its planned 0.0001 s: "), std::string::npos);
+  EXPECT_EQ(page.find("0.0001 s (first job:"), std::string::npos);
   // The job's envelopes are those of vsi simulate of its scene (filtered at
   // the step the answer ran at in both).
   json scene = {{"structure", doc["structure"]}, {"train", doc["trains"][0]}, {"speed_kmh", 300},
