@@ -11,12 +11,17 @@
 
 #include "core/input_error.hpp"
 #include "core/sampled_peak.hpp"
+#include "simulation/run_monitor.hpp"
+#include "simulation/scene.hpp"
 
 namespace railvsi {
 
 ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::vector<int>& rail_lines, double dt_s,
                        std::shared_ptr<const ModalSectionForces> sections, DeckOutputCorrection correction)
     : basis_(basis), n_modes_(basis.num_modes()), correction_(correction), dt_s_(dt_s), sections_(std::move(sections)) {
+  const MonitorLimits limits;
+  const auto [bridge_start_m, bridge_end_m] = bridge_extent_m(basis.structure());
+  u_limit_m_ = std::max(limits.min_implausible_m, (bridge_end_m - bridge_start_m) / limits.span_ratio);
   n_forms_ = sections_ ? sections_->num_forms() : 0;
   if (correction_ == DeckOutputCorrection::kStatic) n_corrected_ = static_cast<int>(basis.structure().outputs().size());
   width_ = n_modes_ + n_forms_ + 2 * n_corrected_;
@@ -649,6 +654,7 @@ ModalSweepRun ModalSweep::run(double x0_m, double speed_mps, long n_steps, Modal
   const SweepLane lane{x0_m, speed_mps, n_steps};
   ModalSweepRun out;
   run_lanes<1>(&lane, 1, &out, ws, histories, history_stride, LaneCode::kFastest);
+  check_plausible(out);
   return out;
 }
 
@@ -661,7 +667,22 @@ std::vector<ModalSweepRun> ModalSweep::run_group(const std::vector<SweepLane>& l
   if (count == 1) run_lanes<1>(lanes.data(), 1, out.data(), ws, nullptr, 1, code);
   else if (count > 1 && use_avx2(code)) run_four_lanes_avx2(lanes.data(), count, out.data(), ws);
   else if (count > 1) run_four_lanes(lanes.data(), count, out.data(), ws);
+  for (ModalSweepRun& r : out) check_plausible(r);
   return out;
+}
+
+void ModalSweep::check_plausible(ModalSweepRun& run) const {
+  if (!run.status.ok()) return;
+  const std::vector<OutputPoint>& points = basis_.structure().outputs();
+  for (std::size_t i = 0; i < run.max_abs_displacement_m.size() && i < points.size(); ++i)
+    if (run.max_abs_displacement_m[i] > u_limit_m_) {
+      run.status = {StatusCode::kUnstable,
+                    fmt::format("deck displacement {:.4g} m at output point '{}' exceeds {:.4g} m (max(0.1 m, "
+                                "span/100)), implausible for this structure: check its stiffness and mass and their "
+                                "units",
+                                run.max_abs_displacement_m[i], points[i].name, u_limit_m_)};
+      return;
+    }
 }
 
 }  // namespace railvsi

@@ -173,7 +173,13 @@ class ModalSweep {
   void run_lanes(const SweepLane* lanes, int count, ModalSweepRun* out, ModalSweepWorkspace& ws,
                  Histories* histories, int history_stride, LaneCode code) const;
 
+  // A run whose deck displacement at an output point exceeds u_limit_m_
+  // ends unstable, as RunMonitor's rule on the FE rungs: a linear model far
+  // outside its range (a stiffness given in kN, a mass in t) is no result.
+  void check_plausible(ModalSweepRun& run) const;
+
   const ModalBasis& basis_;
+  double u_limit_m_ = 0.0;  // max(0.1 m, bridge length / 100)
   int n_modes_ = 0;
   int width_ = 0;  // columns of the cubics: modes, section forms, corrections
   std::size_t groups_ = 0;  // of kColumnGroup columns in the train-load table

@@ -162,7 +162,7 @@ Status RunMonitor::after_step(const HhtCoefficients& h, double t_new, const Kine
   const double u_max = coords_.max_abs_displacement(s.u);
   if (u_max > u_limit_m_)
     return {StatusCode::kUnstable,
-            fmt::format("structure displacement {:.3g} m exceeds {:.3g} m (max(0.1 m, span/100)), "
+            fmt::format("structure displacement {:.4g} m exceeds {:.4g} m (max(0.1 m, span/100)), "
                         "implausible for this structure",
                         u_max, u_limit_m_)};
   for (std::size_t v = 0; v < vehicles.size(); ++v) {

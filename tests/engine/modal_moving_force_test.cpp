@@ -198,6 +198,39 @@ TEST(ModalMovingForceBasis, SceneWithoutStaticCorrectionRunsTheModesAloneAndSays
   EXPECT_NE(alone.histories.deck_displacement_m, corrected.histories.deck_displacement_m);
 }
 
+TEST(ModalMovingForceBasis, ADeflectionBeyondTheSpanOverAHundredEndsUnstableAsOnTheFeRung) {
+  // 20 m span, one 1 MN force crawling at 0.2 m/s (v / (2 f1 L) below
+  // 0.005): the midspan deflection is the static P L^3 / (48 EI). The rule's limit is
+  // max(0.1 m, 20 m / 100) = 0.2 m.
+  const double L = 20.0, P = 1.0e6;
+  const auto run_with_static_deflection = [&](double deflection_m) {
+    Bridge2dOptions o;
+    o.spans_m = {L};
+    o.deck_EI_Nm2 = P * L * L * L / (48.0 * deflection_m);
+    o.deck_mass_kg_per_m = 15000.0;
+    o.damping_ratio = 0.02;
+    o.output_points = {{"midspan", L / 2}};
+    Scene scene;
+    scene.structure = make_bridge_2d(o);
+    scene.train.moving_forces = {{0.0, P}};
+    scene.speed_mps = 0.2;
+    scene.analysis.dt_s = 5e-3;
+    ModalMovingForceOptions mo;
+    mo.max_frequency_hz = 30.0;
+    return run_modal_moving_forces(scene, mo);
+  };
+  const Result plausible = run_with_static_deflection(0.15);
+  ASSERT_TRUE(plausible.status.ok()) << plausible.status.message();
+  std::printf("[modal] crawling 1 MN, static 0.15 m: midspan peak %.6f m\n", plausible.summary.points.at(0).max_abs_displacement_m);
+  // Measured 0.150003 m (2e-5 of the static value).
+  EXPECT_NEAR(plausible.summary.points.at(0).max_abs_displacement_m, 0.15, 1e-4 * 0.15);
+  const Result implausible = run_with_static_deflection(0.25);  // EI 40 % lower
+  EXPECT_EQ(implausible.status.code(), StatusCode::kUnstable);
+  EXPECT_NE(implausible.status.message().find("at output point 'midspan' exceeds 0.2 m (max(0.1 m, span/100))"),
+            std::string::npos)
+      << implausible.status.message();
+}
+
 INSTANTIATE_TEST_SUITE_P(SpeedParameters, ModalMovingForce,
                          ::testing::Values(Case{0.1, 0.0}, Case{0.3, 0.02}, Case{0.5, 0.0}, Case{1.0, 0.02}),
                          [](const ::testing::TestParamInfo<Case>& info) {
