@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <tuple>
 
 namespace railvsi {
 
@@ -27,7 +28,15 @@ CheckResult evaluate_upper_limit(CheckResult check, const std::vector<CheckCase>
       continue;
     }
     if (*c.value > check.limit) exceeded = true;
-    if (!check.governing || *c.value > *check.governing->value) check.governing = c;
+    // Equal values (a moving-force job is the same with or without a
+    // profile): the lowest speed, then profile label, governs, as in the
+    // envelope over speeds (envelopes/speed_envelope.cpp), so both name one case.
+    const auto governs = [&c](const CheckCase& g) {
+      if (*c.value != *g.value) return *c.value > *g.value;
+      return std::tie(c.speed_kmh, c.irregularity, c.variant, c.location) <
+             std::tie(g.speed_kmh, g.irregularity, g.variant, g.location);
+    };
+    if (!check.governing || governs(*check.governing)) check.governing = c;
   }
   if (cases.empty())
     check.verdict = Verdict::kIncomplete;

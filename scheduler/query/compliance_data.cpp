@@ -16,6 +16,7 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
+#include "query/check_limits.hpp"
 #include "query/price_figures.hpp"
 #include "query/static_effects.hpp"
 #include "query/study_results.hpp"
@@ -384,12 +385,11 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     c.unit = "m/s2";
     const CodeValue code = ballasted ? deck_acceleration_limit_ballasted_mps2() : deck_acceleration_limit_direct_fastening_mps2();
     c.clause = code.clause;
+    c.limit = *check_limit(checks, c.quantity);
     if (checks.contains("deck_acceleration_limit_mps2")) {
-      c.limit = checks.at("deck_acceleration_limit_mps2").get<double>();
       c.limit_verified = c.limit == code.value && code.verified;
       c.note = c.limit == code.value ? "" : "Limit given in the study's checks.";
     } else {
-      c.limit = code.value;
       c.limit_verified = code.verified;
       c.note = std::string(ballasted ? "Ballasted track" : "Direct fastening") +
                " limit (checks.track_type); frequencies up to the cut-off above.";
@@ -403,10 +403,33 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     c.quantity = "deck_displacement_m";
     c.unit = "m";
     c.clause = "limit given in the study's checks";
-    c.limit = checks.at("deck_displacement_limit_m").get<double>();
+    c.limit = *check_limit(checks, c.quantity);
     c.limit_verified = true;
     report.checks.push_back(quantity_check(c, jobs));
   }
+  // Wheel and car-body checks concern trains of vehicles: a train given as
+  // axle forces (a load model such as HSLM) has no wheel or car body, so its
+  // cases are left out of these checks rather than counted as missing.
+  std::vector<JobResult> vehicle_jobs;
+  std::size_t axle_force_jobs = 0;
+  for (const JobResult& j : jobs) {
+    if (j.axle_forces.value_or(false)) ++axle_force_jobs;
+    else vehicle_jobs.push_back(j);
+  }
+  const auto vehicle_check = [&](const CheckResult& c) {
+    CheckResult out = quantity_check(c, vehicle_jobs);
+    if (axle_force_jobs == 0) return out;
+    if (vehicle_jobs.empty()) {
+      out.verdict = Verdict::kNotEvaluated;
+      out.note += " Not evaluated: every train of the study is given as axle forces (a load model has no wheels or "
+                  "car bodies).";
+    } else {
+      out.note += fmt::format(" The {} cases of trains given as axle forces (load models: no wheels or car bodies) "
+                              "are not part of this check.",
+                              axle_force_jobs);
+    }
+    return out;
+  };
   const bool wheels = any_value(jobs, "unloading_ratio") || checks.contains("max_unloading_ratio");
   if (wheels) {
     CheckResult c;
@@ -415,11 +438,11 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     c.quantity = "unloading_ratio";
     c.unit = "";
     const CodeValue code = unloading_ratio_limit();
-    c.limit = checks.value("max_unloading_ratio", code.value);
+    c.limit = *check_limit(checks, c.quantity);
     c.clause = checks.contains("max_unloading_ratio") ? "limit given in the study's checks" : code.clause;
     c.limit_verified = checks.contains("max_unloading_ratio");
     c.note = "1 means the wheel lost contact.";
-    report.checks.push_back(quantity_check(c, jobs));
+    report.checks.push_back(vehicle_check(c));
   }
   if (any_value(jobs, "carbody_acceleration_mps2") || checks.contains("carbody_acceleration_limit_mps2")) {
     CheckResult c;
@@ -429,17 +452,14 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     c.unit = "m/s2";
     c.clause = kComfortClause;
     const std::string level = checks.value("comfort_level", std::string("very good"));
-    c.limit = comfort_levels().front().b_v_mps2;
-    for (const ComfortLevel& l : comfort_levels())
-      if (level == l.name) c.limit = l.b_v_mps2;
+    c.limit = *check_limit(checks, c.quantity);
     c.limit_verified = kComfortVerified;
     if (checks.contains("carbody_acceleration_limit_mps2")) {
-      c.limit = checks.at("carbody_acceleration_limit_mps2").get<double>();
       c.note = "Limit given in the study's checks.";
     } else {
       c.note = "Required level: " + level + " (checks.comfort_level).";
     }
-    c = quantity_check(c, jobs);
+    c = vehicle_check(c);
     if (c.governing && c.governing->value) {
       std::string achieved = "below acceptable";
       for (const ComfortLevel& l : comfort_levels())

@@ -4,11 +4,13 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <string_view>
 #include <tuple>
 
 #include <fmt/format.h>
 
 #include "core/terminal_text.hpp"
+#include "query/check_limits.hpp"
 
 namespace railvsi::scheduler {
 namespace {
@@ -21,14 +23,14 @@ struct Column {
   const char* heading;
   const char* unit;
   double scale;
-  const char* check;
+  bool vehicles;  // a wheel or car-body quantity: none for trains of axle forces
 };
 
 constexpr Column kColumns[] = {
-    {"deck_acceleration_mps2", "deck a", "m/s2, code filter", 1.0, "deck_acceleration_limit_mps2"},
-    {"deck_displacement_m", "deck w", "mm", 1e3, "deck_displacement_limit_m"},
-    {"unloading_ratio", "dQ/Q", "", 1.0, "max_unloading_ratio"},
-    {"carbody_acceleration_mps2", "body a", "m/s2", 1.0, "carbody_acceleration_limit_mps2"},
+    {"deck_acceleration_mps2", "deck a", "m/s2, code filter", 1.0, false},
+    {"deck_displacement_m", "deck w", "mm", 1e3, false},
+    {"unloading_ratio", "dQ/Q", "", 1.0, true},
+    {"carbody_acceleration_mps2", "body a", "m/s2", 1.0, true},
 };
 
 std::string shown(std::optional<double> v, double scale) {
@@ -41,7 +43,13 @@ ordered_json number(std::optional<double> v) {
   return v && std::isfinite(*v) ? ordered_json(*v) : ordered_json(nullptr);
 }
 
-std::string csv_field(const std::string& s) {
+std::string csv_field(const std::string& text) {
+  // A name that a spreadsheet would read as a formula (=, +, -, @, or a tab
+  // or CR first) is written after a quote: the CSV is meant for spreadsheets,
+  // and a train named =HYPERLINK(...) must stay text there.
+  const std::string s = !text.empty() && std::string_view("=+-@\t\r").find(text.front()) != std::string_view::npos
+                            ? "'" + text
+                            : text;
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string out = "\"";
   for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
@@ -213,8 +221,11 @@ bool at_edge_of_speed_range(const std::vector<JobResult>& jobs, const TrainEnvel
 
 std::string format_table(const StudyInfo& study, const std::vector<JobResult>& jobs) {
   std::vector<const Column*> columns;
+  // The deck acceleration is always checked (its limit is the code's when
+  // the study gives none): without a value its column says so ("-",
+  // INCOMPLETE) instead of vanishing.
   for (const Column& c : kColumns)
-    if (any_value(jobs, c.quantity)) columns.push_back(&c);
+    if (any_value(jobs, c.quantity) || std::string_view(c.quantity) == "deck_acceleration_mps2") columns.push_back(&c);
   const bool variants = has_variants(jobs);
   const char* irr_heading = variants ? "profile, bound" : "irregularity";
   std::size_t train_w = 5, irr_w = 12;
@@ -263,20 +274,24 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
   out += table_line(fmt::format("{:<{}}  {:<8}  {:>10}  {:>5}  {:<{}}  {}", "train", etrain_w, "quantity", "value",
                                 "km/h", "irregularity", eirr_w, "check"));
   bool any_edge = false, any_estimate = false, any_above = false;
+  // Trains given as axle forces have no wheel or car-body rows.
+  std::vector<JobResult> vehicle_jobs;
+  for (const JobResult& j : jobs)
+    if (!j.axle_forces.value_or(false)) vehicle_jobs.push_back(j);
   for (const Column* c : columns)
-    for (const TrainEnvelope& e : study_envelope_over_speeds(jobs, c->quantity)) {
+    for (const TrainEnvelope& e : study_envelope_over_speeds(c->vehicles ? vehicle_jobs : jobs, c->quantity)) {
       std::vector<std::string> notes;
       if (variants && e.value) notes.push_back("bound: " + e.governing_variant);
-      if (study.checks.contains(c->check)) {
-        const double limit = study.checks.at(c->check).get<double>();
-        // The train's verdict by the rules of the report: never "ok" on missing cases.
+      if (const std::optional<double> limit = check_limit(study.checks, c->quantity)) {
+        // The train's verdict by the rules of the report, against the same
+        // limit (given, or the code's): never "ok" on missing cases.
         CheckResult check;
-        check.limit = limit;
+        check.limit = *limit;
         std::vector<CheckCase> cases;
-        for (const JobResult& j : jobs)
+        for (const JobResult& j : c->vehicles ? vehicle_jobs : jobs)
           if (j.train == e.train) cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(c->quantity), j.id, ""});
         notes.push_back(fmt::format("{} (limit {})", verdict_name(evaluate_upper_limit(check, cases).verdict),
-                                    shown(limit, c->scale)));
+                                    shown(*limit, c->scale)));
       }
       if (at_edge_of_speed_range(jobs, e)) {
         notes.push_back("EDGE");

@@ -9,6 +9,7 @@
 
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
+#include "io/train_loader.hpp"
 #include "study/structure_variants.hpp"
 
 namespace railvsi::scheduler {
@@ -55,13 +56,27 @@ StudyInfo study_info(Database& db, const std::string& study_id) {
 std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
   std::vector<JobResult> jobs;
   std::unordered_map<std::string, std::size_t> index;
+  // Whether a scene's train is axle forces, read once per train.
+  std::unordered_map<std::string, std::optional<bool>> trains;
+  const auto axle_forces = [&trains](const std::string& type, const std::string& text) -> std::optional<bool> {
+    const auto [it, fresh] = trains.try_emplace(type + ":" + text);
+    if (fresh) {
+      try {
+        const nlohmann::json train = type == "text" ? nlohmann::json(text) : nlohmann::json::parse(text);
+        it->second = parse_train_reference(train).is_moving_forces();
+      } catch (const std::exception&) {  // a library train no longer there: not known
+        it->second = std::nullopt;
+      }
+    }
+    return it->second;
+  };
   Statement s = db.prepare(fmt::format(
       "SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, j.error, j.dt_s, j.dt_reason, "
       "j.cutoff_hz, j.wall_s, j.loop_s, j.fidelity, j.warnings, "
       "CASE WHEN json_extract(j.scene, '$.irregularity.seed') IS NOT NULL "
       "THEN json_remove(json_extract(j.scene, '$.irregularity'), '$.seed') END, "
       "json_extract(j.scene, '$.irregularity.spectrum'), json_extract(j.scene, '$.structure.variant'), "
-      "json_extract(j.fidelity, '$.dt_s') "
+      "json_extract(j.fidelity, '$.dt_s'), json_type(j.scene, '$.train'), json_extract(j.scene, '$.train') "
       "FROM study_jobs sj JOIN job_records j ON j.id = sj.job_id "
       "WHERE {} ORDER BY sj.position",
       kFilter));
@@ -86,6 +101,7 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     if (!r.profile_family.empty()) r.family_label = s.text(15);
     if (!s.is_null(16)) r.variant = variant_label(nlohmann::json::parse(s.text(16)));
     r.ran_dt_s = s.optional_real(17).value_or(r.dt_s);
+    r.axle_forces = axle_forces(s.text(18), s.text(19));
     index.emplace(r.id, jobs.size());
     jobs.push_back(std::move(r));
   }
@@ -146,15 +162,25 @@ std::optional<std::string> filter_error(Database& db, const QueryFilter& f) {
   if (f.irregularity)
     if (auto why = unknown_label(db, f.study_id, "irregularity", "--irregularity", *f.irregularity)) return why;
   if (f.speed_min_kmh || f.speed_max_kmh) {
-    Statement s = db.prepare("SELECT min(j.speed_kmh), max(j.speed_kmh) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
-                             "WHERE sj.study_id = ?");
-    s.bind(1, f.study_id).step();
-    if (!s.is_null(0)) {
-      const double lo = s.real(0), hi = s.real(1);
-      if ((f.speed_min_kmh && *f.speed_min_kmh > hi) || (f.speed_max_kmh && *f.speed_max_kmh < lo))
-        return fmt::format("the speed range [{}, {}] km/h holds no speed of the study, whose speeds run from {} to {} km/h",
-                           f.speed_min_kmh ? fmt::format("{}", *f.speed_min_kmh) : std::string("-"),
-                           f.speed_max_kmh ? fmt::format("{}", *f.speed_max_kmh) : std::string("-"), lo, hi);
+    // A range that holds none of the study's speeds, outside them or between
+    // two of them, matches nothing.
+    Statement s = db.prepare(
+        "SELECT min(j.speed_kmh), max(j.speed_kmh), "
+        "sum((?2 IS NULL OR j.speed_kmh >= ?2) AND (?3 IS NULL OR j.speed_kmh <= ?3)), "
+        "max(CASE WHEN j.speed_kmh < ?2 THEN j.speed_kmh END), min(CASE WHEN j.speed_kmh > ?3 THEN j.speed_kmh END) "
+        "FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1");
+    s.bind(1, f.study_id);
+    if (f.speed_min_kmh) s.bind(2, *f.speed_min_kmh); else s.bind_null(2);
+    if (f.speed_max_kmh) s.bind(3, *f.speed_max_kmh); else s.bind_null(3);
+    s.step();
+    if (!s.is_null(0) && s.int64(2) == 0) {
+      const std::string range =
+          fmt::format("the speed range [{}, {}] km/h holds no speed of the study",
+                      f.speed_min_kmh ? fmt::format("{}", *f.speed_min_kmh) : std::string("-"),
+                      f.speed_max_kmh ? fmt::format("{}", *f.speed_max_kmh) : std::string("-"));
+      if (!s.is_null(3) && !s.is_null(4))
+        return fmt::format("{}: it lies between two of its speeds, {} and {} km/h", range, s.real(3), s.real(4));
+      return fmt::format("{}, whose speeds run from {} to {} km/h", range, s.real(0), s.real(1));
     }
   }
   return std::nullopt;

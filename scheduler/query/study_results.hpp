@@ -36,6 +36,10 @@ struct JobResult {
   // re-ran at a fraction of the planned step. The planned one before a run.
   double ran_dt_s = 0.0;
   double cutoff_hz = 0.0;
+  // Its train is axle forces (a load model, or a train given "as" forces):
+  // no wheel or car-body quantity exists for it. Absent when its train can
+  // no longer be read.
+  std::optional<bool> axle_forces;
   std::optional<double> wall_s, loop_s;
   std::string fidelity;  // JSON, empty before a run
   // A random profile (a spectrum with a seed): its profile without the seed

@@ -218,6 +218,51 @@ TEST_F(QueryVerdictsTest, ExceededCheckExitsFourOnlyWhenAsked) {
   }
 }
 
+// HSLM trains are axle forces: a wheel-unloading or comfort limit in the
+// checks does not make every case "without a value" (the verdict could never
+// be PASS); those checks are not evaluated, and the deck's verdict decides.
+TEST_F(QueryVerdictsTest, WheelAndComfortChecksOfLoadModelTrainsAreNotEvaluatedNotIncomplete) {
+  json doc = study(200, 300, 50, 100.0);
+  doc["checks"]["max_unloading_ratio"] = 0.6;
+  doc["checks"]["carbody_acceleration_limit_mps2"] = 1.0;
+  const auto file = write_json("forces.json", doc);
+  const VsiRun run = vsi("run '" + file.string() + "'" + db_arg() + " --threads 2 --fail-on-exceeded");
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("checks: PASS"), std::string::npos) << run.out;
+  const std::string id = study_id_of(run.err + run.out);
+  ASSERT_FALSE(id.empty()) << run.err;
+  const json out = json::parse(query(id, "--format json").out);
+  EXPECT_EQ(out.at("verdict"), "PASS");
+  EXPECT_EQ(check_of(out, "deck_acceleration").at("verdict"), "PASS");
+  for (const char* id_of_check : {"wheel_unloading", "passenger_comfort"}) {
+    const json& c = check_of(out, id_of_check);
+    EXPECT_EQ(c.at("verdict"), "NOT EVALUATED") << id_of_check;
+    EXPECT_EQ(c.at("cases"), 0) << id_of_check;
+    EXPECT_EQ(c.at("missing"), 0) << id_of_check;
+    EXPECT_NE(c.at("note").get<std::string>().find("every train of the study is given as axle forces"),
+              std::string::npos)
+        << c.at("note");
+  }
+}
+
+// Names a spreadsheet would take for formulas stay text in both CSVs.
+TEST_F(QueryVerdictsTest, CsvWritesFormulaLikeNamesAsText) {
+  json doc = study(200, 200, 50, 100.0);
+  doc["trains"] = json::parse(R"j([{"name": "=1+1", "moving_forces": [{"offset_m": 0, "load_N": 1e5}]},
+                                  {"name": "@SUM(A1)", "moving_forces": [{"offset_m": 0, "load_N": 2e5}]}])j");
+  const auto file = write_json("formula.json", doc);
+  const VsiRun run = vsi("run '" + file.string() + "'" + db_arg() + " --threads 1");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string id = study_id_of(run.err + run.out);
+  for (const char* format : {"--format csv", "--format csv --wide"}) {
+    const Csv csv = parse_csv(query(id, format).out);
+    ASSERT_FALSE(csv.rows.empty()) << format;
+    std::set<std::string> trains;
+    for (const auto& row : csv.rows) trains.insert(row.at(0));
+    EXPECT_EQ(trains, (std::set<std::string>{"'=1+1", "'@SUM(A1)"})) << format;
+  }
+}
+
 // --wide: one line per train x speed x profile, one column per quantity
 // (x location), each value that of the long csv.
 TEST_F(QueryVerdictsTest, WideCsvHasOneLinePerCaseAndTheLongCsvValues) {

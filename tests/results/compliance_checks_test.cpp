@@ -7,6 +7,7 @@
 
 #include "compliance/check_verdict.hpp"
 #include "compliance/code_values.hpp"
+#include "envelopes/speed_envelope.hpp"
 #include "report/line_plot.hpp"
 
 namespace railvsi {
@@ -86,6 +87,25 @@ TEST(CheckVerdict, FailWhenAnyCaseExceedsEvenWithMissingCases) {
   const auto r = evaluate_upper_limit(limit(3.5), {{"A", 100, "none", 3.6}, {"A", 200, "none", std::nullopt}});
   EXPECT_EQ(r.verdict, Verdict::kFail);
   EXPECT_EQ(r.governing->value, 3.6);
+}
+
+TEST(CheckVerdict, EqualValuesGoToTheCaseTheEnvelopeOverSpeedsNames) {
+  // A moving-force job gives the same value with and without a profile: the
+  // check names the case the envelope over speeds names (lowest speed, then
+  // profile label), whatever the order of the cases.
+  const std::vector<CheckCase> cases = {{"A", 340, "none", 34.68, "n"},
+                                        {"A", 340, "german-low seed 1", 34.68, "g"},
+                                        {"A", 350, "german-low seed 1", 34.68, "h"}};
+  std::vector<CaseValue> rows;
+  for (const CheckCase& c : cases) rows.push_back({c.train, c.speed_kmh, c.irregularity, c.value, c.variant});
+  const TrainEnvelope e = envelope_over_speeds(rows, Extreme::kMax).at(0);
+  for (const auto& order : {cases, std::vector<CheckCase>(cases.rbegin(), cases.rend())}) {
+    const auto r = evaluate_upper_limit(limit(35.0), order);
+    ASSERT_TRUE(r.governing);
+    EXPECT_EQ(r.governing->irregularity, e.governing_irregularity);
+    EXPECT_EQ(r.governing->speed_kmh, e.governing_speed_kmh);
+    EXPECT_EQ(r.governing->job_id, "g");
+  }
 }
 
 TEST(CheckVerdict, PerTrainVerdictsFollowTheSameRules) {
