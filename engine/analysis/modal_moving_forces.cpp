@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "simulation/run_monitor.hpp"
 #include "simulation/simulation.hpp"
 
 namespace railvsi {
@@ -43,6 +44,7 @@ Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis, Deck
       sweep.run(modal_run_start_x_m(scene), scene.speed_mps, n_steps, ws, &result.histories, scene.analysis.history_stride);
   result.status = run.status;
   fill_modal_summary(sweep, run, result.summary);
+  result.summary.warnings = scene_input_warnings(scene);
   result.summary.wall_s = std::chrono::duration<double>(Clock::now() - t_start).count();
   return result;
 }
@@ -53,7 +55,18 @@ long modal_run_steps(const Scene& scene) {
   const double duration = scene.analysis.duration_s.value_or(default_duration_s(scene, modal_run_start_x_m(scene)));
   if (!(duration > 0.0) || !std::isfinite(duration))
     throw InputError("/analysis/duration_s", "the run has no duration: give speed_kmh > 0 or analysis.duration_s");
-  return static_cast<long>(std::ceil(duration / scene.analysis.dt_s - 1e-9));
+  const double steps = std::ceil(duration / scene.analysis.dt_s - 1e-9);
+  // The FE rungs' step limit (Simulation): the sweep keeps the deck response
+  // of every step, so a run of 4e7 steps took 3.9 GB, and more ended in
+  // bad_alloc.
+  const RunLimits limits;
+  if (!scene.analysis.allow_large_run && !(steps <= limits.max_steps))
+    throw InputError("/analysis/dt_s",
+                     fmt::format("the run would take {:.3g} steps (limit {:.3g}): {:.6g} s of simulated time at dt = "
+                                 "{:.3g} s; check dt_s, duration_s and speed_kmh (a planned dt follows the structure's "
+                                 "frequencies and accuracy.tolerance), or run it with --allow-large",
+                                 steps, limits.max_steps, duration, scene.analysis.dt_s));
+  return static_cast<long>(steps);
 }
 
 void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSummary& sum) {

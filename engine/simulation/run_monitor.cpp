@@ -28,18 +28,25 @@ RunMonitor::RunMonitor(const Scene& scene, const TrainLayout& layout, const Stru
   alternations_.assign(static_cast<std::size_t>(P0.size()), 0);
   min_tension_ratio_.assign(static_cast<std::size_t>(P0.size()), 0.0);
 
-  // Static inputs the run cannot honour.
-  if (!scene.train.is_moving_forces() && scene.analysis.structure_backend == StructureBackend::kModal)
-    warn_once("modal_interaction_unverified",
-              "interaction on the modes: its error against the FE structure depends on the track and the cut-off "
-              "and is not known for this scene (measured 0.07 % to 23 % on the filtered deck acceleration and up to "
-              "10 % on the minimum contact force, README \"The modal structure\"); in a study, \"accuracy\": "
-              "{\"verify\": \"governing\"} re-runs the governing jobs on the FE structure");
-  if (scene.train.is_moving_forces() && scene.irregularity)
-    warn_once("irregularity_ignored",
-              "moving forces do not feel the track irregularity: it has no effect on this run (use a multibody "
-              "train for its effect)");
+  for (RunWarning& w : scene_input_warnings(scene)) warn_once(w.code, std::move(w.message));
   check_track_ends(start_x_m);
+}
+
+std::vector<RunWarning> scene_input_warnings(const Scene& scene) {
+  std::vector<RunWarning> out;
+  if (!scene.train.is_moving_forces() && scene.analysis.structure_backend == StructureBackend::kModal)
+    out.push_back({"modal_interaction_unverified",
+                   "interaction on the modes: its error against the FE structure depends on the track and the "
+                   "cut-off and is not known for this scene (measured 0.07 % to 23 % on the filtered deck "
+                   "acceleration and up to 10 % on the minimum contact force, README \"The modal structure\"); in a "
+                   "study, \"accuracy\": {\"verify\": \"governing\"} re-runs the governing jobs on the FE structure",
+                   {}, {}, {}});
+  if (scene.train.is_moving_forces() && scene.irregularity)
+    out.push_back({"irregularity_ignored",
+                   "moving forces do not feel the track irregularity: it has no effect on this run (use a multibody "
+                   "train for its effect)",
+                   {}, {}, {}});
+  return out;
 }
 
 Vector RunMonitor::vehicle_load(std::size_t v, const Vector& P_old, const Vector& P_new, double alpha) const {

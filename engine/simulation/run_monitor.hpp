@@ -37,6 +37,12 @@ struct MonitorLimits {
   double energy_unstable = 5e-2;
 };
 
+// What a scene's inputs earn before it runs (inputs the run cannot honour):
+// modal_interaction_unverified, irregularity_ignored. RunMonitor starts
+// with them; the modal moving-force rung, which has no monitor, adds them
+// itself.
+std::vector<RunWarning> scene_input_warnings(const Scene& scene);
+
 class RunMonitor {
  public:
   // Structure states and loads in the coordinates `coords` (referenced).

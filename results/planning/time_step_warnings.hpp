@@ -6,6 +6,7 @@
 // deck acceleration cannot be computed and is left out, never a number).
 #include <vector>
 
+#include "planning/effects_planner.hpp"
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 
@@ -13,5 +14,15 @@ namespace railvsi {
 
 // cutoff_hz: the code frequency max(30 Hz, 1.5 f0, f3) of the structure.
 std::vector<RunWarning> time_step_warnings(const Scene& scene, double cutoff_hz);
+
+// The peaks a modal moving-force run keeps: section forces and deck twist
+// (a structure with two rail lines may have one) their largest sample, the
+// deck's refined between samples.
+ModalPeaks modal_peaks_of(const Scene& scene);
+
+// The same warnings on the modal moving-force rung, whose step only samples
+// the load and the output: dt above the sampling rule for its peaks
+// (modal_time_step_s at the scene's tolerance), and filter_above_nyquist.
+std::vector<RunWarning> modal_time_step_warnings(const Scene& scene, double cutoff_hz);
 
 }  // namespace railvsi

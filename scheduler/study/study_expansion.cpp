@@ -21,6 +21,7 @@
 #include "study/scene_plan.hpp"
 #include "study/speed_list.hpp"
 #include "study/structure_key.hpp"
+#include "planning/time_step_warnings.hpp"
 #include "study/structure_variants.hpp"
 #include "study/study_plan.hpp"
 
@@ -172,10 +173,8 @@ struct JobTimeStep {
 JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequencies& f, const EffectsPlan& plan) {
   if (dt_given) return {scene.analysis.dt_s, "given in the study (analysis.dt_s)"};
   if (plan.rung.exact_modal()) {
-    // Section forces and deck twist (a structure with two rail lines may
-    // have one) keep their largest sample; the deck's peaks are refined.
-    const bool sampled = scene.fidelity.asks_section_forces() || scene.structure->rails().size() >= 2;
-    const ModalPeaks peaks = sampled ? ModalPeaks::kSampled : ModalPeaks::kRefined;
+    const ModalPeaks peaks = modal_peaks_of(scene);
+    const bool sampled = peaks == ModalPeaks::kSampled;
     const double dt = modal_time_step_s(plan.code_frequency_hz, scene.fidelity.tolerance, peaks);
     return {dt, fmt::format("modal rung (exact recurrence: dt samples the load and output only): the peak at the code "
                             "frequency {:.1f} Hz {} within the tolerance {:g} needs {:.3e} s",
@@ -219,7 +218,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     line_range = line_speed_range(doc);
     if (speeds.empty() && !line_range)
       throw InputError("/speeds_kmh", "give the speeds (speeds_kmh), the maximum line speed (line_speed_kmh) or both");
-    variants = study_variants(doc);
+    variants = study_variants(doc, max_jobs);
   } catch (const InputError& e) {
     throw e.with_file(file);
   }

@@ -12,6 +12,7 @@
 #include "core/input_error.hpp"
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
+#include "simulation/run_monitor.hpp"
 #include "simulation/simulation.hpp"
 #include "envelopes/code_filter.hpp"
 #include "envelopes/envelope_rows.hpp"
@@ -191,6 +192,8 @@ void run_group_on_pass(ModalPass& pass, const std::vector<GroupMember>& group, c
     const ModalSweepRun& run = runs[g];
     RunSummary summary;
     fill_modal_summary(*pass.sweep, run, summary);
+    summary.warnings = scene_input_warnings(scene);
+    for (RunWarning& w : modal_time_step_warnings(scene, job.cutoff_hz)) summary.warnings.push_back(std::move(w));
     if (pass.fidelity_text.empty()) {
       record_rung(scene, pass.plan, pass.plan.rung, summary);
       pass.fidelity_text = fidelity_json(summary.fidelity).dump();

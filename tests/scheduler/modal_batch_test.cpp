@@ -6,6 +6,7 @@
 // sweep loses nothing.
 #include <algorithm>
 #include <csignal>
+#include <set>
 #include <thread>
 
 #include <fmt/format.h>
@@ -188,6 +189,60 @@ TEST_F(ModalBatches, BatchedJobEqualsTheHistoriesPathOfSimulate) {
     }
   }
   EXPECT_EQ(compared, 2);
+}
+
+// Moving forces do not feel a profile: a batched job with one says so in
+// its warnings, as the single-run path (and the FE monitor) does.
+TEST_F(ModalBatches, BatchedJobsWithAProfileCarryIrregularityIgnored) {
+  json doc = modal_study();
+  doc["speeds_kmh"] = json::array({200, 220});
+  doc["irregularities"] = json::parse(R"([null, {"x_m": [0, 5, 10], "r_m": [0, 0.001, 0]}])");
+  const std::string db_file = run_study(doc, "profile.sqlite", 256);
+  Database db(db_file);
+  Statement s = db.prepare("SELECT irregularity, warnings, scene FROM job_records");
+  int with_profile = 0, without = 0;
+  while (s.step()) {
+    const bool profile = s.text(0) != "none";
+    const json warnings = json::parse(s.text(1));
+    const bool ignored = std::any_of(warnings.begin(), warnings.end(),
+                                     [](const json& w) { return w.at("code") == "irregularity_ignored"; });
+    EXPECT_EQ(ignored, profile) << s.text(0) << " " << s.text(1);
+    (profile ? with_profile : without) += 1;
+    // The single-run path of the same scene gives the same warning.
+    const Scene scene = parse_scene(json::parse(s.text(2)), "/", "job");
+    ModalBasisOptions o;
+    o.max_frequency_hz = scene.fidelity.modal_cutoff_hz.value();
+    const Result r = run_modal_moving_forces(scene, ModalBasis(scene.structure, o));
+    ASSERT_EQ(r.summary.warnings.size(), profile ? 1u : 0u);
+    if (profile) {
+      EXPECT_EQ(r.summary.warnings[0].code, "irregularity_ignored");
+    }
+  }
+  EXPECT_EQ(with_profile, 4);  // 2 trains x 2 speeds
+  EXPECT_EQ(without, 4);
+}
+
+// A step given in the study above the modal rung's sampling rule is
+// flagged as on the FE rungs: dt_above_policy, and filter_above_nyquist
+// where it cannot resolve the code frequency (the filtered value is left
+// out). The planner's own step raises neither (the test above).
+TEST_F(ModalBatches, AGivenStepAboveTheSamplingRuleIsFlagged) {
+  json doc = modal_study();
+  doc["speeds_kmh"] = json::array({200});
+  doc["analysis"]["dt_s"] = 0.05;
+  const std::string db_file = run_study(doc, "coarse.sqlite", 256);
+  Database db(db_file);
+  Statement s = db.prepare("SELECT warnings, rung FROM job_records");
+  int jobs = 0;
+  while (s.step()) {
+    ++jobs;
+    EXPECT_EQ(s.text(1), "moving_forces/modal");
+    std::set<std::string> codes;
+    for (const json& w : json::parse(s.text(0))) codes.insert(w.at("code").get<std::string>());
+    EXPECT_EQ(codes, (std::set<std::string>{"dt_above_policy", "filter_above_nyquist"})) << s.text(0);
+  }
+  EXPECT_EQ(jobs, 2);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE quantity = 'deck_acceleration_mps2' AND value IS NOT NULL"), 0);
 }
 
 // Trains that share the structure and time step share the operator key:

@@ -171,6 +171,21 @@ TEST(StudyExpansion, BadTrainStiffnessIsReportedAtItsPathInTheStudy) {
   EXPECT_EQ(e.file(), "study.json");
 }
 
+TEST(StudyExpansion, ModalRunBeyondTheStepLimitIsRefusedAtSubmission) {
+  // A very stiff, light deck: its code frequency sets a modal dt of about
+  // 1e-7 s, tens of millions of steps. The workers kept every step's deck
+  // response (3.9 GB) or failed with bad_alloc; now the submission refuses
+  // it as it does on the FE rungs.
+  json doc = tiny_study();
+  doc["analysis"].erase("dt_s");
+  doc["structure"]["deck"] = {{"EI_Nm2", 1.0e16}, {"mass_kg_per_m", 100}};
+  doc["speeds_kmh"] = json::array({200});
+  const InputError e = expansion_error(doc);
+  EXPECT_EQ(e.json_path(), "/analysis/dt_s");
+  EXPECT_NE(std::string(e.what()).find("steps (limit 2e+06)"), std::string::npos) << e.what();
+  EXPECT_EQ(e.file(), "study.json");
+}
+
 TEST(StudyExpansion, UnknownLibraryTrainIsReportedAtItsIndex) {
   json doc = tiny_study();
   doc["trains"].push_back("NO-SUCH-TRAIN");
