@@ -1,17 +1,22 @@
 #include "cli/report_command.hpp"
 
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
+#include <string>
 
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
 #include "cli/service_store.hpp"
 #include "cli/verdict_exit.hpp"
+#include "core/terminal_text.hpp"
 #include "query/compliance_data.hpp"
 #include "report/compliance_report.hpp"
 #include "store/store_check.hpp"
@@ -54,7 +59,33 @@ std::optional<int> ReportCommand::run_parsed() const {
   return report_command(args_);
 }
 
+namespace {
+
+// Why `out` cannot take the report, or nullopt. The report replaces a
+// regular file only: renaming onto a device, a FIFO or a symbolic link would
+// replace that node (run as root, --out /dev/null replaced the system's).
+std::optional<std::string> unusable_out(const std::filesystem::path& out) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(out, ec);
+  if (fs::exists(st) && !fs::is_regular_file(st))
+    return fmt::format("--out {}: it exists and is not a regular file ({}); the report replaces a regular file "
+                       "only: give another path",
+                       out.string(), fs::is_symlink(st) ? "a symbolic link" : fs::is_directory(st) ? "a directory"
+                                                                                                  : "a device or FIFO");
+  const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+  if (!fs::is_directory(dir, ec)) return fmt::format("--out {}: its folder {} does not exist", out.string(), dir.string());
+  return std::nullopt;
+}
+
+}  // namespace
+
 int report_command(const ReportArgs& args) {
+  if (!args.out.empty())
+    if (const auto why = unusable_out(args.out)) {
+      std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';
+      return kExitInvalidInput;
+    }
   auto opened = open_study(args.db, args.study_id);
   if (!opened) return kExitInvalidInput;
   const auto& db = opened->db;
@@ -69,21 +100,30 @@ int report_command(const ReportArgs& args) {
   const std::string html = render_html(report);
 
   const std::filesystem::path out = args.out.empty() ? "report-" + id->substr(0, 12) + ".html" : args.out;
-  // Written whole or not at all.
-  const std::filesystem::path tmp = out.string() + ".partial";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) {
-      std::cerr << "error: cannot write " << tmp.string() << '\n';
-      return kExitRuntimeFailure;
-    }
-    f << html;
-    if (!f.flush()) {
-      std::cerr << "error: cannot write " << tmp.string() << '\n';
-      return kExitRuntimeFailure;
-    }
+  if (const auto why = unusable_out(out)) {  // the default name, or the path changed while the report was built
+    std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';
+    return kExitInvalidInput;
   }
-  std::filesystem::rename(tmp, out);
+  // Written whole or not at all: a failed write leaves neither file.
+  const std::filesystem::path tmp = out.string() + ".partial";
+  const auto failed = [&](int error) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    std::cerr << "error: cannot write " << out.string() << " (" << std::strerror(error) << "); nothing was written\n";
+    return kExitRuntimeFailure;
+  };
+  {
+    errno = 0;
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) return failed(errno);
+    f << html;
+    if (!f.flush()) return failed(errno ? errno : EIO);
+    f.close();
+    if (f.fail()) return failed(errno ? errno : EIO);
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, out, ec);
+  if (ec) return failed(ec.value());
   std::cout << "report: " << out.string() << " (" << verdict_name(report.overall) << ")\n";
   return args.fail_on_exceeded ? verdict_exit_code(report.overall) : kExitOk;
 }

@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <sqlite3.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <regex>
@@ -115,6 +118,35 @@ TEST_F(ReportTest, CancelledStudyIsIncompleteNeverPass) {
   EXPECT_NE(row("deck_acceleration").find("INCOMPLETE"), std::string::npos);
   EXPECT_NE(row("dynamic_enhancement").find("INCOMPLETE"), std::string::npos) << row("dynamic_enhancement");
   EXPECT_NE(row("lm71_deflection").find("PASS"), std::string::npos);
+}
+
+// --out replaces a regular file only: a FIFO, a symbolic link or a folder
+// at the path is left as it is (run as root, --out /dev/null had replaced
+// the system's null device with the report), and so is a missing folder.
+TEST_F(ReportTest, OutThatIsNotARegularFileIsRefusedAndLeftAlone) {
+  const std::string id = submit(small_study(), true);
+  const auto fifo = dir_ / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto target = dir_ / "target.html";
+  { std::ofstream(target) << "kept"; }
+  const auto link = dir_ / "link.html";
+  std::filesystem::create_symlink(target, link);
+  std::filesystem::create_directory(dir_ / "folder.html");
+  for (const char* name : {"pipe", "link.html", "folder.html"}) {
+    const VsiRun r = report(id, name);
+    EXPECT_EQ(r.exit_code, 2) << name << r.err;
+    EXPECT_NE(r.err.find("exists and is not a regular file"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir_ / (std::string(name) + ".partial"))) << name;
+  }
+  EXPECT_TRUE(std::filesystem::is_fifo(fifo));
+  EXPECT_TRUE(std::filesystem::is_symlink(link));
+  EXPECT_EQ(read_text(target), "kept");
+  const VsiRun missing = report(id, "no-such-folder/r.html");
+  EXPECT_EQ(missing.exit_code, 2) << missing.err;
+  EXPECT_NE(missing.err.find("does not exist"), std::string::npos) << missing.err;
+  // A regular file is replaced, as before.
+  ASSERT_EQ(report(id, "target.html").exit_code, 0);
+  EXPECT_NE(read_text(target).find("<html"), std::string::npos);
 }
 
 TEST_F(ReportTest, SameStoreGivesTheSameBytes) {
