@@ -20,7 +20,7 @@ int query_command(const ServiceArgs& args) {
   scheduler::require_consistent_study(*db, *id);
   const scheduler::QueryFilter filter{*id, args.train, args.speed_min_kmh, args.speed_max_kmh, args.irregularity};
   if (const auto why = scheduler::filter_error(*db, filter)) {
-    std::cerr << "error: " << *why << '\n';
+    std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';  // it lists the study's names
     return kExitInvalidInput;
   }
   if (args.wide && args.format != "csv") {

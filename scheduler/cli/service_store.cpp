@@ -16,6 +16,9 @@ std::unique_ptr<scheduler::Database> open_store(const std::string& file, schedul
     scheduler::require_current_schema(*db);
     scheduler::require_sound(*db);
   } else {
+    // A damaged store is reported, never written to (submit, work and run
+    // had added jobs to a file that status and query refuse).
+    scheduler::require_sound(*db);
     scheduler::migrate(*db);
   }
   return db;

@@ -11,6 +11,7 @@
 #include "core/unix_time.hpp"
 #include "shards/attached_store.hpp"
 #include "shards/shard_store.hpp"
+#include "store/store_check.hpp"
 #include "store/store_schema.hpp"
 
 namespace railvsi::scheduler {
@@ -25,6 +26,13 @@ CheckedShard check_shard(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) throw InputError("", "no such shard file", file.string());
   try {
     Database db(file.string());
+    // Damage is found here, before the target is touched (a damaged second
+    // shard had left the first one merged into a new target).
+    try {
+      require_sound(db);
+    } catch (const std::runtime_error& e) {
+      throw InputError("", e.what(), file.string());
+    }
     const int version = store_schema_version(db);
     if (version != kStoreSchemaVersion)
       throw InputError("", fmt::format("store schema version {}, this vsi's is {}: merge shards with the vsi that "
@@ -177,6 +185,7 @@ MergeSummary merge_shards(const std::vector<std::filesystem::path>& shard_files,
                   [&](const CheckedShard& s) { return s.file == std::filesystem::weakly_canonical(into); }))
     throw InputError("", "the target is one of the shards", into.string());
   Database target(into.string());
+  require_sound(target);
   migrate(target);
   if (const auto marker = shard_marker(target))
     throw InputError("", fmt::format("the target is shard {} of {} of a study: merge into a store of its own",

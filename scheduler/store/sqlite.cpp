@@ -78,6 +78,8 @@ Database::Database(const std::string& file, OpenMode mode, int busy_timeout_ms) 
   sqlite3* raw = db_.get();
   sqlite3_busy_timeout(raw, busy_timeout_ms);
   sqlite3_extended_result_codes(raw, 1);
+  // Not an SQLite file: say which file, before the journal mode is touched.
+  if (const int rc = read_schema(raw); rc != SQLITE_ROW) fail(raw, rc, fmt::format("read {}", file));
   exec("PRAGMA journal_mode=WAL");
   // NORMAL is durable in WAL mode up to the last checkpointed commit after a
   // power loss; a process crash loses no committed transaction.

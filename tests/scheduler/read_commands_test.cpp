@@ -121,7 +121,7 @@ TEST_F(ReadCommands, DamagedDatabaseIsReportedByCheckAndNeverReadInPart) {
   const auto size = std::filesystem::file_size(db_file_);
   const std::size_t page = 4096, pages = size / page;
   ASSERT_GE(pages, 30u);
-  int damage_found_by_reads = 0;
+  int damage_found_by_reads = 0, damage_refused_by_work = 0;
   for (const bool zeros : {true, false})
     for (const std::size_t first : {pages / 4, pages / 2, 3 * pages / 4}) {
       SCOPED_TRACE(fmt::format("{} at page {}", zeros ? "zeros" : "copy", first));
@@ -150,6 +150,14 @@ TEST_F(ReadCommands, DamagedDatabaseIsReportedByCheckAndNeverReadInPart) {
         EXPECT_TRUE(status.err.find("malformed") != std::string::npos || status.err.find("is damaged") != std::string::npos)
             << status.err;
       }
+      // A store that status finds damaged is not written to either (vsi
+      // work, submit and run had added to such a file and exited 0).
+      if (status.err.find("is damaged") != std::string::npos) {
+        ++damage_refused_by_work;
+        const VsiResult work = vsi({"work", "--db", damaged.string(), "--threads", "1"});
+        EXPECT_EQ(work.exit_code, 1) << work.err;
+        EXPECT_NE(work.err.find(damaged.string() + " is damaged"), std::string::npos) << work.err;
+      }
       const VsiResult csv = vsi({"query", "--db", damaged.string(), "--study", study_id_, "--format", "csv"});
       if (csv.exit_code == 0) {
         EXPECT_EQ(lines(csv.out), 1u + 42u * 23u);
@@ -160,6 +168,7 @@ TEST_F(ReadCommands, DamagedDatabaseIsReportedByCheckAndNeverReadInPart) {
       }
     }
   EXPECT_GT(damage_found_by_reads, 0) << "no damage reached the reads: the test proves nothing about them";
+  EXPECT_GT(damage_refused_by_work, 0) << "no damage found by quick_check: the test proves nothing about work";
 }
 
 TEST_F(ReadCommands, CheckReportsARunningJobWithoutALease) {
@@ -217,8 +226,9 @@ TEST_F(ReadCommands, StatusShowsExpiredLeasesAndTheRecentThroughput) {
   EXPECT_NE(status.out.find("ETA"), std::string::npos) << status.out;
 }
 
-// Defect: an unknown or mis-cased train, or --speed-min above --speed-max,
-// printed "0 jobs shown" with exit 0.
+// Defect: an unknown or mis-cased train, --speed-min above --speed-max, or
+// a speed range between two of the study's speeds printed "0 jobs shown"
+// with exit 0.
 TEST_F(ReadCommands, QueryRefusesFiltersThatCannotMatchAndListsWhatExists) {
   submit_sweep();
   const auto query = [&](std::vector<std::string> extra) {
@@ -240,6 +250,14 @@ TEST_F(ReadCommands, QueryRefusesFiltersThatCannotMatchAndListsWhatExists) {
   const VsiResult beyond = query({"--speed-min", "400"});
   EXPECT_EQ(beyond.exit_code, 2);
   EXPECT_NE(beyond.err.find("from 100 to 300 km/h"), std::string::npos) << beyond.err;
+  // Inside the study's speeds but between two of them: no speed either.
+  const VsiResult between = query({"--speed-min", "155", "--speed-max", "158"});
+  EXPECT_EQ(between.exit_code, 2);
+  EXPECT_EQ(between.out, "");
+  EXPECT_NE(between.err.find("[155, 158] km/h holds no speed of the study: it lies between two of its speeds, 150 and "
+                             "160 km/h"),
+            std::string::npos)
+      << between.err;
   const VsiResult profile = query({"--irregularity", "fra-6"});
   EXPECT_EQ(profile.exit_code, 2);
   EXPECT_NE(profile.err.find("it has: 'none'"), std::string::npos) << profile.err;

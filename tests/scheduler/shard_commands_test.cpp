@@ -164,6 +164,37 @@ TEST_F(ShardCommands, MergeRefusesAShardOfAnotherStudyAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(merged)) << "nothing is written when a shard is refused";
 }
 
+// A damaged shard is refused before anything is written: the merge had
+// taken the first shard into a new target, then stopped on the second with
+// SQLite's "malformed" and no file named.
+TEST_F(ShardCommands, MergeRefusesADamagedShardAndWritesNothing) {
+  const auto study = write_json("small.json", small_study());
+  const auto out = dir_ / "shards";
+  ASSERT_EQ(vsi({"shard", study.string(), "--shards", "2", "--out", out.string()}).exit_code, 0);
+  for (int k = 0; k < 2; ++k) work(out / ("shard-" + std::to_string(k) + ".sqlite"));
+  const auto damaged = out / "shard-1.sqlite";
+  std::int64_t root = 0, page_bytes = 0;
+  {
+    Database db(damaged.string());
+    db.exec("PRAGMA wal_checkpoint(TRUNCATE)");
+    root = count_rows(db, "SELECT rootpage FROM sqlite_schema WHERE name = 'jobs'");
+    page_bytes = count_rows(db, "PRAGMA page_size");
+  }
+  {
+    // The jobs table's root page: its b-tree header overwritten.
+    std::fstream f(damaged, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>((root - 1) * page_bytes));
+    const std::string garbage(64, '\xff');
+    f.write(garbage.data(), static_cast<std::streamsize>(garbage.size()));
+  }
+  const auto merged = dir_ / "results.sqlite";
+  const VsiResult r = vsi({"merge", (out / "shard-0.sqlite").string(), damaged.string(), "--into", merged.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("shard-1.sqlite: /: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("shard-1.sqlite is damaged (PRAGMA quick_check: "), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(merged)) << "nothing is written when a shard is refused";
+}
+
 TEST_F(ShardCommands, MergeRefusesAShardOfAnotherSchemaVersion) {
   const auto study = write_json("small.json", small_study());
   ASSERT_EQ(vsi({"shard", study.string(), "--shards", "2", "--out", (dir_ / "s").string()}).exit_code, 0);
