@@ -22,8 +22,13 @@ class DuplicateKeyCheck {
   bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using E = nlohmann::json::parse_event_t;
     switch (event) {
-      case E::object_start: frames_.push_back({false, 0, {}, {}}); break;
-      case E::array_start: frames_.push_back({true, 0, {}, {}}); break;
+      case E::object_start:
+      case E::array_start:
+        if (frames_.size() >= kMaxDepth)
+          throw InputError(path(), fmt::format("nesting deeper than {} levels is not a plausible input", kMaxDepth),
+                           file_);
+        frames_.push_back({event == E::array_start, 0, {}, {}});
+        break;
       case E::key: {
         Frame& f = frames_.back();
         f.key = parsed.get<std::string>();
@@ -52,6 +57,9 @@ class DuplicateKeyCheck {
   // No input needs longer arrays (long profiles come as CSV files); the
   // schema checks after parsing would take minutes on millions of items.
   static constexpr std::size_t kMaxArrayElements = 50000;
+  // No input nests deeper than a few levels; 60 million '[' (within the
+  // file size limit) took 5.7 GB before the parser gave up.
+  static constexpr std::size_t kMaxDepth = 256;
   void element_done() {
     if (frames_.empty() || !frames_.back().array) return;
     if (++frames_.back().index > kMaxArrayElements)

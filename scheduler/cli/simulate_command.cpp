@@ -1,11 +1,15 @@
 #include <iostream>
 #include <iterator>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
 #include "cli/run_outputs.hpp"
 #include "envelopes/code_filter.hpp"
+#include "core/input_error.hpp"
+#include "io/input_file.hpp"
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "planning/time_step_warnings.hpp"
@@ -83,7 +87,16 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
 int simulate_command(const SimulateArgs& args) {
   if (args.scene_file == "-") {
     // The scene on stdin: relative file names resolve from the working directory.
-    const std::string text{std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>()};
+    // At most the JSON file limit: `vsi simulate - < /dev/zero` read forever.
+    std::string text;
+    std::vector<char> chunk(1 << 16);
+    while (std::cin.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || std::cin.gcount() > 0) {
+      text.append(chunk.data(), static_cast<std::size_t>(std::cin.gcount()));
+      if (text.size() > kMaxJsonFileBytes)
+        throw InputError("/", fmt::format("more than {} MiB on standard input: not a plausible scene",
+                                          kMaxJsonFileBytes >> 20),
+                         "<stdin>");
+    }
     const Scene scene = parse_scene(parse_json_text(text, "<stdin>"), std::filesystem::current_path(), "<stdin>");
     return run_scene(scene, "<stdin>", std::nullopt, args.histories_dir, args.allow_large);
   }

@@ -6,6 +6,7 @@
 // same study without variants), which the engine applies to the deck (or the
 // imported M and K). Different variants have different structures, hence
 // different job ids and factorization keys.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -24,8 +25,8 @@ struct StructureVariant {
 // Every combination, mass factors outer, in the study's order; {nominal}
 // when the study has no variants. InputError at /variants/... for repeated
 // factors, or at /structure/variant when the study's structure gives one
-// too.
-std::vector<StructureVariant> study_variants(const nlohmann::json& study);
+// too, and at /variants for more combinations than max_count.
+std::vector<StructureVariant> study_variants(const nlohmann::json& study, std::size_t max_count);
 
 // How results name a variant: "nominal", or e.g. "mass x0.9" or
 // "mass x1.1, EI x0.95" (the factors other than 1). `variant` is a scene's

@@ -245,6 +245,27 @@ TEST_F(InvalidInput, RefusesAJsonFileOverTheSizeLimit) {
   expect_input_error(vsi("simulate '" + big.string() + "'"), big, "/");
 }
 
+TEST_F(InvalidInput, NestingDeeperThanAnyInputIsRefusedAtItsPath) {
+  // 60 million '[' within the size limit took 5.7 GB and ended "out of
+  // memory" (exit 1); 257 levels are refused at once.
+  const auto deep = write("deep.json", std::string(100000, '['));
+  const VsiRun r = vsi("validate '" + deep.string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  std::string at = "/0";  // where the 257th level opens: element 0 of 256 arrays
+  for (int i = 1; i < 256; ++i) at += "/0";
+  EXPECT_NE(r.err.find("error: " + deep.string() + ": " + at + ": nesting deeper than 256 levels"), std::string::npos)
+      << r.err;
+  const auto fine = write("fine.json", std::string(200, '[') + std::string(200, ']'));
+  EXPECT_EQ(vsi("validate '" + fine.string() + "'").err.find("nesting deeper"), std::string::npos);
+}
+
+TEST_F(InvalidInput, StandardInputOverTheSizeLimitIsRefused) {
+  // `vsi simulate - < /dev/zero` read forever.
+  const VsiRun r = vsi("simulate - < /dev/zero");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("more than 64 MiB on standard input"), std::string::npos) << r.err;
+}
+
 TEST_F(InvalidInput, DuplicateKeysAreAnErrorAtTheirPath) {
   const auto scene = write("scene.json", R"({"structure": {"generator": "bridge-2d", "spans_m": [10],
     "deck": {"EI_Nm2": 5e9, "mass_kg_per_m": 8000, "EI_Nm2": 6e9}, "damping": {"ratio": 0.01}},
