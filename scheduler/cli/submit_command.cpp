@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt_release.hpp"
 #include "core/input_error.hpp"
 #include "cli/progress_display.hpp"
 #include "cli/service_commands.hpp"
@@ -60,6 +61,7 @@ scheduler::WorkSummary work(const ServiceArgs& args) {
   options.db_retry_s = args.db_retry_s;
   options.max_batch_jobs = static_cast<std::size_t>(args.batch);
   ProgressDisplay display(::isatty(STDERR_FILENO) == 1);
+  const InterruptRelease interrupts(args.db);  // before the workers start: they inherit its signal mask
   const scheduler::WorkSummary s = scheduler::run_workers(
       options, [&](const scheduler::StateCounts& c, double elapsed_s, bool final) { display.update(c, elapsed_s, final); });
   spdlog::info("this worker: {} jobs done, {} failed in {}; factorizations {} ({:.2f} s), cache hits {}, evictions {}",

@@ -441,6 +441,18 @@ std::int64_t retry_study(Database& db, const std::string& study_id) {
       study_id);
 }
 
+std::int64_t release_running_jobs(Database& db, const std::string& worker_stem) {
+  Transaction tx(db);
+  db.prepare("UPDATE jobs SET state = 'queued', attempts = max(attempts - 1, 0), worker = NULL, lease_expires = NULL, "
+             "started_at = NULL WHERE state = 'running' AND substr(worker, 1, ?1) = ?2")
+      .bind(1, static_cast<std::int64_t>(worker_stem.size()))
+      .bind(2, worker_stem)
+      .run();
+  const std::int64_t released = db.changes();
+  tx.commit();
+  return released;
+}
+
 std::string resolve_study_id(Database& db, const std::string& prefix) {
   if (prefix.size() < 6) return {};
   Statement s = db.prepare("SELECT id FROM studies WHERE substr(id, 1, ?) = ? LIMIT 2");

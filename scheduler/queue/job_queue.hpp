@@ -139,6 +139,10 @@ std::int64_t cancel_study(Database& db, const std::string& study_id);
 // Failed and cancelled jobs of a study go back to the queue with their
 // attempts reset; returns how many.
 std::int64_t retry_study(Database& db, const std::string& study_id);
+// Running jobs whose worker name starts with `worker_stem` go back to the
+// queue, their attempt not counted: a process its user interrupts gives its
+// leases back instead of leaving them to expire. Returns how many.
+std::int64_t release_running_jobs(Database& db, const std::string& worker_stem);
 // Full id from a unique prefix (at least 6 hex digits); empty if none.
 // Throws std::runtime_error when the prefix is ambiguous.
 std::string resolve_study_id(Database& db, const std::string& prefix);

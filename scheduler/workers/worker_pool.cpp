@@ -198,8 +198,10 @@ std::string worker_name_prefix() {
   // 32 random bits make a collision negligible.
   std::random_device random;
   const auto start_s = static_cast<std::int64_t>(unix_now_s());
-  return fmt::format("{}:{}:{}-{:08x}", host_name(), ::getpid(), start_s, random());
+  return fmt::format("{}{}-{:08x}", process_worker_stem(), start_s, random());
 }
+
+std::string process_worker_stem() { return fmt::format("{}:{}:", host_name(), ::getpid()); }
 
 void single_threaded_blas() {
   ::setenv("OPENBLAS_NUM_THREADS", "1", 1);

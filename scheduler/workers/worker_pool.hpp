@@ -43,6 +43,8 @@ struct WorkSummary {
 // append :tN. A container restarted as PID 1 on the same host name gets a
 // new name, so it never renews the leases of its dead predecessor.
 std::string worker_name_prefix();
+// host:pid: the start of every worker name of this process.
+std::string process_worker_stem();
 
 // Called from the calling thread while the workers run, then once at the end.
 using ProgressCallback = std::function<void(const StateCounts& counts, double elapsed_s, bool final)>;

@@ -1,6 +1,7 @@
 // The real vsi binary as users run it: several worker processes on one
 // database, a worker killed with SIGKILL in the middle of a study, the
 // factorization cache, and the exit codes of the service commands.
+#include <csignal>
 #include <fstream>
 #include <iterator>
 #include <regex>
@@ -70,6 +71,41 @@ TEST_F(WorkerProcesses, TwoProcessesWithTwoThreadsRunEveryJobExactlyOnce) {
     reported += std::stoll(m[1].str());
   }
   EXPECT_EQ(reported, 42);
+}
+
+// Ctrl-C gives the running jobs back at once: nothing waits for a lease to
+// expire (the default lease is 60 s), and the interrupted attempt is not
+// counted.
+TEST_F(WorkerProcesses, InterruptedWorkerGivesItsRunningJobsBackAtOnce) {
+  const auto study = write_json("sweep.json", sweep_study());
+  const auto db_file = dir_ / "interrupted.sqlite";
+  ASSERT_EQ(vsi({"submit", study.string(), "--db", db_file.string()}).exit_code, 0);
+  auto worker = start_vsi({"work", "--db", db_file.string(), "--threads", "2"}, "interrupted");
+  const auto running = [&] {
+    Database db(db_file.string());
+    return count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'running'");
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while ((done_jobs(db_file) < 2 || running() == 0) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ::kill(worker->pid(), SIGINT);
+  EXPECT_EQ(worker->wait(), 128 + SIGINT);
+  const std::int64_t done_before = done_jobs(db_file);
+  ASSERT_LT(done_before, 42) << "the worker finished before it was interrupted: make the jobs longer";
+  const std::string err = read_text(dir_ / "interrupted.err");
+  EXPECT_NE(err.find("interrupted (SIGINT): "), std::string::npos) << err;
+  EXPECT_NE(err.find("running jobs of this process went back to the queue"), std::string::npos) << err;
+  {
+    Database db(db_file.string());
+    EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'running'"), 0);
+    EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'queued' AND (attempts != 0 OR worker IS NOT NULL)"), 0);
+  }
+  // Resumed at once, with the default lease: every job done, each claimed once by its finishing run.
+  const VsiResult resumed = vsi({"work", "--db", db_file.string(), "--threads", "2"}, "resumed");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  Database db(db_file.string());
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done'"), 42);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE attempts != 1"), 0);
 }
 
 TEST_F(WorkerProcesses, KilledWorkerIsReplacedAndTheEnvelopesEqualAnUninterruptedRun) {
