@@ -79,10 +79,12 @@ class ClaimBackoff {
     failing_ = false;
     wait_s_ = kFirstWait_s;
   }
-  // Sleeps before the next attempt; throws when the errors have lasted too long.
-  void failed(const std::string& name, const std::string& error) {
+  // Sleeps before the next attempt; throws when the errors have lasted too
+  // long, counted from the start of the first failed attempt (a locked
+  // store fails only after the busy timeout).
+  void failed(const std::string& name, const std::string& error, Clock::time_point attempt_started) {
     const auto now = Clock::now();
-    if (!failing_) failing_since_ = now;
+    if (!failing_) failing_since_ = attempt_started;
     failing_ = true;
     const double failing_s = std::chrono::duration<double>(now - failing_since_).count();
     if (failing_s >= give_up_after_s_)
@@ -108,7 +110,11 @@ class ClaimBackoff {
 
 void worker_loop(const WorkOptions& options, std::size_t thread, const std::string& name, FactorizationCache& cache,
                  HeldJobs& held, Tally& tally) {
-  Database db(options.db_file, OpenMode::kExisting);
+  // A lock waits at most --db-retry-s (up to the usual 60 s) before a claim
+  // counts as failed: with the 60 s timeout alone, --db-retry-s 1 gave up
+  // after about 120 s.
+  const int busy_timeout_ms = static_cast<int>(std::clamp(1000.0 * options.db_retry_s, 100.0, 60000.0));
+  Database db(options.db_file, OpenMode::kExisting, busy_timeout_ms);
   JobQueue queue(db, name, options.lease_s);
   ClaimBackoff backoff(options.db_retry_s);
   std::string last_key;
@@ -118,11 +124,12 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
   for (;;) {
     std::vector<ClaimedJob> batch;
     const std::uint64_t seen = held.generation();  // before the claim: no change is missed
+    const auto attempt_started = Clock::now();
     try {
       batch = queue.claim_batch(last_key, std::max<std::size_t>(1, options.max_batch_jobs));
       backoff.succeeded();
     } catch (const SqliteError& e) {
-      backoff.failed(name, e.what());
+      backoff.failed(name, e.what(), attempt_started);
       continue;
     }
     if (batch.empty()) {

@@ -4,6 +4,7 @@
 // full disk ends `vsi work` with exit 1 after a bounded time, losing nothing.
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <regex>
 
@@ -193,6 +194,27 @@ TEST_F(WorkerLeases, FullDiskEndsWorkWithExitOneAfterTheRetryTimeAndLosesNothing
   Database db((dir_ / "final.sqlite").string());
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done'"), 42);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes"), 42 * 23);
+}
+
+// Defect: under a lock held by another process, each claim waited SQLite's
+// 60 s busy timeout before it counted as failed, so --db-retry-s 1 gave up
+// after about 120 s. The lock now waits at most --db-retry-s.
+TEST_F(WorkerLeases, LockedStoreEndsWorkAfterTheRetryTime) {
+  submit(json{{"from", 100}, {"to", 120}, {"step", 10}});
+  Database holder(db_file_);
+  holder.exec("BEGIN EXCLUSIVE");
+  const auto start = std::chrono::steady_clock::now();
+  const VsiResult w = vsi({"work", "--db", db_file_, "--threads", "1", "--db-retry-s", "1"});
+  const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  holder.exec("ROLLBACK");
+  EXPECT_EQ(w.exit_code, 1) << w.err;
+  EXPECT_NE(w.err.find("error: the database refused claims for"), std::string::npos) << w.err;
+  EXPECT_NE(w.err.find("locked"), std::string::npos) << w.err;
+  EXPECT_LT(took_s, 15.0) << "gave up long after --db-retry-s 1";
+  // Nothing is lost: with the lock gone the jobs run.
+  EXPECT_EQ(vsi({"work", "--db", db_file_, "--threads", "1"}).exit_code, 0);
+  Database db(db_file_);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM jobs WHERE state = 'done'"), 3 * 2);
 }
 
 }  // namespace
