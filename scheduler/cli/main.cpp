@@ -66,6 +66,20 @@ int run(int argc, char** argv) {
   PriceCommand price(app);
   ClusterCommands cluster(app);
 
+  // A word that is no command: CLI11 would say "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string names;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+      known = known || sub->get_name() == argv[1];
+    }
+    if (!known) {
+      std::cerr << "error: unknown command '" << scheduler::terminal_safe(argv[1]) << "'; the commands are: " << names
+                << " (vsi --help)\n";
+      return kExitInvalidInput;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

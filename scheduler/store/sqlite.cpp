@@ -49,6 +49,9 @@ void Database::open(const std::string& name, int flags) {
 
 Database::Database(const std::string& file, OpenMode mode, int busy_timeout_ms) : file_(file) {
   if (mode != OpenMode::kCreate && !std::filesystem::exists(file)) throw NoSuchDatabase(file);
+  if (const auto folder = std::filesystem::path(file).parent_path();
+      mode == OpenMode::kCreate && !folder.empty() && !std::filesystem::is_directory(folder))
+    throw NoSuchDatabase(fmt::format("{} (its folder {} does not exist)", file, folder.string()));
   if (mode == OpenMode::kReadOnly) {
     read_only_ = true;
     open(file, SQLITE_OPEN_READONLY);

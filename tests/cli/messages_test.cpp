@@ -25,6 +25,26 @@ TEST_F(Messages, SubmitOfASceneSaysItIsASceneAndToUseSimulate) {
   EXPECT_EQ(run.err.find("unknown property"), std::string::npos) << run.err;
 }
 
+TEST_F(Messages, AnUnknownCommandIsNamedWithTheCommandsThatExist) {
+  const VsiRun run = vsi("frobnicate");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("error: unknown command 'frobnicate'; the commands are: simulate, "), std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find(", query, "), std::string::npos) << run.err;
+}
+
+TEST_F(Messages, ADatabaseInAFolderThatDoesNotExistIsAnInputError) {
+  const auto study = (kJobs / "examples/hslm-sweep.json").string();
+  const auto db = dir_ / "no-such-folder" / "r.sqlite";
+  const VsiRun run = vsi("run '" + study + "' --db '" + db.string() + "' --threads 1");
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("no such database: " + db.string() + " (its folder " + db.parent_path().string() +
+                         " does not exist)"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(std::filesystem::exists(db.parent_path()));
+}
+
 TEST_F(Messages, SubmitOfATrainSaysWhatAStudyIs) {
   const VsiRun run = vsi("submit '" + (kJobs / "trains/ICE3.json").string() + "' --db '" +
                          (dir_ / "r.sqlite").string() + "'");
