@@ -359,6 +359,11 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
         const Simulation setup(dry, op);
       }
     } catch (const InputError& e) {
+      // A planned step too small to run comes from the study's tolerance.
+      if (!dt_given && e.json_path() == "/analysis/dt_s" && doc.contains("accuracy") &&
+          doc.at("accuracy").contains("tolerance"))
+        throw InputError("/accuracy/tolerance",
+                         fmt::format("{} (the step was planned from this tolerance)", e.what()), file);
       throw in_study(e.with_file(file), file, train_path, profiles.front().path);
     }
   }

@@ -184,6 +184,14 @@ TEST(StudyExpansion, ModalRunBeyondTheStepLimitIsRefusedAtSubmission) {
   EXPECT_EQ(e.json_path(), "/analysis/dt_s");
   EXPECT_NE(std::string(e.what()).find("steps (limit 2e+06)"), std::string::npos) << e.what();
   EXPECT_EQ(e.file(), "study.json");
+  // A step planned from a tolerance far below any need is the tolerance's fault.
+  json strict = tiny_study();
+  strict["analysis"].erase("dt_s");
+  strict["speeds_kmh"] = json::array({200});
+  strict["accuracy"] = {{"tolerance", 1e-12}};
+  const InputError t = expansion_error(strict);
+  EXPECT_EQ(t.json_path(), "/accuracy/tolerance");
+  EXPECT_NE(std::string(t.what()).find("planned from this tolerance"), std::string::npos) << t.what();
 }
 
 TEST(StudyExpansion, UnknownLibraryTrainIsReportedAtItsIndex) {
