@@ -44,7 +44,7 @@ int status_command(const ServiceArgs& args) {
     if (s.job_wall_s > 0.0)
       out << fmt::format("  job time: {:.1f} s, of which {:.1f} s in time loops ({:.0f} %)\n", s.job_wall_s, s.loop_s,
                          100.0 * s.loop_s / s.job_wall_s);
-    out << fmt::format("  factorization cache: {} factorizations ({:.2f} s), {} hits, {} evictions\n",
+    out << fmt::format("  factorization cache: {} factorizations ({:.2f} s), {} jobs reused one (hits), {} evictions\n",
                        s.factorizations, s.factorization_s, s.cache_hits, s.evictions);
   }
   std::cout << out.str();

@@ -64,7 +64,7 @@ scheduler::WorkSummary work(const ServiceArgs& args) {
   const InterruptRelease interrupts(args.db);  // before the workers start: they inherit its signal mask
   const scheduler::WorkSummary s = scheduler::run_workers(
       options, [&](const scheduler::StateCounts& c, double elapsed_s, bool final) { display.update(c, elapsed_s, final); });
-  spdlog::info("this worker: {} jobs done, {} failed in {}; factorizations {} ({:.2f} s), cache hits {}, evictions {}",
+  spdlog::info("this worker: {} jobs done, {} failed in {}; factorizations {} ({:.2f} s), cache lookups hit {}, evictions {}",
                s.jobs_done, s.jobs_failed, format_duration(s.wall_s), s.cache.factorizations, s.cache.factorization_s,
                s.cache.hits, s.cache.evictions);
   if (s.lost_leases > 0) spdlog::warn("{} results dropped: their jobs were taken over or cancelled", s.lost_leases);
