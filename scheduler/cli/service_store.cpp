@@ -11,6 +11,13 @@
 namespace railvsi::cli {
 
 std::unique_ptr<scheduler::Database> open_store(const std::string& file, scheduler::OpenMode mode) {
+  std::error_code ec;
+  if (mode != scheduler::OpenMode::kReadOnly && std::filesystem::file_size(file, ec) > 0 && !ec) {
+    // Read-only first: a writable connection would switch another
+    // program's database to WAL before migrate() refuses it.
+    scheduler::Database probe(file, scheduler::OpenMode::kReadOnly);
+    scheduler::require_vsi_or_empty(probe);
+  }
   auto db = std::make_unique<scheduler::Database>(file, mode);
   if (mode == scheduler::OpenMode::kReadOnly) {
     scheduler::require_current_schema(*db);

@@ -259,6 +259,17 @@ int user_version(Database& db) {
 
 }  // namespace
 
+void require_vsi_or_empty(Database& db) {
+  if (user_version(db) != 0) return;
+  // schema_version alone: a first migration that was interrupted.
+  Statement s = db.prepare("SELECT group_concat(name, ', '), sum(name = 'schema_version') FROM sqlite_schema "
+                           "WHERE type = 'table'");
+  if (s.step() && !s.is_null(0) && s.int64(1) == 0)
+    throw std::runtime_error(fmt::format("{} is an SQLite database of another program (tables {}; no vsi schema): "
+                                         "vsi writes nothing into it; give a new file or a vsi study database",
+                                         db.file(), s.text(0)));
+}
+
 void require_current_schema(Database& db) {
   const int version = user_version(db);
   if (version == kStoreSchemaVersion) return;
@@ -273,6 +284,7 @@ void require_current_schema(Database& db) {
 
 void migrate(Database& db, int up_to_version) {
   static_assert(kStoreSchemaVersion > 0);
+  require_vsi_or_empty(db);
   if (migrations().size() != static_cast<std::size_t>(kStoreSchemaVersion))
     throw std::logic_error("kStoreSchemaVersion does not match the migrations");
   if (up_to_version < 1 || up_to_version > kStoreSchemaVersion) throw std::logic_error("migrate: no such version");

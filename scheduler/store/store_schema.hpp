@@ -14,6 +14,10 @@ inline constexpr int kStoreSchemaVersion = 10;
 // (tests of a migration) stops at an older version.
 void migrate(Database& db, int up_to_version = kStoreSchemaVersion);
 
+// Throws std::runtime_error when the file is an SQLite database of another
+// program (tables, and no vsi schema version): vsi writes nothing into it.
+void require_vsi_or_empty(Database& db);
+
 // For a read-only connection, which cannot migrate: throws
 // std::runtime_error unless the file has this vsi's schema version.
 void require_current_schema(Database& db);

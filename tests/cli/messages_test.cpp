@@ -2,6 +2,8 @@
 // named as a scene with the command that runs it; vsi inspect reads a
 // study; vsi generate deck-3d needs --dofs, keeps an existing directory
 // unless --force, and its errors name only options that exist.
+#include <sqlite3.h>
+
 #include <cmath>
 
 #include "vsi_test_support.hpp"
@@ -43,6 +45,34 @@ TEST_F(Messages, ADatabaseInAFolderThatDoesNotExistIsAnInputError) {
             std::string::npos)
       << run.err;
   EXPECT_FALSE(std::filesystem::exists(db.parent_path()));
+}
+
+// Another program's SQLite file given as --db: vsi had switched it to WAL
+// and written its own tables beside the other program's.
+TEST_F(Messages, AnotherProgramsSqliteFileIsNotWrittenTo) {
+  const auto file = dir_ / "notes.sqlite";
+  const auto sql = [&](const std::string& statement) {
+    sqlite3* db = nullptr;
+    EXPECT_EQ(sqlite3_open(file.c_str(), &db), SQLITE_OK);
+    std::string result;
+    sqlite3_exec(
+        db, statement.c_str(),
+        [](void* out, int, char** values, char**) {
+          *static_cast<std::string*>(out) += std::string(values[0] ? values[0] : "") + ";";
+          return 0;
+        },
+        &result, nullptr);
+    sqlite3_close(db);
+    return result;
+  };
+  sql("CREATE TABLE notes (x); INSERT INTO notes VALUES (1)");
+  const VsiRun run = vsi("submit '" + (kJobs / "examples/hslm-sweep.json").string() + "' --db '" + file.string() + "'");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find(file.string() + " is an SQLite database of another program (tables notes; no vsi schema)"),
+            std::string::npos)
+      << run.err;
+  EXPECT_EQ(sql("SELECT name FROM sqlite_schema"), "notes;");
+  EXPECT_EQ(sql("PRAGMA journal_mode"), "delete;");
 }
 
 TEST_F(Messages, SubmitOfATrainSaysWhatAStudyIs) {
