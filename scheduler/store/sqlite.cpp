@@ -9,8 +9,12 @@
 namespace railvsi::scheduler {
 namespace {
 
+// The message names the database file: "database is locked" alone left a
+// user guessing which of several stores.
 [[noreturn]] void fail(sqlite3* db, int code, std::string_view what) {
-  throw SqliteError(code, fmt::format("sqlite: {}: {}", what, db != nullptr ? sqlite3_errmsg(db) : sqlite3_errstr(code)));
+  const char* file = db != nullptr ? sqlite3_db_filename(db, "main") : nullptr;
+  throw SqliteError(code, fmt::format("sqlite: {}{}: {}", file != nullptr && *file != '\0' ? std::string(file) + ": " : "",
+                                      what, db != nullptr ? sqlite3_errmsg(db) : sqlite3_errstr(code)));
 }
 
 }  // namespace
@@ -59,7 +63,7 @@ Database::Database(const std::string& file, OpenMode mode, int busy_timeout_ms) 
     sqlite3_extended_result_codes(db_.get(), 1);
     const int rc = read_schema(db_.get());
     if (rc == SQLITE_ROW) return;
-    if ((rc & 0xff) != SQLITE_CANTOPEN && (rc & 0xff) != SQLITE_READONLY) fail(db_.get(), rc, fmt::format("read {}", file));
+    if ((rc & 0xff) != SQLITE_CANTOPEN && (rc & 0xff) != SQLITE_READONLY) fail(db_.get(), rc, "read");
     // A WAL database needs its -shm, which a read-only connection cannot
     // create on a read-only directory or mount. immutable=1 reads the main
     // file alone: right only when no -wal holds commits not yet
@@ -82,7 +86,7 @@ Database::Database(const std::string& file, OpenMode mode, int busy_timeout_ms) 
   sqlite3_busy_timeout(raw, busy_timeout_ms);
   sqlite3_extended_result_codes(raw, 1);
   // Not an SQLite file: say which file, before the journal mode is touched.
-  if (const int rc = read_schema(raw); rc != SQLITE_ROW) fail(raw, rc, fmt::format("read {}", file));
+  if (const int rc = read_schema(raw); rc != SQLITE_ROW) fail(raw, rc, "read");
   exec("PRAGMA journal_mode=WAL");
   // NORMAL is durable in WAL mode up to the last checkpointed commit after a
   // power loss; a process crash loses no committed transaction.
