@@ -1,5 +1,6 @@
 #include "simulation/run_state.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -39,6 +40,26 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
   min_P_.assign(static_cast<std::size_t>(nc), std::numeric_limits<double>::infinity());
   no_contact_s_.assign(static_cast<std::size_t>(nc), 0.0);
   monitor_.emplace(scene, layout, coords, start_x_m, s_, vehicles_, f_s_, P_);
+  // The wheels under a body: two couplings away (body, bogie, wheel).
+  constexpr int kBodyToWheel = 2;
+  for (std::size_t v = 0; v < layout.vehicles.size(); ++v) {
+    const VehicleModel& model = *layout.vehicles[v].model;
+    for (int d : model.body_dofs()) {
+      BodyWheels b{v, d, {}};
+      const std::vector<int> near = model.coupled_dofs(d, kBodyToWheel);
+      for (Eigen::Index c = 0; c < nc; ++c) {
+        const ContactSpec& cs = layout.contacts[static_cast<std::size_t>(c)];
+        if (cs.vehicle == static_cast<int>(v) && std::find(near.begin(), near.end(), cs.local_dof) != near.end())
+          b.contacts.push_back(c);
+      }
+      // A body no wheel reaches within two couplings (a model of another
+      // shape) counts with every wheel of its vehicle, as before.
+      if (b.contacts.empty())
+        for (Eigen::Index c = 0; c < nc; ++c)
+          if (layout.contacts[static_cast<std::size_t>(c)].vehicle == static_cast<int>(v)) b.contacts.push_back(c);
+      body_wheels_.push_back(std::move(b));
+    }
+  }
 }
 
 bool RunState::in_window(double front_x_m, const ContactSpec& c) const {
@@ -118,22 +139,21 @@ void RunState::record(long step_index, double t_s, Histories& hist, bool store) 
       twist_x_m_ = at;
     }
   }
-  std::vector<bool>& vehicle_in = vehicle_in_window_;
-  vehicle_in.assign(layout_.vehicles.size(), false);
+  std::vector<bool>& contact_in = contact_in_window_;
+  contact_in.assign(static_cast<std::size_t>(P_.size()), false);
   for (Eigen::Index c = 0; c < P_.size(); ++c) {
     const ContactSpec& cs = layout_.contacts[c];
     if (!in_window(x, cs)) continue;
-    vehicle_in[cs.vehicle] = true;
+    contact_in[static_cast<std::size_t>(c)] = true;
     min_P_[c] = std::min(min_P_[c], P_[c]);
     // A bilateral law holds the wheel on the rail in tension: that is not a
     // loss of contact (the monitor warns tensile_contact instead).
     if (step_index > 0 && P_[c] <= 0.0 && cs.law->unilateral()) no_contact_s_[c] += dt;
   }
-  for (std::size_t v = 0; v < layout_.vehicles.size(); ++v) {
-    if (!vehicle_in[v]) continue;
-    for (int d : layout_.vehicles[v].model->body_dofs())
-      max_abs_body_a_ = std::max(max_abs_body_a_, std::abs(vehicles_[v].a[d]));
-  }
+  for (const BodyWheels& b : body_wheels_)
+    if (std::any_of(b.contacts.begin(), b.contacts.end(),
+                    [&](Eigen::Index c) { return contact_in[static_cast<std::size_t>(c)]; }))
+      max_abs_body_a_ = std::max(max_abs_body_a_, std::abs(vehicles_[b.vehicle].a[b.dof]));
   if (!store) return;
 
   if (hist.t_s.empty()) {  // first sample: names and columns
