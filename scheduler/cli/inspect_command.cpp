@@ -55,7 +55,7 @@ ordered_json study_report(const nlohmann::json& doc, const std::filesystem::path
                             {"train", doc.at("trains")[i]},
                             {"speed_kmh", speeds.front()},
                             {"irregularity", nullptr},
-                            {"analysis", doc.at("analysis")}};
+                            {"analysis", doc.contains("analysis") ? doc.at("analysis") : nlohmann::json::object()}};
     if (!scene["analysis"].contains("dt_s")) scene["analysis"]["dt_s"] = 1e-3;  // not used: no run
     if (doc.contains("outputs")) scene["outputs"] = doc.at("outputs");
     Scene parsed = [&] {

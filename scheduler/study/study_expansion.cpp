@@ -199,7 +199,9 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   const std::filesystem::path base_dir =
       (study_dir.empty() ? std::filesystem::current_path() : std::filesystem::absolute(study_dir)).lexically_normal();
   shared_schema_validator("study.schema.json").validate(doc, file);
-  const bool dt_given = doc.at("analysis").contains("dt_s");
+  // analysis may be left out: every option at its default.
+  const json analysis = doc.contains("analysis") ? doc.at("analysis") : json::object();
+  const bool dt_given = analysis.contains("dt_s");
   const std::size_t max_jobs = options.allow_large ? SIZE_MAX : options.max_jobs;
 
   StudyPlan plan;
@@ -237,7 +239,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   json base = json::object();
   base["structure"] = doc.at("structure");
   absolute_file_names(base["structure"], profiles, base_dir);
-  base["analysis"] = doc.at("analysis");
+  base["analysis"] = analysis;
   if (doc.contains("outputs")) base["outputs"] = doc.at("outputs");
   if (doc.contains("accuracy")) {
     // "verify" is the study's (study_verification), not the run's: asking it
@@ -272,7 +274,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   // Every train at the first speed over the first profile: the train, the
   // structure it runs on and the engine's setup (a dry run, without the
   // time loop). Then every other profile with the first train.
-  const double placeholder_dt_s = dt_given ? doc.at("analysis").at("dt_s").get<double>() : 1e-3;
+  const double placeholder_dt_s = dt_given ? analysis.at("dt_s").get<double>() : 1e-3;
   // Facts of train i on variant v at [v * trains + i].
   std::vector<TrainFacts> facts(variants.size() * trains.size());
   std::map<std::string, DeckFrequencies> frequencies_of_structure;

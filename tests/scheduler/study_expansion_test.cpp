@@ -76,6 +76,17 @@ TEST(StudyExpansion, SpeedRangeWhoseEndIsOffTheStepKeepsItsEnd) {
   EXPECT_EQ(speeds, (std::vector<double>{200, 250, 300, 350, 380}));
 }
 
+TEST(StudyExpansion, AStudyWithoutAnalysisRunsItsDefaults) {
+  // A user had to write "analysis": {} for a study to be accepted.
+  json with = tiny_study();
+  with["analysis"] = json::object();
+  json without = with;
+  without.erase("analysis");
+  const StudyPlan a = expand(with), b = expand(without);
+  ASSERT_EQ(a.jobs.size(), b.jobs.size());
+  for (std::size_t i = 0; i < a.jobs.size(); ++i) EXPECT_EQ(a.jobs[i].id, b.jobs[i].id) << i;
+}
+
 TEST(StudyExpansion, IdsAreHashesOfCanonicalScenesAndStableUnderReformatting) {
   const StudyPlan a = expand(tiny_study());
   // The same study written differently: keys in another order, 1.0e-3 as
