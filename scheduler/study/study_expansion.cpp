@@ -212,6 +212,15 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   if (doc.contains("checks")) plan.checks = doc.at("checks");
 
   const json& trains = doc.at("trains");
+  {
+    // The same train twice ran the same jobs under two labels ("HSLM-A1 #1",
+    // "#2"); trains that differ but share a name keep numbered labels.
+    std::map<std::string, std::size_t> first_at;
+    for (std::size_t j = 0; j < trains.size(); ++j)
+      if (const auto [it, fresh] = first_at.try_emplace(canonical_text(trains[j]), j); !fresh)
+        throw InputError(child_path("/trains", j),
+                         fmt::format("the same train as /trains/{}: list each train once", it->second), file);
+  }
   std::vector<double> speeds;  // given in speeds_kmh; a line_speed_kmh range adds per train and variant
   std::optional<LineSpeedRange> line_range;
   std::vector<StructureVariant> variants;

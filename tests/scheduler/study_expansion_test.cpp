@@ -205,6 +205,20 @@ TEST(StudyExpansion, ModalRunBeyondTheStepLimitIsRefusedAtSubmission) {
   EXPECT_NE(std::string(t.what()).find("planned from this tolerance"), std::string::npos) << t.what();
 }
 
+TEST(StudyExpansion, TheSameTrainTwiceIsRefusedAtItsSecondIndex) {
+  json doc = tiny_study();
+  doc["trains"].push_back(doc["trains"][0]);
+  const InputError e = expansion_error(doc);
+  EXPECT_EQ(e.json_path(), "/trains/2");
+  EXPECT_NE(std::string(e.what()).find("the same train as /trains/0"), std::string::npos) << e.what();
+  // Two trains that differ but share a name are two trains.
+  json renamed = tiny_study();
+  json other = renamed["trains"][0];
+  other["moving_forces"][0]["load_N"] = 2.0e5;
+  renamed["trains"].push_back(other);
+  EXPECT_EQ(expand(renamed).jobs.size(), 3u * 5u);
+}
+
 TEST(StudyExpansion, UnknownLibraryTrainIsReportedAtItsIndex) {
   json doc = tiny_study();
   doc["trains"].push_back("NO-SUCH-TRAIN");
