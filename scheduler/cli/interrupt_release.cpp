@@ -16,7 +16,8 @@
 
 namespace railvsi::cli {
 
-InterruptRelease::InterruptRelease(std::string db_file) : db_file_(std::move(db_file)) {
+InterruptRelease::InterruptRelease(std::string db_file, std::string worker_prefix)
+    : db_file_(std::move(db_file)), worker_prefix_(std::move(worker_prefix)) {
   sigemptyset(&signals_);
   sigaddset(&signals_, SIGINT);
   sigaddset(&signals_, SIGTERM);
@@ -25,20 +26,24 @@ InterruptRelease::InterruptRelease(std::string db_file) : db_file_(std::move(db_
 }
 
 InterruptRelease::~InterruptRelease() {
-  stop_ = true;
+  done_ = true;
   watcher_.join();
   pthread_sigmask(SIG_SETMASK, &previous_mask_, nullptr);
 }
 
 void InterruptRelease::watch() {
   const timespec poll{0, 100'000'000};  // 0.1 s: how soon the destructor's stop is seen
-  while (!stop_) {
+  while (!done_) {
     const int signal = sigtimedwait(&signals_, nullptr, &poll);
     if (signal <= 0) continue;
+    // First no new claim (workers read the flag inside their claim's write
+    // transaction), then the release: no job is claimed after it.
+    stopping_ = true;
     std::string what;
     try {
       scheduler::Database db(db_file_, scheduler::OpenMode::kExisting, 5000);
-      const std::int64_t n = scheduler::release_running_jobs(db, scheduler::process_worker_stem());
+      // The run's names are prefix:tN; the colon keeps another nonce out.
+      const std::int64_t n = scheduler::release_running_jobs(db, worker_prefix_ + ":");
       what = fmt::format("{} running jobs of this process went back to the queue; vsi work --db {} resumes them", n,
                          db_file_);
     } catch (const std::exception& e) {

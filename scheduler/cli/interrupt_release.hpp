@@ -17,16 +17,23 @@ namespace railvsi::cli {
 
 class InterruptRelease {
  public:
-  explicit InterruptRelease(std::string db_file);
+  // worker_prefix: the run's worker_name_prefix(), given to run_workers too
+  // (WorkOptions::worker_prefix): only this run's jobs are given back, not
+  // those of another process with the same host name and PID (containers).
+  InterruptRelease(std::string db_file, std::string worker_prefix);
   ~InterruptRelease();
   InterruptRelease(const InterruptRelease&) = delete;
   InterruptRelease& operator=(const InterruptRelease&) = delete;
 
+  // Set before the jobs are given back: WorkOptions::stopping, so that no
+  // worker claims a job after the release.
+  const std::atomic<bool>* stopping() const { return &stopping_; }
+
  private:
   void watch();
-  std::string db_file_;
+  std::string db_file_, worker_prefix_;
   sigset_t signals_{}, previous_mask_{};
-  std::atomic<bool> stop_{false};
+  std::atomic<bool> done_{false}, stopping_{false};
   std::thread watcher_;
 };
 

@@ -60,8 +60,10 @@ scheduler::WorkSummary work(const ServiceArgs& args) {
   options.cache_budget_bytes = static_cast<std::size_t>(args.cache_mb * 1024.0 * 1024.0);
   options.db_retry_s = args.db_retry_s;
   options.max_batch_jobs = static_cast<std::size_t>(args.batch);
+  options.worker_prefix = scheduler::worker_name_prefix();
   ProgressDisplay display(::isatty(STDERR_FILENO) == 1);
-  const InterruptRelease interrupts(args.db);  // before the workers start: they inherit its signal mask
+  const InterruptRelease interrupts(args.db, options.worker_prefix);  // before the workers: they inherit its mask
+  options.stopping = interrupts.stopping();
   const scheduler::WorkSummary s = scheduler::run_workers(
       options, [&](const scheduler::StateCounts& c, double elapsed_s, bool final) { display.update(c, elapsed_s, final); });
   spdlog::info("this worker: {} jobs done, {} failed in {}; factorizations {} ({:.2f} s), cache lookups hit {}, evictions {}",

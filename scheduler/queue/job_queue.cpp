@@ -119,9 +119,14 @@ std::optional<ClaimedJob> JobQueue::claim_row(const std::string& id, double now_
                     static_cast<int>(s.int64(8)), s.text(9), static_cast<int>(s.int64(10))};
 }
 
-std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, std::size_t max_jobs) {
+std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, std::size_t max_jobs,
+                                              const std::atomic<bool>* stopping) {
   std::vector<ClaimedJob> batch;
   Transaction tx(db_);
+  if (stopping != nullptr && stopping->load()) {
+    tx.commit();
+    return batch;
+  }
   std::optional<ClaimedJob> first = claim_in_transaction(preferred_key);
   if (first) {
     // Modal moving-force jobs of the same structure and dt run in one
@@ -441,12 +446,12 @@ std::int64_t retry_study(Database& db, const std::string& study_id) {
       study_id);
 }
 
-std::int64_t release_running_jobs(Database& db, const std::string& worker_stem) {
+std::int64_t release_running_jobs(Database& db, const std::string& worker_prefix) {
   Transaction tx(db);
   db.prepare("UPDATE jobs SET state = 'queued', attempts = max(attempts - 1, 0), worker = NULL, lease_expires = NULL, "
              "started_at = NULL WHERE state = 'running' AND substr(worker, 1, ?1) = ?2")
-      .bind(1, static_cast<std::int64_t>(worker_stem.size()))
-      .bind(2, worker_stem)
+      .bind(1, static_cast<std::int64_t>(worker_prefix.size()))
+      .bind(2, worker_prefix)
       .run();
   const std::int64_t released = db.changes();
   tx.commit();

@@ -9,6 +9,7 @@
 // - complete: the envelopes are stored and the job marked 'done' in one
 //   transaction, only if the worker still holds the job (a result is never
 //   lost nor stored twice).
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -103,7 +104,10 @@ class JobQueue {
   // order of train, profile and speed:
   // complete_batch stores them in one transaction; a worker that dies
   // leaves them all to expire and return.
-  std::vector<ClaimedJob> claim_batch(const std::string& preferred_key, std::size_t max_jobs);
+  // stopping (may be null): once set, claims take nothing; read inside the
+  // claim's write transaction, so no claim passes a release that set it.
+  std::vector<ClaimedJob> claim_batch(const std::string& preferred_key, std::size_t max_jobs,
+                                      const std::atomic<bool>* stopping = nullptr);
   // Renews the lease of the job if this worker still holds it; false when
   // it does not (taken over after an expired lease, or cancelled).
   bool renew(const std::string& job_id);
@@ -139,10 +143,11 @@ std::int64_t cancel_study(Database& db, const std::string& study_id);
 // Failed and cancelled jobs of a study go back to the queue with their
 // attempts reset; returns how many.
 std::int64_t retry_study(Database& db, const std::string& study_id);
-// Running jobs whose worker name starts with `worker_stem` go back to the
-// queue, their attempt not counted: a process its user interrupts gives its
-// leases back instead of leaving them to expire. Returns how many.
-std::int64_t release_running_jobs(Database& db, const std::string& worker_stem);
+// Running jobs whose worker name starts with `worker_prefix` (one run's
+// worker_name_prefix()) go back to the queue, their attempt not counted: a
+// process its user interrupts gives its leases back instead of leaving them
+// to expire. Returns how many.
+std::int64_t release_running_jobs(Database& db, const std::string& worker_prefix);
 // Full id from a unique prefix (at least 6 hex digits); empty if none.
 // Throws std::runtime_error when the prefix is ambiguous.
 std::string resolve_study_id(Database& db, const std::string& prefix);

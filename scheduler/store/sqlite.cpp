@@ -96,6 +96,8 @@ Database::Database(const std::string& file, OpenMode mode, int busy_timeout_ms) 
 
 Database::~Database() = default;
 
+void Database::set_busy_timeout(int busy_timeout_ms) { sqlite3_busy_timeout(db_.get(), busy_timeout_ms); }
+
 void Database::exec(const std::string& sql) {
   char* message = nullptr;
   const int rc = sqlite3_exec(db_.get(), sql.c_str(), nullptr, nullptr, &message);

@@ -53,6 +53,8 @@ class Database {
 
   // Statements without parameters (schema, pragmas, BEGIN/COMMIT).
   void exec(const std::string& sql);
+  // How long a statement waits for another connection's lock.
+  void set_busy_timeout(int busy_timeout_ms);
   Statement prepare(std::string_view sql);
   std::int64_t changes() const;
   const std::string& file() const { return file_; }

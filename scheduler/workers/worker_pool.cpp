@@ -110,11 +110,13 @@ class ClaimBackoff {
 
 void worker_loop(const WorkOptions& options, std::size_t thread, const std::string& name, FactorizationCache& cache,
                  HeldJobs& held, Tally& tally) {
-  // A lock waits at most --db-retry-s (up to the usual 60 s) before a claim
-  // counts as failed: with the 60 s timeout alone, --db-retry-s 1 gave up
-  // after about 120 s.
-  const int busy_timeout_ms = static_cast<int>(std::clamp(1000.0 * options.db_retry_s, 100.0, 60000.0));
-  Database db(options.db_file, OpenMode::kExisting, busy_timeout_ms);
+  // A claim waits for a lock at most --db-retry-s (up to the usual 60 s)
+  // before it counts as failed: with the 60 s timeout alone, --db-retry-s 1
+  // gave up after about 120 s. Storing results keeps the 60 s: a short
+  // wait there would throw computed results away.
+  const int claim_timeout_ms = static_cast<int>(std::clamp(1000.0 * options.db_retry_s, 100.0, 60000.0));
+  constexpr int kStoreTimeoutMs = 60000;
+  Database db(options.db_file, OpenMode::kExisting, kStoreTimeoutMs);
   JobQueue queue(db, name, options.lease_s);
   ClaimBackoff backoff(options.db_retry_s);
   std::string last_key;
@@ -126,9 +128,12 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
     const std::uint64_t seen = held.generation();  // before the claim: no change is missed
     const auto attempt_started = Clock::now();
     try {
-      batch = queue.claim_batch(last_key, std::max<std::size_t>(1, options.max_batch_jobs));
+      db.set_busy_timeout(claim_timeout_ms);
+      batch = queue.claim_batch(last_key, std::max<std::size_t>(1, options.max_batch_jobs), options.stopping);
+      db.set_busy_timeout(kStoreTimeoutMs);
       backoff.succeeded();
     } catch (const SqliteError& e) {
+      db.set_busy_timeout(kStoreTimeoutMs);
       backoff.failed(name, e.what(), attempt_started);
       continue;
     }
@@ -138,7 +143,7 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
       // could not put back is no longer renewed, so its lease expires and
       // the next claim takes it: the wait ends. A sibling thread that
       // finishes or puts back its batch ends the wait at once.
-      if (nothing_left(db)) return;
+      if ((options.stopping != nullptr && options.stopping->load()) || nothing_left(db)) return;
       held.wait_for_change(seen, idle_wait_s);
       continue;
     }
@@ -205,10 +210,8 @@ std::string worker_name_prefix() {
   // 32 random bits make a collision negligible.
   std::random_device random;
   const auto start_s = static_cast<std::int64_t>(unix_now_s());
-  return fmt::format("{}{}-{:08x}", process_worker_stem(), start_s, random());
+  return fmt::format("{}:{}:{}-{:08x}", host_name(), ::getpid(), start_s, random());
 }
-
-std::string process_worker_stem() { return fmt::format("{}:{}:", host_name(), ::getpid()); }
 
 void single_threaded_blas() {
   ::setenv("OPENBLAS_NUM_THREADS", "1", 1);
@@ -228,7 +231,7 @@ WorkSummary run_workers(const WorkOptions& options, const ProgressCallback& prog
   Tally tally;
   const int threads = std::max(1, options.threads);
   std::vector<std::string> names;
-  const std::string prefix = worker_name_prefix();
+  const std::string prefix = options.worker_prefix.empty() ? worker_name_prefix() : options.worker_prefix;
   for (int k = 0; k < threads; ++k) names.push_back(fmt::format("{}:t{}", prefix, k));
   HeldJobs held(names.size());
 

@@ -4,6 +4,7 @@
 // factorization cache. A heartbeat thread renews the lease of each job a
 // thread holds (by job id and worker name), so that only the jobs of a dead
 // worker return to the queue.
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -26,6 +27,12 @@ struct WorkOptions {
   // Modal moving-force jobs of one structure, dt and train are claimed,
   // run and stored together, up to this many at a time (1: one by one).
   std::size_t max_batch_jobs = 256;
+  // Names of this process's workers start with it (worker_name_prefix());
+  // empty: run_workers makes one.
+  std::string worker_prefix;
+  // Set when the process stops on an interrupt: no claim takes a job after
+  // it (checked inside the claim's write transaction). May be null.
+  const std::atomic<bool>* stopping = nullptr;
 };
 
 struct WorkSummary {
@@ -43,8 +50,6 @@ struct WorkSummary {
 // append :tN. A container restarted as PID 1 on the same host name gets a
 // new name, so it never renews the leases of its dead predecessor.
 std::string worker_name_prefix();
-// host:pid: the start of every worker name of this process.
-std::string process_worker_stem();
 
 // Called from the calling thread while the workers run, then once at the end.
 using ProgressCallback = std::function<void(const StateCounts& counts, double elapsed_s, bool final)>;
