@@ -1,5 +1,8 @@
 #include "cli/report_command.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -104,26 +107,49 @@ int report_command(const ReportArgs& args) {
     std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';
     return kExitInvalidInput;
   }
-  // Written whole or not at all: a failed write leaves neither file.
-  const std::filesystem::path tmp = out.string() + ".partial";
+  // Written whole or not at all: a failed write leaves neither file. The
+  // temporary file is made by mkstemp (a new name, O_EXCL): a symbolic link
+  // or a FIFO planted at a fixed OUT.partial is never followed.
+  std::string tmp = out.string() + ".partial-XXXXXX";
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) {
+    std::cerr << "error: cannot write " << out.string() << " (" << std::strerror(errno) << "); nothing was written\n";
+    return kExitRuntimeFailure;
+  }
   const auto failed = [&](int error) {
+    ::close(fd);
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
     std::cerr << "error: cannot write " << out.string() << " (" << std::strerror(error) << "); nothing was written\n";
     return kExitRuntimeFailure;
   };
-  {
-    errno = 0;
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) return failed(errno);
-    f << html;
-    if (!f.flush()) return failed(errno ? errno : EIO);
-    f.close();
-    if (f.fail()) return failed(errno ? errno : EIO);
+  ::fchmod(fd, 0644);  // a report is read by others (mkstemp makes 0600)
+  for (std::size_t done = 0; done < html.size();) {
+    const ssize_t n = ::write(fd, html.data() + done, html.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return failed(n < 0 ? errno : EIO);
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) return failed(errno);
+  if (::close(fd) != 0) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    std::cerr << "error: cannot write " << out.string() << " (" << std::strerror(errno) << "); nothing was written\n";
+    return kExitRuntimeFailure;
+  }
+  if (const auto why = unusable_out(out)) {  // replaced by something else meanwhile
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';
+    return kExitInvalidInput;
   }
   std::error_code ec;
   std::filesystem::rename(tmp, out, ec);
-  if (ec) return failed(ec.value());
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    std::cerr << "error: cannot write " << out.string() << " (" << ec.message() << "); nothing was written\n";
+    return kExitRuntimeFailure;
+  }
   std::cout << "report: " << out.string() << " (" << verdict_name(report.overall) << ")\n";
   return args.fail_on_exceeded ? verdict_exit_code(report.overall) : kExitOk;
 }
