@@ -6,6 +6,7 @@
 // sweep loses nothing.
 #include <algorithm>
 #include <csignal>
+#include <fstream>
 #include <set>
 #include <thread>
 
@@ -243,6 +244,18 @@ TEST_F(ModalBatches, AGivenStepAboveTheSamplingRuleIsFlagged) {
   }
   EXPECT_EQ(jobs, 2);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE quantity = 'deck_acceleration_mps2' AND value IS NOT NULL"), 0);
+  // vsi simulate of a job's scene warns alike.
+  Statement scene = db.prepare("SELECT scene FROM job_records LIMIT 1");
+  ASSERT_TRUE(scene.step());
+  const auto file = dir_ / "coarse-scene.json";
+  { std::ofstream(file) << scene.text(0); }
+  const VsiResult simulated = vsi({"simulate", file.string()});
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+  const json run = json::parse(simulated.out).at("run");
+  EXPECT_EQ(run.at("fidelity").at("solver_path"), "modal-exact");
+  std::set<std::string> codes;
+  for (const json& w : run.at("warnings")) codes.insert(w.at("code").get<std::string>());
+  EXPECT_EQ(codes, (std::set<std::string>{"dt_above_policy", "filter_above_nyquist"}));
 }
 
 // Trains that share the structure and time step share the operator key:
