@@ -344,6 +344,8 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     most_speeds = std::max(most_speeds, f.speeds_kmh.size());
     check_count(count, most_speeds);
     Scene dry = f.first_scene;
+    // At the slowest speed: the longest run, which the size limits judge.
+    if (!f.speeds_kmh.empty()) dry.speed_mps = *std::min_element(f.speeds_kmh.begin(), f.speeds_kmh.end()) / 3.6;
     const JobTimeStep first_dt = job_time_step(dt_given, dry, f.frequencies, f.plan);
     dry.analysis.dt_s = first_dt.dt_s;
     try {
@@ -372,7 +374,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     } catch (const InputError& e) {
       // A planned step too small to run comes from the study's tolerance.
       if (!dt_given && e.json_path() == "/analysis/dt_s" && doc.contains("accuracy") &&
-          doc.at("accuracy").contains("tolerance"))
+          doc.at("accuracy").contains("tolerance") && doc.at("accuracy").at("tolerance").get<double>() < FidelityRequest{}.tolerance)
         throw InputError("/accuracy/tolerance",
                          fmt::format("{} (the step was planned from this tolerance)", e.what()), file);
       throw in_study(e.with_file(file), file, train_path, profiles.front().path);
