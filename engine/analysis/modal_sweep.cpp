@@ -12,16 +12,13 @@
 #include "core/input_error.hpp"
 #include "core/sampled_peak.hpp"
 #include "simulation/run_monitor.hpp"
-#include "simulation/scene.hpp"
 
 namespace railvsi {
 
 ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::vector<int>& rail_lines, double dt_s,
                        std::shared_ptr<const ModalSectionForces> sections, DeckOutputCorrection correction)
     : basis_(basis), n_modes_(basis.num_modes()), correction_(correction), dt_s_(dt_s), sections_(std::move(sections)) {
-  const MonitorLimits limits;
-  const auto [bridge_start_m, bridge_end_m] = bridge_extent_m(basis.structure());
-  u_limit_m_ = std::max(limits.min_implausible_m, (bridge_end_m - bridge_start_m) / limits.span_ratio);
+  u_limit_m_ = implausible_displacement_m(basis.structure());
   n_forms_ = sections_ ? sections_->num_forms() : 0;
   if (correction_ == DeckOutputCorrection::kStatic) n_corrected_ = static_cast<int>(basis.structure().outputs().size());
   width_ = n_modes_ + n_forms_ + 2 * n_corrected_;

@@ -12,9 +12,7 @@ RunMonitor::RunMonitor(const Scene& scene, const TrainLayout& layout, const Stru
                        const Vector& f_s0, const Vector& P0, MonitorLimits limits)
     : scene_(scene), layout_(layout), coords_(coords), limits_(limits), start_x_m_(start_x_m),
       window_(EvaluationWindow::of(scene)) {
-  const StructureModel& st = *scene.structure;
-  const auto [b0, b1] = bridge_extent_m(st);
-  u_limit_m_ = std::max(limits_.min_implausible_m, (b1 - b0) / limits_.span_ratio);
+  u_limit_m_ = implausible_displacement_m(*scene.structure, limits_);
   structure_energy_ = EnergyAccount<SparseMatrix>(coords.M(), coords.C(), coords.K(), s0, f_s0);
   for (std::size_t v = 0; v < layout.vehicles.size(); ++v) {
     const VehicleModel& m = *layout.vehicles[v].model;
@@ -30,6 +28,11 @@ RunMonitor::RunMonitor(const Scene& scene, const TrainLayout& layout, const Stru
 
   for (RunWarning& w : scene_input_warnings(scene)) warn_once(w.code, std::move(w.message));
   check_track_ends(start_x_m);
+}
+
+double implausible_displacement_m(const StructureModel& structure, const MonitorLimits& limits) {
+  const auto [b0, b1] = bridge_extent_m(structure);
+  return std::max(limits.min_implausible_m, (b1 - b0) / limits.span_ratio);
 }
 
 std::vector<RunWarning> scene_input_warnings(const Scene& scene) {

@@ -43,6 +43,10 @@ struct MonitorLimits {
 // itself.
 std::vector<RunWarning> scene_input_warnings(const Scene& scene);
 
+// The displacement beyond which a structure under a train is implausible:
+// max(limits.min_implausible_m, bridge length / limits.span_ratio).
+double implausible_displacement_m(const StructureModel& structure, const MonitorLimits& limits = {});
+
 class RunMonitor {
  public:
   // Structure states and loads in the coordinates `coords` (referenced).

@@ -260,11 +260,15 @@ int user_version(Database& db) {
 }  // namespace
 
 void require_vsi_or_empty(Database& db) {
-  if (user_version(db) != 0) return;
-  // schema_version alone: a first migration that was interrupted.
-  Statement s = db.prepare("SELECT group_concat(name, ', '), sum(name = 'schema_version') FROM sqlite_schema "
-                           "WHERE type = 'table'");
-  if (s.step() && !s.is_null(0) && s.int64(1) == 0)
+  const int version = user_version(db);
+  // schema_version alone (user_version 0): a first migration that was
+  // interrupted. A version without vsi's jobs table is another program's
+  // (many set user_version).
+  Statement s = db.prepare("SELECT group_concat(name, ', '), sum(name = 'schema_version'), sum(name = 'jobs') "
+                           "FROM sqlite_schema WHERE type = 'table'");
+  if (!s.step() || s.is_null(0)) return;  // no table: a new file
+  const bool ours = version == 0 ? s.int64(1) > 0 : s.int64(2) > 0 && s.int64(1) > 0;
+  if (!ours)
     throw std::runtime_error(fmt::format("{} is an SQLite database of another program (tables {}; no vsi schema): "
                                          "vsi writes nothing into it; give a new file or a vsi study database",
                                          db.file(), s.text(0)));

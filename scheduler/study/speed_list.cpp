@@ -28,7 +28,9 @@ std::vector<double> expand_speeds(const nlohmann::json& speeds_kmh, std::size_t 
   // after the last step below it: the top of a range is usually the maximum
   // design speed, the one speed a study must not drop.
   const double intervals = std::floor((to - from) / step + 1e-9);
-  const bool to_off_grid = to - rounded(from + intervals * step) > 1e-9 * std::max(1.0, std::abs(to));
+  // A 'to' within a millionth of a step of the grid is on it (350.0000005
+  // with steps of 50 is 350, not a second job beside it).
+  const bool to_off_grid = to - rounded(from + intervals * step) > 1e-6 * step;
   const double count = intervals + 1.0 + (to_off_grid ? 1.0 : 0.0);
   if (count > static_cast<double>(max_count))
     throw InputError("/speeds_kmh/step",
