@@ -13,6 +13,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -81,6 +82,33 @@ std::optional<std::string> unusable_out(const std::filesystem::path& out) {
   return std::nullopt;
 }
 
+// Writes `text` whole or not at all: to a new file beside `out`, made by
+// mkstemp (a new name, O_EXCL, so a symbolic link or FIFO planted at a fixed
+// OUT.partial is never followed), then renamed onto `out`. On failure the
+// temporary file is removed and the reason returned.
+std::optional<std::string> write_whole(const std::filesystem::path& out, std::string_view text) {
+  std::string tmp = out.string() + ".partial-XXXXXX";
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) return std::strerror(errno);
+  int error = 0;
+  ::fchmod(fd, 0644);  // a report is read by others (mkstemp makes 0600)
+  for (std::size_t done = 0; done < text.size() && error == 0;) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n > 0) done += static_cast<std::size_t>(n);
+    else if (n == 0 || errno != EINTR) error = n == 0 ? EIO : errno;
+  }
+  if (error == 0 && ::fsync(fd) != 0) error = errno;
+  if (::close(fd) != 0 && error == 0) error = errno;
+  std::error_code ec;
+  if (error == 0) {
+    std::filesystem::rename(tmp, out, ec);
+    if (!ec) return std::nullopt;
+  }
+  std::error_code ignored;
+  std::filesystem::remove(tmp, ignored);
+  return error != 0 ? std::string(std::strerror(error)) : ec.message();
+}
+
 }  // namespace
 
 int report_command(const ReportArgs& args) {
@@ -107,47 +135,8 @@ int report_command(const ReportArgs& args) {
     std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';
     return kExitInvalidInput;
   }
-  // Written whole or not at all: a failed write leaves neither file. The
-  // temporary file is made by mkstemp (a new name, O_EXCL): a symbolic link
-  // or a FIFO planted at a fixed OUT.partial is never followed.
-  std::string tmp = out.string() + ".partial-XXXXXX";
-  const int fd = ::mkstemp(tmp.data());
-  if (fd < 0) {
-    std::cerr << "error: cannot write " << out.string() << " (" << std::strerror(errno) << "); nothing was written\n";
-    return kExitRuntimeFailure;
-  }
-  const auto failed = [&](int error) {
-    ::close(fd);
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    std::cerr << "error: cannot write " << out.string() << " (" << std::strerror(error) << "); nothing was written\n";
-    return kExitRuntimeFailure;
-  };
-  ::fchmod(fd, 0644);  // a report is read by others (mkstemp makes 0600)
-  for (std::size_t done = 0; done < html.size();) {
-    const ssize_t n = ::write(fd, html.data() + done, html.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return failed(n < 0 ? errno : EIO);
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) return failed(errno);
-  if (::close(fd) != 0) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    std::cerr << "error: cannot write " << out.string() << " (" << std::strerror(errno) << "); nothing was written\n";
-    return kExitRuntimeFailure;
-  }
-  if (const auto why = unusable_out(out)) {  // replaced by something else meanwhile
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';
-    return kExitInvalidInput;
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, out, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    std::cerr << "error: cannot write " << out.string() << " (" << ec.message() << "); nothing was written\n";
+  if (const auto why = write_whole(out, html)) {
+    std::cerr << "error: cannot write " << out.string() << " (" << *why << "); nothing was written\n";
     return kExitRuntimeFailure;
   }
   std::cout << "report: " << out.string() << " (" << verdict_name(report.overall) << ")\n";
