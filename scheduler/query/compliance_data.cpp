@@ -410,12 +410,8 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   // Wheel and car-body checks concern trains of vehicles: a train given as
   // axle forces (a load model such as HSLM) has no wheel or car body, so its
   // cases are left out of these checks rather than counted as missing.
-  std::vector<JobResult> vehicle_jobs;
-  std::size_t axle_force_jobs = 0;
-  for (const JobResult& j : jobs) {
-    if (j.axle_forces.value_or(false)) ++axle_force_jobs;
-    else vehicle_jobs.push_back(j);
-  }
+  const std::vector<JobResult> vehicle_jobs = jobs_with_vehicles(jobs);
+  const std::size_t axle_force_jobs = jobs.size() - vehicle_jobs.size();
   const auto vehicle_check = [&](const CheckResult& c) {
     CheckResult out = quantity_check(c, vehicle_jobs);
     if (axle_force_jobs == 0) return out;

@@ -275,9 +275,7 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
                                 "km/h", "irregularity", eirr_w, "check"));
   bool any_edge = false, any_estimate = false, any_above = false;
   // Trains given as axle forces have no wheel or car-body rows.
-  std::vector<JobResult> vehicle_jobs;
-  for (const JobResult& j : jobs)
-    if (!j.axle_forces.value_or(false)) vehicle_jobs.push_back(j);
+  const std::vector<JobResult> vehicle_jobs = jobs_with_vehicles(jobs);
   for (const Column* c : columns)
     for (const TrainEnvelope& e : study_envelope_over_speeds(c->vehicles ? vehicle_jobs : jobs, c->quantity)) {
       std::vector<std::string> notes;

@@ -46,6 +46,13 @@ std::optional<double> JobResult::error_estimate(const std::string& quantity, con
   return v == q->second.end() ? std::nullopt : std::optional(v->second);
 }
 
+std::vector<JobResult> jobs_with_vehicles(const std::vector<JobResult>& jobs) {
+  std::vector<JobResult> out;
+  for (const JobResult& j : jobs)
+    if (!j.axle_forces.value_or(false)) out.push_back(j);
+  return out;
+}
+
 StudyInfo study_info(Database& db, const std::string& study_id) {
   Statement s = db.prepare("SELECT id, name, file, checks, job_count, "
                            "coalesce(json_extract(document, '$.accuracy.tolerance'), 0.01) FROM studies WHERE id = ?");

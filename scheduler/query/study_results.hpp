@@ -59,6 +59,10 @@ struct JobResult {
   std::optional<double> error_estimate(const std::string& quantity, const std::string& location = "") const;
 };
 
+// The jobs whose train has vehicles (or can no longer be read): those that
+// wheel and car-body quantities concern. Trains of axle forces have none.
+std::vector<JobResult> jobs_with_vehicles(const std::vector<JobResult>& jobs);
+
 struct StudyInfo {
   std::string id, name, file;
   nlohmann::json checks = nlohmann::json::object();
