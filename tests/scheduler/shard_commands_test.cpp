@@ -67,6 +67,14 @@ class ShardCommands : public ServiceTest {
     const VsiResult w = vsi({"work", "--db", shard.string(), "--threads", "1"}, "work");
     ASSERT_EQ(w.exit_code, 0) << w.err;
   }
+  // The small study in two shards under `out`, each worked: shard-0.sqlite, shard-1.sqlite.
+  std::filesystem::path two_worked_shards() const {
+    const auto study = write_json("small.json", small_study());
+    const auto out = dir_ / "shards";
+    EXPECT_EQ(vsi({"shard", study.string(), "--shards", "2", "--out", out.string()}).exit_code, 0);
+    for (int k = 0; k < 2; ++k) work(out / ("shard-" + std::to_string(k) + ".sqlite"));
+    return out;
+  }
 };
 
 TEST_F(ShardCommands, ShardsAreOrdinaryStoresAndTheMergeAnswersQueryAsOneRun) {
@@ -133,10 +141,7 @@ TEST_F(ShardCommands, ShardsAreOrdinaryStoresAndTheMergeAnswersQueryAsOneRun) {
 }
 
 TEST_F(ShardCommands, MergingTwiceAddsNothing) {
-  const auto study = write_json("small.json", small_study());
-  const auto out = dir_ / "shards";
-  ASSERT_EQ(vsi({"shard", study.string(), "--shards", "2", "--out", out.string()}).exit_code, 0);
-  for (int k = 0; k < 2; ++k) work(out / ("shard-" + std::to_string(k) + ".sqlite"));
+  const auto out = two_worked_shards();
   const auto merged = dir_ / "results.sqlite";
   const std::vector<std::string> args{"merge", (out / "shard-0.sqlite").string(), (out / "shard-1.sqlite").string(),
                                       "--into", merged.string()};
@@ -168,10 +173,7 @@ TEST_F(ShardCommands, MergeRefusesAShardOfAnotherStudyAndWritesNothing) {
 // taken the first shard into a new target, then stopped on the second with
 // SQLite's "malformed" and no file named.
 TEST_F(ShardCommands, MergeRefusesADamagedShardAndWritesNothing) {
-  const auto study = write_json("small.json", small_study());
-  const auto out = dir_ / "shards";
-  ASSERT_EQ(vsi({"shard", study.string(), "--shards", "2", "--out", out.string()}).exit_code, 0);
-  for (int k = 0; k < 2; ++k) work(out / ("shard-" + std::to_string(k) + ".sqlite"));
+  const auto out = two_worked_shards();
   const auto damaged = out / "shard-1.sqlite";
   std::int64_t root = 0, page_bytes = 0;
   {
