@@ -119,13 +119,17 @@ AnalysisOptions parse_analysis(const json& a) {
   if (a.contains("solver"))
     o.solver = a.at("solver").get<std::string>() == "reference" ? SolverPath::kReference : SolverPath::kCondensed;
   if (a.contains("contact")) o.contact = contact_options(a.at("contact"));
-  if (a.contains("structure") && a.at("structure").get<std::string>() == "modal")
-    o.structure_backend = StructureBackend::kModal;
+  if (a.contains("structure")) {
+    const std::string structure = a.at("structure").get<std::string>();
+    if (structure == "modal") o.structure_backend = StructureBackend::kModal;
+    if (structure == "hybrid") o.structure_backend = StructureBackend::kHybrid;
+  }
   o.modal_modes = a.value("modes", o.modal_modes);
   o.modal_cutoff_hz = a.value("cutoff_hz", o.modal_cutoff_hz);
-  if ((a.contains("modes") || a.contains("cutoff_hz")) && o.structure_backend != StructureBackend::kModal)
+  if ((a.contains("modes") || a.contains("cutoff_hz")) && o.structure_backend == StructureBackend::kFiniteElements)
     throw InputError(a.contains("modes") ? "/analysis/modes" : "/analysis/cutoff_hz",
-                     "modes and cutoff_hz choose the modes of the modal structure: give \"structure\": \"modal\"");
+                     "modes and cutoff_hz choose the modes of the modal or hybrid structure: give \"structure\": "
+                     "\"modal\" or \"hybrid\"");
   o.modal_static_correction = a.value("static_correction", o.modal_static_correction);
   if (a.contains("static_correction") && o.structure_backend != StructureBackend::kModal)
     throw InputError("/analysis/static_correction",

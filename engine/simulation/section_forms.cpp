@@ -71,6 +71,23 @@ class ElementRows {
 
 }  // namespace
 
+SectionForms forms_in_coordinates(SectionForms forms, const StructureCoordinates& coords) {
+  Vector acc = Vector::Zero(coords.size());
+  const auto convert = [&](std::vector<std::pair<int, double>>& terms) {
+    acc.setZero();
+    for (const auto& [d, c] : terms) coords.add(d, c, acc);
+    terms.clear();
+    for (Eigen::Index i = 0; i < acc.size(); ++i)
+      if (acc[i] != 0.0) terms.emplace_back(static_cast<int>(i), acc[i]);
+  };
+  for (LinearForm& f : forms.forms) {
+    convert(f.u);
+    convert(f.v);
+    convert(f.a);
+  }
+  return forms;
+}
+
 double LinearForm::state_value(const Vector& u_s, const Vector& v_s, const Vector& a_s) const {
   double s = 0.0;
   for (const auto& [d, c] : u) s += c * u_s[d];

@@ -21,6 +21,7 @@
 
 #include "core/types.hpp"
 #include "model/structure_model.hpp"
+#include "solver/structure_coordinates.hpp"
 
 namespace railvsi {
 
@@ -88,6 +89,11 @@ struct SectionForms {
 };
 
 SectionForms make_section_forms(const StructureModel& structure);
+
+// The forms over the coordinates of a backend whose state is not the
+// model's DOFs (the hybrid structure's): each DOF term becomes that DOF's
+// combination of coordinates, so that state_value() reads the run's state.
+SectionForms forms_in_coordinates(SectionForms forms, const StructureCoordinates& coords);
 
 // Envelope of the section quantities over a run: fed every step with the
 // values of all forms, it writes the maxima into a RunSummary.

@@ -10,6 +10,7 @@
 #include "simulation/run_state.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "simulation/step_solver.hpp"
+#include "solver/hybrid_operator.hpp"
 #include "solver/modal_operator.hpp"
 
 namespace railvsi {
@@ -193,6 +194,10 @@ Simulation::Simulation(Scene scene, std::shared_ptr<const StructureOperator> op)
   // static part from a factor of K: the modal static operator would miss
   // the static share of the modes above the cut-off).
   setup->section_forms = make_section_forms(*scene_.structure);
+  if (op_ && an.solver == SolverPath::kCondensed && setup->section_forms.available()) {
+    if (const StructureCoordinates coords = op_->coordinates(*scene_.structure); coords.hybrid())
+      setup->section_forms = forms_in_coordinates(std::move(setup->section_forms), coords);
+  }
   const auto* modal = an.solver == SolverPath::kCondensed ? dynamic_cast<const ModalOperator*>(op_.get()) : nullptr;
   if (modal && setup->section_forms.available()) {
     if (scene_.fidelity.asks_section_forces())
@@ -243,6 +248,13 @@ Result Simulation::run() const {
   sum.fidelity.unilateral = !mf && !layout.contacts.empty() && layout.contacts.front().law->unilateral();
   sum.fidelity.solver_path = an.solver == SolverPath::kReference ? "reference" : "condensed";
   sum.fidelity.structure_dofs = sc.structure->num_dofs();
+  if (an.structure_backend == StructureBackend::kHybrid && op_) {
+    // The bridge's modes (with the track-bearing DOFs held) and their cut-off.
+    const auto* hybrid = dynamic_cast<const HybridOperator*>(op_.get());
+    sum.fidelity.modes = hybrid ? hybrid->basis().num_modes() : 0;
+    sum.fidelity.modal_cutoff_hz =
+        hybrid ? hybrid->basis().cutoff_hz() : std::numeric_limits<double>::quiet_NaN();
+  }
   if (an.structure_backend == StructureBackend::kModal && op_) {
     // The modal operator's unknowns are the modes; their cut-off is the
     // scene's (null when the scene gives a mode count instead).

@@ -4,6 +4,7 @@
 
 #include "core/input_error.hpp"
 #include "solver/cholmod_operator.hpp"
+#include "solver/hybrid_operator.hpp"
 #include "solver/modal_operator.hpp"
 
 namespace railvsi {
@@ -19,6 +20,14 @@ std::shared_ptr<const ModalBasis> make_modal_basis(std::shared_ptr<const Structu
     mo.max_frequency_hz = options.modal_cutoff_hz > 0.0 ? options.modal_cutoff_hz : kDefaultModalCutoffHz;
   }
   return std::make_shared<const ModalBasis>(std::move(model), mo);
+}
+
+std::shared_ptr<const HybridBasis> make_hybrid_basis(std::shared_ptr<const StructureModel> model,
+                                                     const StructureOperatorOptions& options) {
+  HybridBasisOptions ho;
+  ho.modes = options.modal_modes;
+  ho.max_frequency_hz = options.modal_cutoff_hz > 0.0 ? options.modal_cutoff_hz : kDefaultModalCutoffHz;
+  return std::make_shared<const HybridBasis>(std::move(model), ho);
 }
 
 std::shared_ptr<const StructureOperator> make_structure_operator(std::shared_ptr<const StructureModel> model,
@@ -39,12 +48,29 @@ std::shared_ptr<const StructureOperator> make_structure_operator(std::shared_ptr
                                                                         options.rail_flexibility &&
                                                                             options.modal_static_correction});
     }
+    case StructureBackend::kHybrid: {
+      auto basis = options.hybrid_basis ? options.hybrid_basis : make_hybrid_basis(model, options);
+      if (basis->structure().num_dofs() != model->num_dofs())
+        throw InputError("/structure", "the hybrid reduction was computed for another structure");
+      return std::make_shared<const HybridOperator>(
+          std::move(basis), factors,
+          CholmodOperatorOptions{options.rail_flexibility, options.flexibility_block_columns,
+                                 options.rails_last_max_fill_growth});
+    }
   }
   throw InputError("/analysis/structure", "unknown structure backend");
 }
 
 const char* structure_backend_name(StructureBackend backend) {
-  return backend == StructureBackend::kModal ? "modal" : "fe";
+  switch (backend) {
+    case StructureBackend::kModal:
+      return "modal";
+    case StructureBackend::kHybrid:
+      return "hybrid";
+    case StructureBackend::kFiniteElements:
+      break;
+  }
+  return "fe";
 }
 
 }  // namespace railvsi

@@ -2,15 +2,17 @@
 // The one place a structure backend is chosen: a StructureOperator created
 // from options (as Ceres' SparseCholesky::Create does for its sparse
 // solvers). Backends: finite elements (a CHOLMOD factor of K_bar) and modal
-// (the modes up to a cut-off, diagonal K_bar).
+// (the modes up to a cut-off, diagonal K_bar) and hybrid (the track in
+// finite elements, the bridge in its modes: hybrid_basis.hpp).
 #include <memory>
 
+#include "solver/hybrid_basis.hpp"
 #include "solver/modal_basis.hpp"
 #include "solver/structure_operator.hpp"
 
 namespace railvsi {
 
-enum class StructureBackend { kFiniteElements, kModal };
+enum class StructureBackend { kFiniteElements, kModal, kHybrid };
 
 // The modal cut-off when a scene names neither modes nor a cut-off.
 inline constexpr double kDefaultModalCutoffHz = 100.0;
@@ -19,6 +21,7 @@ struct StructureOperatorOptions {
   StructureBackend structure_backend = StructureBackend::kFiniteElements;
   // Modal: this many modes (the lowest) when > 0; else every mode up to
   // modal_cutoff_hz, or up to kDefaultModalCutoffHz when that is 0 too.
+  // Hybrid: the same for the bridge's modes with the track held.
   int modal_modes = 0;
   double modal_cutoff_hz = 0.0;
   bool rail_flexibility = true;
@@ -32,6 +35,9 @@ struct StructureOperatorOptions {
   // Modal: modes computed before (of the same structure, for the same
   // options), shared between operators for several dt; computed when null.
   std::shared_ptr<const ModalBasis> modal_basis = nullptr;
+  // Hybrid: the reduction computed before (same structure, same modes),
+  // shared between operators for several dt; computed when null.
+  std::shared_ptr<const HybridBasis> hybrid_basis = nullptr;
 };
 
 // The modes the options ask for (modal_modes, modal_cutoff_hz). Throws
@@ -39,13 +45,18 @@ struct StructureOperatorOptions {
 std::shared_ptr<const ModalBasis> make_modal_basis(std::shared_ptr<const StructureModel> model,
                                                    const StructureOperatorOptions& options);
 
+// The hybrid reduction the options ask for (modal_modes, modal_cutoff_hz
+// for the bridge's modes). Throws InputError as HybridBasis does.
+std::shared_ptr<const HybridBasis> make_hybrid_basis(std::shared_ptr<const StructureModel> model,
+                                                     const StructureOperatorOptions& options);
+
 // Throws InputError when the structure cannot be factorized (a mechanism)
 // or its modes cannot be computed.
 std::shared_ptr<const StructureOperator> make_structure_operator(std::shared_ptr<const StructureModel> model,
                                                                  const EffectiveMatrixFactors& factors,
                                                                  const StructureOperatorOptions& options);
 
-// "fe" or "modal", as scenes name them.
+// "fe", "modal" or "hybrid", as scenes name them.
 const char* structure_backend_name(StructureBackend backend);
 
 }  // namespace railvsi

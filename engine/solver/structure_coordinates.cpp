@@ -1,5 +1,7 @@
 #include "solver/structure_coordinates.hpp"
 
+#include <limits>
+
 namespace railvsi {
 namespace {
 
@@ -30,8 +32,37 @@ StructureCoordinates::StructureCoordinates(std::shared_ptr<const ModalBasis> bas
   modal_K_ = diagonal(k);
 }
 
+StructureCoordinates::StructureCoordinates(std::shared_ptr<const HybridBasis> hybrid)
+    : hybrid_(std::move(hybrid)), size_(hybrid_->size()), model_dofs_(hybrid_->structure().num_dofs()),
+      M_(&hybrid_->reduced().M()), C_(&hybrid_->reduced().C()), K_(&hybrid_->reduced().K()) {}
+
+double StructureCoordinates::hybrid_at(int dof, const Vector& x) const {
+  if (const int i = hybrid_->index(dof); i >= 0) return x[i];
+  const double* row = hybrid_->row(dof);
+  if (!row) return std::numeric_limits<double>::quiet_NaN();
+  const int n = hybrid_->interface_dofs() + hybrid_->num_modes();
+  return Eigen::Map<const Vector>(row, n).dot(x.segment(hybrid_->track_dofs(), n));
+}
+
+void StructureCoordinates::hybrid_add(int dof, double f, Vector& x) const {
+  if (const int i = hybrid_->index(dof); i >= 0) {
+    x[i] += f;
+    return;
+  }
+  const double* row = hybrid_->row(dof);
+  const int n = hybrid_->interface_dofs() + hybrid_->num_modes();
+  if (row) x.segment(hybrid_->track_dofs(), n) += f * Eigen::Map<const Vector>(row, n);
+  else x.setConstant(std::numeric_limits<double>::quiet_NaN());  // a load where none can act: never silent
+}
+
 double StructureCoordinates::max_abs_displacement(const Vector& x) const {
   if (x.size() == 0) return 0.0;
+  if (hybrid_) {
+    // The track and the interface; the interior's largest is near them
+    // (constraint modes) or at an output point, which the monitor reads.
+    const int n = hybrid_->track_dofs() + hybrid_->interface_dofs();
+    return n > 0 ? x.head(n).cwiseAbs().maxCoeff() : 0.0;
+  }
   if (!basis_) return x.cwiseAbs().maxCoeff();
   return (basis_->kept_rows().transpose() * x).cwiseAbs().maxCoeff();
 }

@@ -5,7 +5,9 @@
 // M = I, C = diag(2 zeta omega), K = diag(omega^2) in q). Everything that
 // reads the structure's state at a DOF (the rail top under a wheel, a deck
 // output) or loads it at a DOF (a wheel or axle load) goes through here, so
-// the time loop is written once for both.
+// the time loop is written once for both. The hybrid structure's
+// coordinates are [u_track; u_interface; q] (HybridBasis): a track or
+// interface DOF is read directly, a bridge DOF inside through its row.
 #include <array>
 #include <memory>
 #include <optional>
@@ -14,6 +16,7 @@
 #include "core/types.hpp"
 #include "model/rail_line.hpp"
 #include "model/structure_model.hpp"
+#include "solver/hybrid_basis.hpp"
 #include "solver/modal_basis.hpp"
 
 namespace railvsi {
@@ -25,28 +28,35 @@ class StructureCoordinates {
   // Modal coordinates of `basis`: the rows of Phi it keeps (rail and output
   // DOFs) are all that is ever read.
   explicit StructureCoordinates(std::shared_ptr<const ModalBasis> basis);
+  // The hybrid structure's reduced coordinates.
+  explicit StructureCoordinates(std::shared_ptr<const HybridBasis> hybrid);
 
   bool modal() const { return basis_ != nullptr; }
+  bool hybrid() const { return hybrid_ != nullptr; }
   // Length of a state vector.
   int size() const { return size_; }
   // DOFs of the model the coordinates describe.
   int model_dofs() const { return model_dofs_; }
   // The structure's matrices in these coordinates (the model's own for
-  // finite elements). Valid while the model (FE) or this object lives.
+  // finite elements). Valid while the model (FE), the hybrid basis or
+  // this object (modes) lives.
   const SparseMatrix& M() const { return basis_ ? modal_M_ : *M_; }
   const SparseMatrix& C() const { return basis_ ? modal_C_ : *C_; }
   const SparseMatrix& K() const { return basis_ ? modal_K_ : *K_; }
 
   // Displacement (velocity, acceleration) at a model DOF of the state x; 0
-  // for a fixed DOF (-1).
+  // for a fixed DOF (-1). NaN for a bridge DOF the hybrid structure does
+  // not keep (a run never reads one: HybridBasis keeps what runs read).
   double at(int dof, const Vector& x) const {
     if (dof < 0) return 0.0;
+    if (hybrid_) return hybrid_at(dof, x);
     if (!basis_) return x[dof];
     return Eigen::Map<const Vector>(basis_->row(dof), size_).dot(x);
   }
   // x += the load f at a model DOF, in these coordinates (Phi^T f for modes).
   void add(int dof, double f, Vector& x) const {
     if (dof < 0) return;
+    if (hybrid_) return hybrid_add(dof, f, x);
     if (!basis_) {
       x[dof] += f;
       return;
@@ -58,10 +68,13 @@ class StructureCoordinates {
   double max_abs_displacement(const Vector& x) const;
 
  private:
+  double hybrid_at(int dof, const Vector& x) const;
+  void hybrid_add(int dof, double f, Vector& x) const;
   std::shared_ptr<const ModalBasis> basis_;
+  std::shared_ptr<const HybridBasis> hybrid_;
   int size_ = 0;
   int model_dofs_ = 0;
-  const SparseMatrix* M_ = nullptr;  // the model's (FE)
+  const SparseMatrix* M_ = nullptr;  // the model's (FE, hybrid: the reduced one)
   const SparseMatrix* C_ = nullptr;
   const SparseMatrix* K_ = nullptr;
   SparseMatrix modal_M_, modal_C_, modal_K_;  // diagonal (modes)

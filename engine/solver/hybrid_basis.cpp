@@ -1,0 +1,257 @@
+#include "solver/hybrid_basis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include <Eigen/Eigenvalues>
+
+#include "core/input_error.hpp"
+#include "solver/modal_analysis.hpp"
+#include "solver/shift_invert_factor.hpp"
+
+namespace railvsi {
+namespace {
+
+enum class Part : char { kTrack, kInterface, kInterior };
+
+// The blocks of one structure matrix that the reduction reads.
+struct Blocks {
+  SparseMatrix II, IG;  // interior x interior, interior x interface
+  DenseMatrix GG;       // interface x interface
+};
+
+Blocks split(const SparseMatrix& A, const std::vector<Part>& part, const std::vector<int>& local, int n_interior,
+             int n_interface) {
+  std::vector<Triplet> ii, ig;
+  Blocks b;
+  b.GG = DenseMatrix::Zero(n_interface, n_interface);
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+      const auto i = static_cast<std::size_t>(it.row());
+      const Part pi = part[i], pj = part[static_cast<std::size_t>(j)];
+      const int li = local[i], lj = local[static_cast<std::size_t>(j)];
+      if (pi == Part::kInterior && pj == Part::kInterior) ii.emplace_back(li, lj, it.value());
+      else if (pi == Part::kInterior && pj == Part::kInterface) ig.emplace_back(li, lj, it.value());
+      else if (pi == Part::kInterface && pj == Part::kInterface) b.GG(li, lj) += it.value();
+    }
+  b.II.resize(n_interior, n_interior);
+  b.II.setFromTriplets(ii.begin(), ii.end());
+  b.IG.resize(n_interior, n_interface);
+  b.IG.setFromTriplets(ig.begin(), ig.end());
+  return b;
+}
+
+// The interior's modes with the interface held, mass-normalised.
+ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const HybridBasisOptions& o) {
+  const Eigen::Index n = K.rows();
+  ModalResult r;
+  if (n == 0) return r;
+  // Dense: every mode, or a model too small for the iterative solver.
+  const bool dense = o.all_modes || n <= 400;
+  if (dense) {
+    if (n > 6000)
+      throw InputError("/analysis/structure",
+                       fmt::format("every interior mode of {} DOFs is too many for a dense eigensolver: give "
+                                   "cutoff_hz or modes",
+                                   n));
+    const DenseMatrix Kd(K), Md(M);
+    Eigen::GeneralizedSelfAdjointEigenSolver<DenseMatrix> es(Kd, Md);
+    if (es.info() != Eigen::Success)
+      throw InputError("/structure", "the bridge interior's modes could not be computed (dense eigensolver)");
+    Eigen::Index keep = n;
+    if (!o.all_modes) {
+      keep = 0;
+      const double wmax = 2.0 * std::numbers::pi * o.max_frequency_hz;
+      if (o.modes > 0) keep = std::min<Eigen::Index>(o.modes, n);
+      else
+        while (keep < n && es.eigenvalues()[keep] <= wmax * wmax) ++keep;
+    }
+    r.shapes = es.eigenvectors().leftCols(keep);  // M-normalised by Eigen
+    for (Eigen::Index k = 0; k < keep; ++k)
+      r.frequencies_hz.push_back(std::sqrt(std::max(es.eigenvalues()[k], 0.0)) / (2.0 * std::numbers::pi));
+    return r;
+  }
+  ModalOptions mo;
+  if (o.modes > 0) {
+    mo.modes = std::min<int>(o.modes, static_cast<int>(n) - 1);
+    r = modal_analysis(K, M, mo);
+  } else {
+    // Batches of 8, 16, ... until the highest lies above the cut-off.
+    for (mo.modes = 8;; mo.modes = std::min<int>(2 * mo.modes, static_cast<int>(n) - 1)) {
+      r = modal_analysis(K, M, mo);
+      if (!r.status.ok() || r.frequencies_hz.back() > o.max_frequency_hz || mo.modes >= n - 1) break;
+    }
+    if (r.status.ok()) {
+      Eigen::Index keep = 0;
+      while (keep < static_cast<Eigen::Index>(r.frequencies_hz.size()) &&
+             r.frequencies_hz[static_cast<std::size_t>(keep)] <= o.max_frequency_hz)
+        ++keep;
+      r.frequencies_hz.resize(static_cast<std::size_t>(keep));
+      r.shapes = r.shapes.leftCols(keep).eval();
+    }
+  }
+  if (!r.status.ok())
+    throw InputError("/structure", "the bridge interior's modes could not be computed: " + r.status.message());
+  return r;
+}
+
+void add_dense(std::vector<Triplet>& t, const DenseMatrix& B, int row0, int col0) {
+  for (Eigen::Index j = 0; j < B.cols(); ++j)
+    for (Eigen::Index i = 0; i < B.rows(); ++i)
+      if (B(i, j) != 0.0) t.emplace_back(row0 + static_cast<int>(i), col0 + static_cast<int>(j), B(i, j));
+}
+
+}  // namespace
+
+HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const HybridBasisOptions& options)
+    : structure_(std::move(structure)) {
+  const StructureModel& s = *structure_;
+  const int n = s.num_dofs();
+  if (!options.all_modes && options.modes <= 0 && !(options.max_frequency_hz > 0.0))
+    throw InputError("/analysis/cutoff_hz", "the hybrid structure needs a cut-off frequency > 0 or a mode count");
+  std::vector<Part> part(static_cast<std::size_t>(n), Part::kInterior);
+  for (int d = 0; d < n; ++d)
+    if (s.info().is_track_dof(d)) part[static_cast<std::size_t>(d)] = Part::kTrack;
+  if (std::none_of(part.begin(), part.end(), [](Part p) { return p == Part::kTrack; }))
+    throw InputError("/analysis/structure",
+                     "the hybrid structure keeps the track in finite elements, and this structure has no track "
+                     "DOFs (a deck without track, or an import map without track_nodes/track_dofs): use "
+                     "\"modal\" or \"fe\"");
+  for (int d : s.rail_dofs())
+    if (part[static_cast<std::size_t>(d)] != Part::kTrack)
+      throw InputError("/analysis/structure",
+                       fmt::format("the hybrid structure needs the rails in the track, and rail DOF {} is a bridge "
+                                   "DOF: use \"modal\" or \"fe\"",
+                                   d));
+  // The interface: bridge DOFs that a track DOF couples to, in K, M or C.
+  for (const SparseMatrix* A : {&s.K(), &s.M(), &s.C()})
+    for (int j = 0; j < A->outerSize(); ++j) {
+      if (part[static_cast<std::size_t>(j)] != Part::kTrack) continue;
+      for (SparseMatrix::InnerIterator it(*A, j); it; ++it)
+        if (part[static_cast<std::size_t>(it.row())] != Part::kTrack && it.value() != 0.0)
+          part[static_cast<std::size_t>(it.row())] = Part::kInterface;
+    }
+  std::vector<int> local(static_cast<std::size_t>(n));
+  int n_interior = 0;
+  for (int d = 0; d < n; ++d) {
+    const auto u = static_cast<std::size_t>(d);
+    local[u] = part[u] == Part::kTrack       ? n_track_++
+               : part[u] == Part::kInterface ? n_interface_++
+                                             : n_interior++;
+  }
+  const Blocks K = split(s.K(), part, local, n_interior, n_interface_);
+  const Blocks M = split(s.M(), part, local, n_interior, n_interface_);
+  const Blocks C = split(s.C(), part, local, n_interior, n_interface_);
+
+  // Psi = -K_II^-1 K_IG, from one factor of K_II (positive definite: the
+  // interface held fixed supports the interior).
+  DenseMatrix Psi = DenseMatrix::Zero(n_interior, n_interface_);
+  if (n_interior > 0 && n_interface_ > 0) {
+    ShiftInvertFactor factor(K.II, M.II);
+    if (!factor.factorize(0.0).ok())
+      throw InputError("/structure", "the bridge with its track-bearing DOFs held is not supported: " +
+                                         factor.status().message());
+    if (!factor.solve(DenseMatrix(K.IG), Psi))
+      throw InputError("/structure", "CHOLMOD failed to solve for the bridge's constraint modes");
+    Psi = -Psi;
+  }
+  const ModalResult modes = interior_modes(K.II, M.II, options);
+  frequencies_hz_ = modes.frequencies_hz;
+  const DenseMatrix& Phi = modes.shapes;
+  const int m = num_modes();
+  cutoff_hz_ = options.modes > 0 || options.all_modes ? (m > 0 ? frequencies_hz_.back() : 0.0)
+                                                       : options.max_frequency_hz;
+
+  // T' A T block by block; the track's rows and columns as they are.
+  const int g0 = n_track_, q0 = n_track_ + n_interface_;
+  const auto reduce = [&](const SparseMatrix& A, const Blocks& b) {
+    std::vector<Triplet> t;
+    for (int j = 0; j < A.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+        const auto i = static_cast<std::size_t>(it.row());
+        const Part pi = part[i], pj = part[static_cast<std::size_t>(j)];
+        if (pi == Part::kInterior || pj == Part::kInterior) continue;
+        if (pi == Part::kInterface && pj == Part::kInterface) continue;  // in GG below
+        const int ri = pi == Part::kTrack ? local[i] : g0 + local[i];
+        const int rj = pj == Part::kTrack ? local[static_cast<std::size_t>(j)] : g0 + local[static_cast<std::size_t>(j)];
+        t.emplace_back(ri, rj, it.value());
+      }
+    const DenseMatrix W = b.II * Psi;  // A_II Psi
+    const DenseMatrix IGW = DenseMatrix(b.IG) + W;
+    DenseMatrix GG = b.GG + DenseMatrix(b.IG.transpose() * Psi) + Psi.transpose() * IGW;
+    GG = (0.5 * (GG + GG.transpose())).eval();
+    const DenseMatrix Gq = IGW.transpose() * Phi;
+    DenseMatrix qq = Phi.transpose() * (b.II * Phi);
+    qq = (0.5 * (qq + qq.transpose())).eval();
+    add_dense(t, GG, g0, g0);
+    add_dense(t, Gq, g0, q0);
+    add_dense(t, Gq.transpose(), q0, g0);
+    add_dense(t, qq, q0, q0);
+    SparseMatrix R(size(), size());
+    R.setFromTriplets(t.begin(), t.end());
+    R.makeCompressed();
+    return R;
+  };
+
+  index_.assign(static_cast<std::size_t>(n), -1);
+  for (int d = 0; d < n; ++d) {
+    const auto u = static_cast<std::size_t>(d);
+    if (part[u] == Part::kTrack) index_[u] = local[u];
+    else if (part[u] == Part::kInterface) index_[u] = g0 + local[u];
+  }
+  std::vector<RailLine> rails = s.rails();
+  for (RailLine& line : rails)
+    for (auto& e : line.element_dofs)
+      for (int& d : e) d = index(d);
+  StructureInfo info;
+  info.source = s.info().source + " (hybrid)";
+  info.bridge_start_m = s.info().bridge_start_m;
+  info.bridge_end_m = s.info().bridge_end_m;
+  info.first_frequency_hz = s.info().first_frequency_hz;
+  info.track_dofs = n_track_;
+  info.deck_dofs = size() - n_track_;
+  for (int d = 0; d < n_track_; ++d) info.track_dof_list.push_back(d);
+  reduced_ = std::make_shared<const StructureModel>(reduce(s.K(), K), reduce(s.M(), M), reduce(s.C(), C),
+                                                    std::move(rails), std::vector<OutputPoint>{}, std::move(info));
+
+  // Rows of the interior DOFs that runs read.
+  row_of_.assign(static_cast<std::size_t>(n), -1);
+  std::vector<int> kept;
+  for (const OutputPoint& o : s.outputs())
+    if (o.dof >= 0 && part[static_cast<std::size_t>(o.dof)] == Part::kInterior) kept.push_back(o.dof);
+  if (s.info().deck_beam)
+    for (int d = 0; d < n; ++d)
+      if (part[static_cast<std::size_t>(d)] == Part::kInterior) kept.push_back(d);
+  std::sort(kept.begin(), kept.end());
+  kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+  rows_.resize(n_interface_ + m, static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const int li = local[static_cast<std::size_t>(kept[k])];
+    row_of_[static_cast<std::size_t>(kept[k])] = static_cast<int>(k);
+    auto col = rows_.col(static_cast<Eigen::Index>(k));
+    col.head(n_interface_) = Psi.row(li).transpose();
+    col.tail(m) = Phi.row(li).transpose();
+  }
+}
+
+const double* HybridBasis::row(int dof) const {
+  if (dof < 0) return nullptr;
+  const int r = row_of_[static_cast<std::size_t>(dof)];
+  return r < 0 ? nullptr : rows_.col(r).data();
+}
+
+std::size_t HybridBasis::memory_bytes() const {
+  const StructureModel& r = *reduced_;
+  const auto nnz = static_cast<std::size_t>(r.K().nonZeros() + r.M().nonZeros() + r.C().nonZeros());
+  return sizeof(*this) + nnz * (sizeof(double) + sizeof(int)) +
+         static_cast<std::size_t>(rows_.size()) * sizeof(double) + (index_.size() + row_of_.size()) * sizeof(int);
+}
+
+std::string HybridBasis::describe() const {
+  return fmt::format("hybrid: track in FE ({} DOFs), bridge in {} modes up to {:.4g} Hz with {} interface DOFs",
+                     n_track_, num_modes(), cutoff_hz_, n_interface_);
+}
+
+}  // namespace railvsi

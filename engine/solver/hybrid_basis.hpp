@@ -1,0 +1,82 @@
+#pragma once
+// The hybrid structure: the track in finite elements, the bridge in its
+// modes. Craig-Bampton reduction of the bridge (Craig & Bampton, "Coupling
+// of substructures for dynamic analyses", AIAA Journal 6(7), 1968): the
+// bridge DOFs split into the interface G (those coupled to a track DOF in
+// K, M or C) and the interior I, and
+//
+//   u_I = Psi u_G + Phi q,   Psi = -K_II^-1 K_IG,
+//
+// Psi the static constraint modes, Phi the interior's modes with the
+// interface held (K_II phi = omega^2 M_II phi) up to a cut-off. The state
+// is x = [u_T; u_G; q]: the track's DOFs and the interface as they are, the
+// interior in its modes. The reduced matrices are T' K T, T' M T, T' C T of
+// that transformation, so the track keeps its own damping and its coupling
+// to the deck exactly, and the constraint modes hold the static response
+// of every interior mode left out: loads act on the track only, so the
+// reduction is statically exact whatever the cut-off. With every interior
+// mode kept it is the finite-element model in other coordinates.
+//
+// Immutable once built, shared by the operators of every dt.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "model/structure_model.hpp"
+
+namespace railvsi {
+
+struct HybridBasisOptions {
+  // Interior modes up to this frequency (Hz), > 0; or, when modes > 0,
+  // exactly the lowest `modes`; or, with all_modes, every one (a dense
+  // eigensolver: small models, for verification).
+  double max_frequency_hz = 0.0;
+  int modes = 0;
+  bool all_modes = false;
+};
+
+class HybridBasis {
+ public:
+  // Throws InputError when the structure has no track, when a rail DOF is
+  // not a track DOF, or when the interior's modes cannot be computed.
+  HybridBasis(std::shared_ptr<const StructureModel> structure, const HybridBasisOptions& options);
+
+  const StructureModel& structure() const { return *structure_; }
+  // The reduced model: K, M, C in x = [u_T; u_G; q], the rail lines on
+  // their track DOFs, no output points (they are read through row()).
+  const StructureModel& reduced() const { return *reduced_; }
+
+  int track_dofs() const { return n_track_; }
+  int interface_dofs() const { return n_interface_; }
+  int num_modes() const { return static_cast<int>(frequencies_hz_.size()); }
+  int size() const { return n_track_ + n_interface_ + num_modes(); }
+  // Frequencies of the interior's modes kept (interface held), ascending.
+  const std::vector<double>& frequencies_hz() const { return frequencies_hz_; }
+  // The cut-off asked, or the highest frequency kept (modes, all_modes).
+  double cutoff_hz() const { return cutoff_hz_; }
+
+  // The coordinate of a track or interface DOF, -1 for an interior DOF or
+  // a fixed one (-1).
+  int index(int dof) const { return dof < 0 ? -1 : index_[static_cast<std::size_t>(dof)]; }
+  // An interior DOF as a combination of [u_G; q] (interface_dofs() +
+  // num_modes() values, starting at coordinate track_dofs()): kept for the
+  // output points, and every interior DOF of a beam deck (section forces).
+  // Null for another DOF.
+  const double* row(int dof) const;
+  bool has_row(int dof) const { return dof >= 0 && row_of_[static_cast<std::size_t>(dof)] >= 0; }
+  std::size_t memory_bytes() const;
+  std::string describe() const;
+
+ private:
+  std::shared_ptr<const StructureModel> structure_;
+  std::shared_ptr<const StructureModel> reduced_;
+  int n_track_ = 0, n_interface_ = 0;
+  std::vector<double> frequencies_hz_;
+  double cutoff_hz_ = 0.0;
+  std::vector<int> index_;   // model DOF -> coordinate, -1 interior
+  std::vector<int> row_of_;  // model DOF -> column of rows_, -1 none
+  DenseMatrix rows_;         // one column per kept interior DOF
+};
+
+}  // namespace railvsi

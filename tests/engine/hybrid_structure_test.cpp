@@ -1,0 +1,141 @@
+// The hybrid structure (solver/hybrid_basis.hpp): the track in finite
+// elements, the bridge in its modes with the track-bearing DOFs held. With
+// every bridge mode kept it is the finite-element model in other
+// coordinates, so a run must give the FE run's histories to round-off; with
+// a cut-off it is statically exact and close dynamically.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "generators/bridge_2d.hpp"
+#include "core/input_error.hpp"
+#include "generators/deck_3d.hpp"
+#include "integration/hht.hpp"
+#include "simulation/simulation.hpp"
+#include "solver/hybrid_operator.hpp"
+#include "solver/structure_backend.hpp"
+#include "test_scenes.hpp"
+
+namespace railvsi {
+namespace {
+
+std::shared_ptr<const StructureOperator> hybrid_operator(const Scene& scene, const HybridBasisOptions& o) {
+  StructureOperatorOptions options;
+  options.structure_backend = StructureBackend::kHybrid;
+  options.hybrid_basis = std::make_shared<const HybridBasis>(scene.structure, o);
+  const HhtCoefficients h(scene.analysis.hht, scene.analysis.dt_s);
+  return make_structure_operator(scene.structure, {h.mass_factor(), h.damping_factor(), h.stiffness_factor()},
+                                 options);
+}
+
+Result run(const Scene& scene, std::shared_ptr<const StructureOperator> op = nullptr) {
+  Result r = Simulation(scene, std::move(op)).run();
+  EXPECT_TRUE(r.status.ok()) << r.status.message();
+  return r;
+}
+
+// max |a - b| / max |b| of every history of two runs (deck, contact
+// forces); fails on a missing or non-finite value.
+double history_difference(const Result& a, const Result& b) {
+  EXPECT_EQ(a.histories.deck_displacement_m.size(), b.histories.deck_displacement_m.size());
+  EXPECT_EQ(a.histories.contact_force_N.size(), b.histories.contact_force_N.size());
+  double worst = 0.0;
+  for (auto h : {&Histories::deck_displacement_m, &Histories::deck_acceleration_mps2, &Histories::contact_force_N}) {
+    const auto& x = a.histories.*h;
+    const auto& y = b.histories.*h;
+    if (x.size() != y.size() || x.empty()) return std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (x[i].size() != y[i].size()) return std::numeric_limits<double>::infinity();
+    const double d = testing::relative_history_difference(x, y);
+    if (!std::isfinite(d)) return std::numeric_limits<double>::infinity();
+    worst = std::max(worst, d);
+  }
+  return worst;
+}
+
+// The small viaduct with deck elements shorter than the sleeper spacing, so
+// that some deck DOFs carry no sleeper: the bridge has an interior.
+Scene viaduct_scene() {
+  Scene s = testing::small_viaduct_with_dip(300.0, 0.002);
+  Bridge2dOptions b = testing::small_viaduct_options();
+  b.element_length_m = 0.2;
+  b.output_points = {{"span1", 5.0}, {"span2", 15.0}};
+  s.structure = make_bridge_2d(b);
+  return s;
+}
+
+TEST(HybridStructure, PartitionsTheViaductIntoTrackInterfaceAndModes) {
+  const Scene s = viaduct_scene();
+  const HybridBasis basis(s.structure, HybridBasisOptions{0.0, 0, true});
+  const StructureInfo& info = s.structure->info();
+  EXPECT_EQ(basis.track_dofs(), info.track_dofs);
+  EXPECT_GT(basis.interface_dofs(), 0);
+  // Every bridge DOF is either on the interface or one of the modes (all
+  // kept): the deck's DOFs without a sleeper on their elements are inside.
+  EXPECT_GT(basis.num_modes(), 0);
+  EXPECT_EQ(basis.interface_dofs() + basis.num_modes(), info.deck_dofs);
+  EXPECT_EQ(basis.size(), s.structure->num_dofs());
+}
+
+TEST(HybridStructure, WithEveryBridgeModeKeptEqualsTheFiniteElementRun) {
+  Scene s = viaduct_scene();
+  const Result fe = run(s);
+  s.analysis.structure_backend = StructureBackend::kHybrid;
+  const Result hy = run(s, hybrid_operator(s, HybridBasisOptions{0.0, 0, true}));
+  EXPECT_NE(hy.summary.fidelity.structure_backend.find("hybrid"), std::string::npos);
+  // The same model in other coordinates (300 track DOFs, 67 interface DOFs,
+  // 133 modes): measured 2.0e-10 of the largest value (2026-11-27), the
+  // contact Newton's tolerance and the modes' round-off.
+  EXPECT_LT(history_difference(hy, fe), 6e-10);
+}
+
+TEST(HybridStructure, WithEveryBridgeModeKeptGivesTheFiniteElementSectionForces) {
+  Scene s = viaduct_scene();
+  const Result fe = run(s);
+  s.analysis.structure_backend = StructureBackend::kHybrid;
+  const Result hy = run(s, hybrid_operator(s, HybridBasisOptions{0.0, 0, true}));
+  ASSERT_EQ(fe.summary.points.size(), 2u);
+  ASSERT_EQ(hy.summary.points.size(), 2u);
+  for (std::size_t p = 0; p < fe.summary.points.size(); ++p) {
+    const auto& a = hy.summary.points[p];
+    const auto& b = fe.summary.points[p];
+    ASSERT_TRUE(a.max_abs_bending_moment_Nm && b.max_abs_bending_moment_Nm);
+    ASSERT_TRUE(a.max_abs_shear_force_N && b.max_abs_shear_force_N);
+    EXPECT_GT(*b.max_abs_bending_moment_Nm, 1e4);
+    // Measured 1.2e-10 (moment) and 3.5e-11 (shear) at most (2026-11-27).
+    EXPECT_NEAR(*a.max_abs_bending_moment_Nm, *b.max_abs_bending_moment_Nm, 3.5e-10 * *b.max_abs_bending_moment_Nm);
+    EXPECT_NEAR(*a.max_abs_shear_force_N, *b.max_abs_shear_force_N, 1e-10 * *b.max_abs_shear_force_N);
+  }
+}
+
+TEST(HybridStructure, OnADeck3dWithEveryBridgeModeKeptEqualsTheFiniteElementRun) {
+  Deck3dOptions d;
+  d.spans_m = {12.0};
+  d.approach_m = 30.0;
+  d.exit_m = 6.0;
+  d.mesh = Deck3dMesh{{8}, 2, 1};
+  Scene s;
+  s.structure = make_deck_3d(d).model;
+  s.train.name = "one coach";
+  s.train.vehicles.push_back({make_car_2d(testing::ice3_coach()), 0.0});
+  s.speed_mps = 250.0 / 3.6;
+  s.analysis.dt_s = 5e-4;
+  s.analysis.contact.law = "hertz";
+  s.analysis.contact.rail_lines = {0, 1};
+  const Result fe = run(s);
+  s.analysis.structure_backend = StructureBackend::kHybrid;
+  const Result hy = run(s, hybrid_operator(s, HybridBasisOptions{0.0, 0, true}));
+  // 320 track DOFs, 27 interface DOFs, 126 modes: measured 6.2e-11
+  // (2026-11-27).
+  EXPECT_LT(history_difference(hy, fe), 1.8e-10);
+}
+
+TEST(HybridStructure, RefusesAStructureWithoutTrack) {
+  Bridge2dOptions b = testing::hslm_check_span_options();
+  const auto structure = make_bridge_2d(b);
+  EXPECT_THROW(HybridBasis(structure, HybridBasisOptions{100.0, 0, false}), InputError);
+}
+
+}  // namespace
+}  // namespace railvsi
