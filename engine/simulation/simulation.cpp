@@ -100,10 +100,12 @@ StructureOperatorOptions structure_operator_options(const Scene& scene) {
 }
 
 std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& scene,
-                                                                 std::shared_ptr<const ModalBasis> modal_basis) {
+                                                                 std::shared_ptr<const ModalBasis> modal_basis,
+                                                                 std::shared_ptr<const HybridBasis> hybrid_basis) {
   const HhtCoefficients h(scene.analysis.hht, scene.analysis.dt_s);
   StructureOperatorOptions options = structure_operator_options(scene);
   options.modal_basis = std::move(modal_basis);
+  options.hybrid_basis = std::move(hybrid_basis);
   return make_structure_operator(scene.structure, structure_factors(h), options);
 }
 

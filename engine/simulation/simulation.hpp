@@ -6,6 +6,7 @@
 
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
+#include "solver/hybrid_basis.hpp"
 #include "solver/modal_basis.hpp"
 #include "solver/structure_operator.hpp"
 
@@ -14,8 +15,11 @@ namespace railvsi {
 // Build the structure operator a scene needs (K_bar factor and rail
 // flexibility for its dt and HHT parameters). Shareable between runs with
 // the same key. Throws InputError if the structure cannot be factorized.
+// A modal or hybrid basis computed before (same structure, same modes) is
+// reused instead of computed again (operators for several dt).
 std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& scene,
-                                                                 std::shared_ptr<const ModalBasis> modal_basis = nullptr);
+                                                                 std::shared_ptr<const ModalBasis> modal_basis = nullptr,
+                                                                 std::shared_ptr<const HybridBasis> hybrid_basis = nullptr);
 
 // Time simulated by default: until the last axle is the evaluation margin
 // past the bridge, plus the extra time asked for.

@@ -16,6 +16,35 @@ namespace {
 
 enum class Part : char { kTrack, kInterface, kInterior };
 
+// Each DOF's part: track (the structure's track DOFs), interface (a bridge
+// DOF a track DOF couples to in K, M or C) or interior.
+std::vector<Part> parts(const StructureModel& s) {
+  const int n = s.num_dofs();
+  std::vector<Part> part(static_cast<std::size_t>(n), Part::kInterior);
+  for (int d = 0; d < n; ++d)
+    if (s.info().is_track_dof(d)) part[static_cast<std::size_t>(d)] = Part::kTrack;
+  for (const SparseMatrix* A : {&s.K(), &s.M(), &s.C()})
+    for (int j = 0; j < A->outerSize(); ++j) {
+      if (part[static_cast<std::size_t>(j)] != Part::kTrack) continue;
+      for (SparseMatrix::InnerIterator it(*A, j); it; ++it)
+        if (part[static_cast<std::size_t>(it.row())] != Part::kTrack && it.value() != 0.0)
+          part[static_cast<std::size_t>(it.row())] = Part::kInterface;
+    }
+  return part;
+}
+
+std::string unavailable(const StructureModel& s, const std::vector<Part>& part) {
+  if (std::none_of(part.begin(), part.end(), [](Part p) { return p == Part::kTrack; }))
+    return "the hybrid structure keeps the track in finite elements, and this structure has no track DOFs (a deck "
+           "without track, or an import map without track_nodes/track_dofs): use \"modal\" or \"fe\"";
+  for (int d : s.rail_dofs())
+    if (part[static_cast<std::size_t>(d)] != Part::kTrack)
+      return fmt::format("the hybrid structure needs the rails in the track, and rail DOF {} is a bridge DOF: use "
+                         "\"modal\" or \"fe\"",
+                         d);
+  return "";
+}
+
 // The blocks of one structure matrix that the reduction reads.
 struct Blocks {
   SparseMatrix II, IG;  // interior x interior, interior x interface
@@ -105,34 +134,26 @@ void add_dense(std::vector<Triplet>& t, const DenseMatrix& B, int row0, int col0
 
 }  // namespace
 
+HybridPartition hybrid_partition(const StructureModel& structure) {
+  const std::vector<Part> part = parts(structure);
+  HybridPartition p;
+  p.unavailable = unavailable(structure, part);
+  for (Part x : part) {
+    if (x == Part::kTrack) ++p.track_dofs;
+    else if (x == Part::kInterface) ++p.interface_dofs;
+    else ++p.interior_dofs;
+  }
+  return p;
+}
+
 HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const HybridBasisOptions& options)
     : structure_(std::move(structure)) {
   const StructureModel& s = *structure_;
   const int n = s.num_dofs();
   if (!options.all_modes && options.modes <= 0 && !(options.max_frequency_hz > 0.0))
     throw InputError("/analysis/cutoff_hz", "the hybrid structure needs a cut-off frequency > 0 or a mode count");
-  std::vector<Part> part(static_cast<std::size_t>(n), Part::kInterior);
-  for (int d = 0; d < n; ++d)
-    if (s.info().is_track_dof(d)) part[static_cast<std::size_t>(d)] = Part::kTrack;
-  if (std::none_of(part.begin(), part.end(), [](Part p) { return p == Part::kTrack; }))
-    throw InputError("/analysis/structure",
-                     "the hybrid structure keeps the track in finite elements, and this structure has no track "
-                     "DOFs (a deck without track, or an import map without track_nodes/track_dofs): use "
-                     "\"modal\" or \"fe\"");
-  for (int d : s.rail_dofs())
-    if (part[static_cast<std::size_t>(d)] != Part::kTrack)
-      throw InputError("/analysis/structure",
-                       fmt::format("the hybrid structure needs the rails in the track, and rail DOF {} is a bridge "
-                                   "DOF: use \"modal\" or \"fe\"",
-                                   d));
-  // The interface: bridge DOFs that a track DOF couples to, in K, M or C.
-  for (const SparseMatrix* A : {&s.K(), &s.M(), &s.C()})
-    for (int j = 0; j < A->outerSize(); ++j) {
-      if (part[static_cast<std::size_t>(j)] != Part::kTrack) continue;
-      for (SparseMatrix::InnerIterator it(*A, j); it; ++it)
-        if (part[static_cast<std::size_t>(it.row())] != Part::kTrack && it.value() != 0.0)
-          part[static_cast<std::size_t>(it.row())] = Part::kInterface;
-    }
+  const std::vector<Part> part = parts(s);
+  if (const std::string why = unavailable(s, part); !why.empty()) throw InputError("/analysis/structure", why);
   std::vector<int> local(static_cast<std::size_t>(n));
   int n_interior = 0;
   for (int d = 0; d < n; ++d) {

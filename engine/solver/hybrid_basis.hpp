@@ -27,6 +27,18 @@
 
 namespace railvsi {
 
+// How the hybrid structure would split a model, without computing anything
+// else (a scan of K, M and C): for the planner's choice and the messages.
+struct HybridPartition {
+  int track_dofs = 0;
+  int interface_dofs = 0;  // bridge DOFs coupled to a track DOF
+  int interior_dofs = 0;   // the rest of the bridge, which the modes replace
+  // Why the hybrid structure cannot be built ("" when it can): no track, or
+  // a rail on a bridge DOF.
+  std::string unavailable;
+};
+HybridPartition hybrid_partition(const StructureModel& structure);
+
 struct HybridBasisOptions {
   // Interior modes up to this frequency (Hz), > 0; or, when modes > 0,
   // exactly the lowest `modes`; or, with all_modes, every one (a dense

@@ -52,11 +52,31 @@ EffectsPlan plan_effects(const PlannerInput& in) {
   }
   // The structure: modal unless its cut-off cannot be honoured.
   std::string fe_because;
-  // Interaction first: on the modes it misses the tolerance whatever the
-  // count (so its modes are not counted, and that is not the reason).
-  if (r.model == "interaction")
-    fe_because = kModalInteractionNotTrusted;
-  else if (!(in.f0_hz > 0.0) || !(in.f3_hz > 0.0))
+  if (r.model == "interaction") {
+    // Never the modes alone (kModalInteractionNotTrusted); hybrid where the
+    // bridge's modes replace an interior much larger than the interface.
+    const double hybrid_cutoff_hz = kHybridCutoffFactor * plan.code_frequency_hz;
+    if (in.track_dofs > 0 && in.interior_dofs >= kHybridMinInteriorDofs &&
+        in.interior_dofs >= kHybridMinInteriorRatio * in.interface_dofs) {
+      r.structure = "hybrid";
+      plan.modal_cutoff_hz = hybrid_cutoff_hz;
+      plan.reasons.push_back(fmt::format(
+          "hybrid structure: the track in FE ({} DOFs, its own damping), the bridge's {} DOFs off the track in their "
+          "modes up to {:.1f} Hz = {:g} x the code frequency {:.1f} Hz (EN 1990 A2.4.4.2.1) with the {} DOFs the "
+          "track bears on kept",
+          in.track_dofs, in.interior_dofs, hybrid_cutoff_hz, kHybridCutoffFactor, plan.code_frequency_hz,
+          in.interface_dofs));
+      plan.ignores = rung_ignores(r, in.irregularity, plan.modal_cutoff_hz, plan.escalate_below_fraction);
+      return plan;
+    }
+    fe_because = in.track_dofs > 0
+                     ? fmt::format("the bridge has {} DOFs off the track against {} the track bears on: its modes "
+                                   "would not make the hybrid structure cheaper (it needs at least {} and {:g} x as "
+                                   "many); on the modes alone {}",
+                                   in.interior_dofs, in.interface_dofs, kHybridMinInteriorDofs,
+                                   kHybridMinInteriorRatio, kModalInteractionNotTrusted)
+                     : kModalInteractionNotTrusted;
+  } else if (!(in.f0_hz > 0.0) || !(in.f3_hz > 0.0))
     fe_because = "the deck frequencies f0 and f3 were not computed, so the modal cut-off max(30 Hz, 1.5 f0, f3) "
                  "cannot be set";
   else if (in.modes_below_cutoff < 0)
@@ -92,6 +112,12 @@ std::vector<FidelityRecord::Ignored> rung_ignores(const Rung& r, bool irregulari
     out.push_back({fmt::format("structural modes above {:.1f} Hz", modal_cutoff_hz),
                    "the deck acceleration envelope keeps frequencies up to the code frequency (EN 1990 A2.4.4.2.1); "
                    "every mode up to the cut-off, with a 20 % margin, is kept"});
+  else if (r.structure == "hybrid")
+    out.push_back({fmt::format("the dynamic response of the bridge's modes above {:.1f} Hz (track-bearing DOFs held)",
+                               modal_cutoff_hz),
+                   "the track keeps its FE model and the constraint modes keep the static response of every bridge "
+                   "mode left out (Craig-Bampton); the deck acceleration envelope keeps frequencies up to the code "
+                   "frequency (EN 1990 A2.4.4.2.1)"});
   if (r.structure == "modal")
     out.push_back({"damping coupling between modes",
                    "each mode keeps its own ratio phi^T C phi / (2 omega), exact for Rayleigh damping"});
@@ -136,7 +162,7 @@ Rung escalated(const Rung& rung) {
 }
 
 std::optional<Rung> next_rung(const Rung& rung) {
-  if (rung.structure == "modal") {
+  if (rung.structure == "modal" || rung.structure == "hybrid") {
     Rung r = rung;
     r.structure = "fe";
     return r;

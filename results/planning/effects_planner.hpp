@@ -15,12 +15,17 @@
 //      drops below kEscalationFraction of its static load (escalation());
 //      when wheel quantities are asked, below kWheelEscalationFraction and
 //      at half the time step (kWheelEscalationDtFactor).
-//   3. The structure is modal (all modes up to kModalCutoffMargin x the code
-//      frequency max(30 Hz, 1.5 f0, f3) of EN 1990 A2.4.4.2.1(3), exact
-//      recurrence) unless the cut-off cannot be honoured: the deck
-//      frequencies or the mode count are unknown, more than kMaxModalModes
-//      modes lie below it, or (interaction) the modal interaction rung is
-//      not available; then FE.
+//   3. Moving forces: the structure is modal (all modes up to
+//      kModalCutoffMargin x the code frequency max(30 Hz, 1.5 f0, f3) of
+//      EN 1990 A2.4.4.2.1(3), exact recurrence) unless the cut-off cannot
+//      be honoured: the deck frequencies or the mode count are unknown, or
+//      more than kMaxModalModes modes lie below it; then FE.
+//   4. Interaction: hybrid (the track in FE, the bridge in its modes up to
+//      kHybridCutoffFactor x the code frequency) where the bridge has an
+//      interior that the modes replace (at least kHybridMinInteriorDofs
+//      DOFs and kHybridMinInteriorRatio x the DOFs the track bears on);
+//      else FE. Never the modal structure: the track's own modes respond
+//      where the wheel forces have their content (kModalInteractionNotTrusted).
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,11 +60,25 @@ inline constexpr double kEscalationFraction = 0.5;
 // values are within 0.4 % on either rung at dt: a study that does not ask
 // wheel quantities keeps kEscalationFraction and the run's dt.
 inline constexpr double kWheelEscalationFraction = 0.7;
+// The hybrid structure keeps the bridge's modes (with the track-bearing
+// DOFs held) up to this multiple of the code frequency. Measured on
+// generated 3D decks (tests/bench/hybrid_bench, docs/performance.md):
+// filtered deck acceleration -0.37 % at 30 Hz (0.8 x a code frequency of
+// 37.5 Hz), +0.06 % at 100 Hz; the wheel values within 0.01 % at any of
+// them. Twice the code frequency keeps the deck within 0.1 % at a cost of
+// a few modes more.
+inline constexpr double kHybridCutoffFactor = 2.0;
+// The hybrid structure pays a dense block of (interface DOFs + modes)^2: it
+// is cheaper than FE only where the modes replace a bridge interior several
+// times larger than the interface (a 3D deck, an imported model), not on a
+// plane viaduct whose deck DOFs all carry the track.
+inline constexpr int kHybridMinInteriorDofs = 1000;
+inline constexpr double kHybridMinInteriorRatio = 4.0;
 inline constexpr double kWheelEscalationDtFactor = 0.5;
 
 struct Rung {
   std::string model = "moving_forces";  // "moving_forces" | "interaction"
-  std::string structure = "modal";      // "modal" | "fe"
+  std::string structure = "modal";      // "modal" | "fe" | "hybrid" (interaction)
   std::string contact_law = "none";     // "none" (moving forces), "linear-hertz", "hertz", "rigid"
   bool unilateral = false;
   std::string name() const { return model + "/" + structure; }
@@ -84,13 +103,16 @@ struct PlannerInput {
   bool load_model = true;  // a train of moving forces; false: multibody vehicles
   double f0_hz = 0.0, f3_hz = 0.0;  // deck frequencies; 0 when not computed
   int modes_below_cutoff = -1;      // modes up to the modal cut-off; -1 when not counted
+  // How the hybrid structure would split the structure (interaction):
+  // track_dofs 0 when the structure has no track or was not looked at.
+  int track_dofs = 0, interface_dofs = 0, interior_dofs = 0;
   double tolerance = 0.01;          // relative, of every governing envelope value
 };
 
 struct EffectsPlan {
   Rung rung;
   double code_frequency_hz = 0.0;  // max(30 Hz, 1.5 f0, f3)
-  double modal_cutoff_hz = 0.0;    // modal rungs: kModalCutoffMargin x code frequency
+  double modal_cutoff_hz = 0.0;    // modal rungs: kModalCutoffMargin x code frequency; hybrid: kHybridCutoffFactor x
   std::vector<std::string> reasons;
   std::vector<FidelityRecord::Ignored> ignores;
   // Linear Hertz: repeat with unilateral Hertz below this fraction of a static load,
@@ -101,16 +123,16 @@ struct EffectsPlan {
 
 EffectsPlan plan_effects(const PlannerInput& input);
 
-// Why interaction stays on the FE structure when the planner chooses: the
-// errors of the modal interaction rung against the FE rung at the planner's
-// cut-off (1.2 x the code frequency), from tests/verification/
-// modal_structure_test.cpp and the README's "The modal structure".
+// Why interaction never runs on the modal structure when the planner
+// chooses (and a scene with a track is refused it): the errors of the modal
+// interaction rung against the FE rung, from tests/verification/
+// modal_structure_test.cpp and docs/method.md.
 inline constexpr const char* kModalInteractionNotTrusted =
-    "interaction on the modes misses the tolerance at the modal cut-off: measured against the FE structure, its "
-    "filtered deck acceleration is 1.0 % off on a beam viaduct without track (9 modes to 60 Hz; 0.16 % at 18 "
-    "modes), 1.8 % on a 3D deck on pads (5 modes to 30 Hz) and 10-23 % under a ballasted track at any cut-off "
-    "(its pads and ballast dampers couple the modes), and its minimum contact force up to 10 % "
-    "(README, \"The modal structure\"); pinned, {\"model\": \"interaction\", \"structure\": \"modal\"} runs it";
+    "interaction on the modes misses the tolerance: measured against the FE structure, its filtered deck "
+    "acceleration is 1.0 % off on a beam viaduct without track (9 modes to 60 Hz; 0.16 % at 18 modes), 1.8 % on a "
+    "3D deck on pads (5 modes to 30 Hz) and 10 % to 84 % under a ballasted track at any cut-off (the track's own "
+    "modes respond where the wheel forces have their content, and its pads and ballast dampers couple the modes), "
+    "and its minimum contact force up to 10 %";
 
 // What a rung leaves out of the full model (FE, nonlinear unilateral Hertz)
 // and why, for the run's fidelity record.

@@ -13,6 +13,8 @@
 
 #include "planning/time_step_warnings.hpp"
 #include "solver/modal_basis.hpp"
+#include "planning/effects_planner.hpp"
+#include "solver/hybrid_basis.hpp"
 #include "core/input_error.hpp"
 #include "envelopes/code_filter.hpp"
 #include "envelopes/job_envelopes.hpp"
@@ -119,8 +121,9 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
     for (double f : options.dt_factors) tasks.push_back({r, policy.dt_s * f});
   std::vector<PriceRow> rows(tasks.size());
 
-  OnceCache<double, StructureOperator> operators, modal_operators;
+  OnceCache<double, StructureOperator> operators, modal_operators, hybrid_operators;
   OnceCache<int, ModalBasis> bases;
+  OnceCache<int, HybridBasis> hybrid_bases;
   const auto operator_of = [&](double dt_s) {
     return operators.get(dt_s, [&] {
       // Built for the scene's own train: with the rail flexibility when it
@@ -136,6 +139,19 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
       o.max_frequency_hz = options.modal_cutoff_factor * report.cutoff_hz;
       return std::make_shared<const ModalBasis>(scene.structure, o);
     });
+  };
+
+  // The hybrid rungs: the bridge's modes up to the planner's cut-off for
+  // the hybrid structure, computed once; an operator per dt.
+  const auto hybrid_basis_of = [&] {
+    return hybrid_bases.get(0, [&] {
+      HybridBasisOptions o;
+      o.max_frequency_hz = kHybridCutoffFactor * report.cutoff_hz;
+      return std::make_shared<const HybridBasis>(scene.structure, o);
+    });
+  };
+  const auto hybrid_operator_of = [&](const Scene& s, const std::shared_ptr<const HybridBasis>& basis) {
+    return hybrid_operators.get(s.analysis.dt_s, [&] { return make_structure_operator(s, nullptr, basis); });
   };
 
   // The modal interaction rungs: the same modes, an operator per dt.
@@ -164,10 +180,18 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
         s.analysis.modal_cutoff_hz = basis.value->max_frequency_hz();
         op = modal_operator_of(s, basis.value);
       }
+      Built<HybridBasis> hybrid;
+      if (rung.structure == RungStructure::kHybrid) {
+        hybrid = hybrid_basis_of();
+        s.analysis.modal_cutoff_hz = hybrid.value->cutoff_hz();
+        op = hybrid_operator_of(s, hybrid.value);
+        row.modes = hybrid.value->num_modes();
+      }
       if (basis.value) row.modes = basis.value->num_modes();
-      row.setup_cpu_s = op.cpu_s + basis.cpu_s;
-      // The cost model has no fit for interaction on the modes: no prediction.
-      if (!(rung.structure == RungStructure::kModal && rung.model == "interaction"))
+      row.setup_cpu_s = op.cpu_s + basis.cpu_s + hybrid.cpu_s;
+      // The cost model has no fit for interaction on the modes or the
+      // hybrid structure: no prediction.
+      if (!(rung.structure != RungStructure::kFe && rung.model == "interaction"))
         row.cpu_predicted_s =
             predict_cost(cost_inputs(s, rung.structure == RungStructure::kModal, row.modes.value_or(0))).total_cpu_s();
       RungResources resources;
@@ -176,7 +200,7 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
       double cpu_s = 0.0, wall_s = 0.0;
       const Result result = measured([&] { return rung.run(s, resources); }, cpu_s, wall_s);
       row.cpu_s = cpu_s + row.setup_cpu_s;
-      row.wall_s = wall_s + op.wall_s + basis.wall_s;
+      row.wall_s = wall_s + op.wall_s + basis.wall_s + hybrid.wall_s;
       row.steps = result.summary.steps;
       // The run's health warnings, and those of its dt against the policy
       // (as vsi simulate adds them; the exact modal rung's dt only samples).

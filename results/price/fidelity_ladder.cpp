@@ -3,6 +3,7 @@
 #include "analysis/modal_moving_forces.hpp"
 #include "simulation/simulation.hpp"
 #include "simulation/static_equilibrium.hpp"
+#include "solver/hybrid_basis.hpp"
 
 namespace railvsi {
 namespace {
@@ -17,14 +18,17 @@ Result run_modal_moving_forces_rung(const Scene& scene, const RungResources& res
 }
 
 // Cheapest first; the last rung that applies to a scene is its reference.
-// The modal interaction rungs (the structure's modes, the condensed direct
-// method on them) run on the operator of resources.structure_operator too:
-// the caller builds the modal one for them.
+// The modal and hybrid interaction rungs (the condensed direct method on
+// the structure's modes, or on the track in FE and the bridge's modes) run
+// on the operator of resources.structure_operator too: the caller builds
+// the modal or hybrid one for them.
 const std::vector<LadderRung> kLadder = {
     {"moving-forces", RungStructure::kModal, "none", run_modal_moving_forces_rung},
     {"moving-forces", RungStructure::kFe, "none", run_fe},
     {"interaction", RungStructure::kModal, "linear-hertz", run_fe},
     {"interaction", RungStructure::kModal, "hertz", run_fe},
+    {"interaction", RungStructure::kHybrid, "linear-hertz", run_fe},
+    {"interaction", RungStructure::kHybrid, "hertz", run_fe},
     {"interaction", RungStructure::kFe, "rigid", run_fe},
     {"interaction", RungStructure::kFe, "linear-hertz", run_fe},
     {"interaction", RungStructure::kFe, "hertz", run_fe},
@@ -37,7 +41,11 @@ std::string LadderRung::label() const { return model + " / " + structure_name() 
 const std::vector<LadderRung>& fidelity_ladder() { return kLadder; }
 
 bool rung_applies(const LadderRung& rung, const Scene& scene) {
-  return rung.model == "moving-forces" || !scene.train.is_moving_forces();
+  if (rung.model == "moving-forces") return true;
+  if (scene.train.is_moving_forces()) return false;
+  if (rung.structure == RungStructure::kFe) return true;
+  const bool track = hybrid_partition(*scene.structure).unavailable.empty();
+  return rung.structure == RungStructure::kHybrid ? track : !track;
 }
 
 Scene rung_scene(const LadderRung& rung, const Scene& scene, double dt_s) {
@@ -50,8 +58,9 @@ Scene rung_scene(const LadderRung& rung, const Scene& scene, double dt_s) {
     }
     return s;
   }
-  s.analysis.structure_backend =
-      rung.structure == RungStructure::kModal ? StructureBackend::kModal : StructureBackend::kFiniteElements;
+  s.analysis.structure_backend = rung.structure == RungStructure::kModal    ? StructureBackend::kModal
+                                 : rung.structure == RungStructure::kHybrid ? StructureBackend::kHybrid
+                                                                            : StructureBackend::kFiniteElements;
   s.analysis.contact.law = rung.contact_law;
   s.analysis.contact.unilateral =
       rung.contact_law == "linear-hertz" ? std::optional<bool>(true) : std::optional<bool>();

@@ -25,17 +25,19 @@ struct RungResources {
   std::function<std::shared_ptr<const ModalBasis>()> modal_basis;
 };
 
-enum class RungStructure { kFe, kModal };
+enum class RungStructure { kFe, kModal, kHybrid };
 
 struct LadderRung {
   std::string model;        // "moving-forces" or "interaction" (FidelityRecord::model)
-  RungStructure structure;  // full FE (HHT on K_bar) or the structure's modes
+  RungStructure structure;  // full FE (HHT on K_bar), the structure's modes, or hybrid (track FE, bridge modes)
   std::string contact_law;  // "none" for moving forces, else a contact law name
   // Runs the rung's scene (rung_scene()). Throws InputError when the rung
   // cannot run this scene (e.g. rigid contact with alpha > -0.02).
   Result (*run)(const Scene& scene, const RungResources& resources);
 
-  std::string structure_name() const { return structure == RungStructure::kFe ? "fe" : "modal"; }
+  std::string structure_name() const {
+    return structure == RungStructure::kFe ? "fe" : structure == RungStructure::kModal ? "modal" : "hybrid";
+  }
   // "moving-forces / fe / none"
   std::string label() const;
 };
@@ -45,7 +47,9 @@ const std::vector<LadderRung>& fidelity_ladder();
 
 // Whether a rung can describe the scene's train: moving-force rungs always
 // (a multibody train becomes its static wheel loads), interaction rungs only
-// for a multibody train.
+// for a multibody train; interaction on the modes only on a structure
+// without track (on a track it misses the tolerance at any cut-off), on
+// the hybrid structure only on one with track.
 bool rung_applies(const LadderRung& rung, const Scene& scene);
 
 // The scene as the rung runs it, at time step dt_s: a multibody train as

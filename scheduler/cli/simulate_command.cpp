@@ -14,6 +14,7 @@
 #include "io/scene_loader.hpp"
 #include "planning/time_step_warnings.hpp"
 #include "simulation/simulation.hpp"
+#include "solver/hybrid_operator.hpp"
 #include "study/deck_frequencies.hpp"
 #include "study/scene_plan.hpp"
 #include "workers/rung_runner.hpp"
@@ -60,7 +61,13 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
     try {
       const scheduler::ScenePlan plan = scheduler::plan_scene(scene, f);
       scheduler::RungModels models;
-      models.fe_operator = [](const Scene& s) { return make_structure_operator(s); };
+      // An escalation at another dt on the hybrid structure reuses its reduction.
+      std::shared_ptr<const HybridBasis> hybrid;
+      models.fe_operator = [&hybrid](const Scene& s) {
+        auto op = make_structure_operator(s, nullptr, hybrid);
+        if (const auto* h = dynamic_cast<const HybridOperator*>(op.get())) hybrid = h->shared_basis();
+        return op;
+      };
       models.modal_basis = [&](double modal_cutoff_hz) {
         ModalBasisOptions o;
         o.max_frequency_hz = modal_cutoff_hz;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "solver/hybrid_basis.hpp"
 #include "solver/modal_analysis.hpp"
 #include "solver/modal_basis.hpp"
 #include "envelopes/code_filter.hpp"
@@ -36,6 +37,15 @@ PlannerInput planner_input(const Scene& scene, const StudyAsks& asks, const Deck
   in.f3_hz = f.f3_hz;
   in.modes_below_cutoff = modes_below_cutoff;
   in.tolerance = scene.fidelity.tolerance;
+  if (!in.load_model) {
+    // How the hybrid structure would split it: a scan of the matrices.
+    const HybridPartition h = hybrid_partition(*scene.structure);
+    if (h.unavailable.empty()) {
+      in.track_dofs = h.track_dofs;
+      in.interface_dofs = h.interface_dofs;
+      in.interior_dofs = h.interior_dofs;
+    }
+  }
   return in;
 }
 
@@ -79,6 +89,7 @@ Rung rung_of_analysis(const Scene& scene) {
   // stays "fe" and run.fidelity.structure_backend names the modes.
   if (scene.train.is_moving_forces()) return r;
   if (scene.analysis.structure_backend == StructureBackend::kModal) r.structure = "modal";
+  if (scene.analysis.structure_backend == StructureBackend::kHybrid) r.structure = "hybrid";
   r.model = "interaction";
   r.contact_law = scene.analysis.contact.law;
   r.unilateral = scene.analysis.contact.unilateral.value_or(scene.analysis.contact.law != "rigid");
@@ -121,13 +132,19 @@ ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f) {
   p.escalation_dt_factor = req.escalation_dt_factor;
   if (p.rung.structure == "modal")
     p.modal_cutoff_hz = req.modal_cutoff_hz.value_or(kModalCutoffMargin * code_cutoff_hz(f.f0_hz, f.f3_hz));
+  if (p.rung.structure == "hybrid")
+    p.modal_cutoff_hz = req.modal_cutoff_hz.value_or(kHybridCutoffFactor * code_cutoff_hz(f.f0_hz, f.f3_hz));
   return p;
 }
 
 void apply_rung_structure(const ScenePlan& plan, AnalysisOptions& analysis) {
-  if (plan.rung.model != "interaction" || plan.rung.structure != "modal") return;
-  if (analysis.structure_backend == StructureBackend::kModal && analysis.modal_modes > 0) return;
-  analysis.structure_backend = StructureBackend::kModal;
+  if (plan.rung.model != "interaction") return;
+  const StructureBackend backend = plan.rung.structure == "modal"    ? StructureBackend::kModal
+                                   : plan.rung.structure == "hybrid" ? StructureBackend::kHybrid
+                                                                     : StructureBackend::kFiniteElements;
+  if (backend == StructureBackend::kFiniteElements) return;
+  if (analysis.structure_backend == backend && analysis.modal_modes > 0) return;
+  analysis.structure_backend = backend;
   if (plan.modal_cutoff_hz > 0.0) analysis.modal_cutoff_hz = plan.modal_cutoff_hz;
 }
 
@@ -137,7 +154,7 @@ nlohmann::json pinned_fidelity_json(const EffectsPlan& plan) {
     j["contact_law"] = plan.rung.contact_law;
     if (plan.rung.contact_law == "linear-hertz") j["unilateral"] = plan.rung.unilateral;
   }
-  if (plan.rung.structure == "modal") j["modal_cutoff_hz"] = plan.modal_cutoff_hz;
+  if (plan.rung.structure == "modal" || plan.rung.structure == "hybrid") j["modal_cutoff_hz"] = plan.modal_cutoff_hz;
   if (plan.escalate_below_fraction) j["escalate_below_fraction"] = *plan.escalate_below_fraction;
   if (plan.escalation_dt_factor) j["escalation_dt_factor"] = *plan.escalation_dt_factor;
   j["reasons"] = plan.reasons;

@@ -27,8 +27,9 @@ struct ScenePlan {
 };
 
 // The analysis options on the plan's structure: interaction on the modes
-// runs the condensed direct method on the modal backend (HHT per mode) with
-// the plan's cut-off, unless the analysis already names its modes.
+// (or hybrid: the track in FE, the bridge in its modes) runs the condensed
+// direct method on that backend with the plan's cut-off, unless the
+// analysis already names its modes.
 void apply_rung_structure(const ScenePlan& plan, AnalysisOptions& analysis);
 
 // What a scene asks: its "asks", else what the train can give.

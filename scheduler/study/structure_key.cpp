@@ -43,6 +43,9 @@ std::string operator_key(const std::string& structure_hash, const AnalysisOption
                                 ? fmt::format("|modal|modes={}|cutoff={:a}{}", analysis.modal_modes,
                                               analysis.modal_cutoff_hz,
                                               analysis.modal_static_correction ? "" : "|no-static-correction")
+                            : analysis.structure_backend == StructureBackend::kHybrid
+                                ? fmt::format("|hybrid|modes={}|cutoff={:a}", analysis.modal_modes,
+                                              analysis.modal_cutoff_hz)
                                 : std::string();
   return sha256_hex(fmt::format("railvsi operator v1|{}|dt={:a}|alpha={:a}|beta={:a}|gamma={:a}|flex={}{}",
                                 structure_hash, analysis.dt_s, analysis.hht.alpha, analysis.hht.beta,

@@ -404,7 +404,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
       at_speed.speed_mps = speed_kmh / 3.6;
       const JobTimeStep dt = job_time_step(dt_given, at_speed, f.frequencies, f.plan);
       at_speed.analysis.dt_s = dt.dt_s;
-      const bool modal = f.plan.rung.structure == "modal";
+      const bool modal = f.plan.rung.structure == "modal" || f.plan.rung.structure == "hybrid";
       ScenePlan on_rung;
       on_rung.rung = f.plan.rung;
       on_rung.modal_cutoff_hz = f.plan.modal_cutoff_hz;

@@ -14,6 +14,7 @@
 #include "io/scene_loader.hpp"
 #include "simulation/run_monitor.hpp"
 #include "simulation/simulation.hpp"
+#include "solver/hybrid_operator.hpp"
 #include "envelopes/code_filter.hpp"
 #include "envelopes/envelope_rows.hpp"
 #include "envelopes/job_envelopes.hpp"
@@ -279,13 +280,16 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache, ImportedStr
       return run_modal_jobs({job}, cache, std::make_pair(std::move(scene), std::move(plan)), imports).front();
     CacheLookup lookup;
     RungModels models;
+    std::shared_ptr<const HybridBasis> hybrid;  // the first run's, for an escalation at another dt
     models.fe_operator = [&](const Scene& s) {
-      // An escalation at a finer dt (wheel quantities) needs its own K_bar.
+      // An escalation at a finer dt (wheel quantities) needs its own K_bar
+      // (on the hybrid structure, of the same reduction).
       const std::string key = s.analysis.dt_s == scene.analysis.dt_s
                                   ? job.operator_key
                                   : fmt::format("{}/dt={:.17g}", job.operator_key, s.analysis.dt_s);
       const CacheLookup before = lookup;  // the first run's, counted with the escalation's
-      lookup = cache.get(key, [&] { return make_structure_operator(s); });
+      lookup = cache.get(key, [&] { return make_structure_operator(s, nullptr, hybrid); });
+      if (const auto* h = dynamic_cast<const HybridOperator*>(lookup.op.get())) hybrid = h->shared_basis();
       lookup.factorized = lookup.factorized || before.factorized;
       lookup.factorization_s += before.factorization_s;
       lookup.evictions += before.evictions;

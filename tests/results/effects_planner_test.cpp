@@ -242,3 +242,47 @@ TEST(EffectsPlanner, NextRungClimbsTowardFiniteElementsAndUnilateralHertz) {
 
 }  // namespace
 }  // namespace railvsi
+
+namespace railvsi {
+namespace {
+
+// A multibody train over a structure with track: the partition the hybrid
+// structure would make.
+PlannerInput interaction_on_track(int track, int interface, int interior) {
+  PlannerInput in = span_15m();
+  in.load_model = false;
+  in.track_dofs = track;
+  in.interface_dofs = interface;
+  in.interior_dofs = interior;
+  return in;
+}
+
+TEST(EffectsPlanner, InteractionOnADeckWithALargeInteriorRunsHybrid) {
+  // The generated 3D deck of 20,000 DOFs: 2,124 track DOFs, 540 the track
+  // bears on, the rest inside the deck.
+  const EffectsPlan plan = plan_effects(interaction_on_track(2124, 540, 17205));
+  EXPECT_EQ(plan.rung.name(), "interaction/hybrid");
+  EXPECT_DOUBLE_EQ(plan.modal_cutoff_hz, kHybridCutoffFactor * 45.0);
+  EXPECT_NE(plan.reasons.back().find("hybrid structure"), std::string::npos);
+  EXPECT_TRUE(ignores(plan, "bridge's modes above 90.0 Hz"));
+  EXPECT_FALSE(ignores(plan, "damping coupling"));  // the track keeps its dampers in FE
+  // Its next rung up is the same contact law on FE.
+  const auto up = next_rung(plan.rung);
+  ASSERT_TRUE(up);
+  EXPECT_EQ(up->name(), "interaction/fe");
+}
+
+TEST(EffectsPlanner, InteractionOnAPlaneViaductStaysOnFe) {
+  // The plane viaduct: every deck DOF carries the ballast (no interior).
+  const EffectsPlan flat = plan_effects(interaction_on_track(1936, 360, 0));
+  EXPECT_EQ(flat.rung.name(), "interaction/fe");
+  EXPECT_NE(flat.reasons.back().find("would not make the hybrid structure cheaper"), std::string::npos);
+  // An interior, but not four times the interface.
+  EXPECT_EQ(plan_effects(interaction_on_track(2000, 600, 2000)).rung.structure, "fe");
+  // At the thresholds.
+  EXPECT_EQ(plan_effects(interaction_on_track(2000, 250, kHybridMinInteriorDofs)).rung.structure, "hybrid");
+  EXPECT_EQ(plan_effects(interaction_on_track(2000, 250, kHybridMinInteriorDofs - 1)).rung.structure, "fe");
+}
+
+}  // namespace
+}  // namespace railvsi

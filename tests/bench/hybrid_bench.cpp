@@ -1,0 +1,149 @@
+// The hybrid structure (track in FE, bridge in its modes) against the full
+// finite-element structure, at the same dt and contact law: the envelope
+// quantities a study stores and the CPU each takes, for generated 3D decks
+// (three 25 m spans of hexahedra, two rails on pads) under ICE3 at
+// 300 km/h on the German low-interference profile, and over a 20 mm dip.
+// CPU is the thread's own time: setup (modes, constraint modes, reduction,
+// factor, rail flexibility, statics) and the time loop, separately.
+//
+// Run by hand:
+//   OPENBLAS_NUM_THREADS=1 build/tests/bench/hybrid_bench [DOFS ...] [--cutoffs 30,60,100] [--dip]
+// default DOFS 6000 20000.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cpu_time.hpp"
+#include "envelopes/code_filter.hpp"
+#include "envelopes/job_envelopes.hpp"
+#include "generators/deck_3d.hpp"
+#include "io/irregularity_loader.hpp"
+#include "io/train_loader.hpp"
+#include "simulation/simulation.hpp"
+#include "solver/hybrid_operator.hpp"
+#include "solver/structure_backend.hpp"
+#include "study/deck_frequencies.hpp"
+
+namespace railvsi {
+namespace {
+
+struct Values {
+  double displacement_m = NAN, filtered_acc_mps2 = NAN, min_force_N = NAN, unloading = NAN, carbody_mps2 = NAN,
+         contact_loss_s = NAN;
+  double setup_cpu_s = 0.0, loop_cpu_s = 0.0;
+  std::string backend;
+};
+
+std::optional<double> max_over_points(const JobEnvelopes& e, bool acceleration) {
+  std::optional<double> m;
+  for (const auto& p : e.points) {
+    const auto& v = acceleration ? p.max_abs_acceleration_mps2 : p.max_abs_displacement_m;
+    if (!v) return std::nullopt;
+    m = std::max(m.value_or(0.0), *v);
+  }
+  return m;
+}
+
+Values run(const Scene& scene, double code_cutoff_hz) {
+  Values v;
+  const double t0 = bench::thread_cpu_s();
+  const Simulation sim(scene);
+  const double t1 = bench::thread_cpu_s();
+  const Result r = sim.run();
+  const double t2 = bench::thread_cpu_s();
+  v.setup_cpu_s = t1 - t0;
+  v.loop_cpu_s = t2 - t1;
+  v.backend = r.summary.fidelity.structure_backend;
+  if (!r.status.ok()) {
+    std::printf("  run failed: %s\n", r.status.message().c_str());
+    return v;
+  }
+  const JobEnvelopes e = compute_envelopes(r, scene.analysis.dt_s, scene.analysis.history_stride, code_cutoff_hz);
+  v.displacement_m = max_over_points(e, false).value_or(NAN);
+  v.filtered_acc_mps2 = max_over_points(e, true).value_or(NAN);
+  v.min_force_N = e.min_contact_force_N.value_or(NAN);
+  v.unloading = e.max_unloading_ratio.value_or(NAN);
+  v.carbody_mps2 = e.max_abs_carbody_acceleration_mps2.value_or(NAN);
+  v.contact_loss_s = r.summary.contact_loss_s;
+  return v;
+}
+
+double rel(double a, double b) { return (a - b) / std::abs(b); }
+
+Scene deck_scene(int dofs, bool dip) {
+  Deck3dOptions d;
+  d.target_dofs = dofs;
+  Scene s;
+  s.train = load_library_train("ICE3");
+  d.approach_m = s.train.length_m() + 10.0;  // the whole train starts on the track
+  s.structure = make_deck_3d(d).model;
+  s.speed_mps = 300.0 / 3.6;
+  nlohmann::json irr = {{"spectrum", "german-low"}, {"seed", 1}};
+  if (dip) irr["defects"] = {{{"type", "dip"}, {"x_m", 37.0}, {"length_m", 1.0}, {"depth_m", 0.02}}};
+  const RailLine& rail = s.structure->rails().front();
+  s.irregularity = parse_irregularity(irr, ".", TrackRange{rail.start_m(), rail.end_m()});
+  s.analysis.dt_s = 2.5e-4;
+  s.analysis.contact.law = "hertz";
+  s.analysis.contact.rail_lines = {0, 1};
+  s.analysis.history_stride = 1;
+  return s;
+}
+
+void compare(int dofs, bool dip, const std::vector<double>& cutoffs) {
+  Scene s = deck_scene(dofs, dip);
+  const auto f = scheduler::deck_frequencies(*s.structure);
+  const double code_hz = code_cutoff_hz(f.f0_hz, f.f3_hz);
+  std::printf("\n## 3D deck, %d DOFs, ICE3 300 km/h, German low seed 1%s; f0 %.3f Hz, f3 %.3f Hz, filter %.3g Hz\n",
+              s.structure->num_dofs(), dip ? " + 20 mm x 1 m dip at 37 m" : "", f.f0_hz, f.f3_hz, code_hz);
+  const Values fe = run(s, code_hz);
+  std::printf("FE: disp %.6e m, acc %.6f m/s2, Qmin %.1f N, dQ/Q %.5f, car body %.5f m/s2, loss %.6f s; "
+              "CPU setup %.2f s, loop %.2f s\n",
+              fe.displacement_m, fe.filtered_acc_mps2, fe.min_force_N, fe.unloading, fe.carbody_mps2, fe.contact_loss_s,
+              fe.setup_cpu_s, fe.loop_cpu_s);
+  std::printf("| cut-off | backend | disp. | acc. (filtered) | Q min | dQ/Q | car body | loss (ms) | CPU setup / loop "
+              "(FE / hybrid) |\n|---|---|---|---|---|---|---|---|---|\n");
+  for (double cutoff : cutoffs) {
+    s.analysis.structure_backend = StructureBackend::kHybrid;
+    s.analysis.modal_cutoff_hz = cutoff;
+    const Values h = run(s, code_hz);
+    std::printf("| %.0f Hz | %s | %+.3f %% | %+.3f %% | %+.3f %% | %+.3f %% | %+.3f %% | %.3f / %.3f | %.2f / %.2f s "
+                "(%.1fx / %.1fx) |\n",
+                cutoff, h.backend.c_str(), 100 * rel(h.displacement_m, fe.displacement_m),
+                100 * rel(h.filtered_acc_mps2, fe.filtered_acc_mps2), 100 * rel(h.min_force_N, fe.min_force_N),
+                100 * rel(h.unloading, fe.unloading), 100 * rel(h.carbody_mps2, fe.carbody_mps2),
+                1e3 * h.contact_loss_s, 1e3 * fe.contact_loss_s, h.setup_cpu_s, h.loop_cpu_s,
+                fe.setup_cpu_s / h.setup_cpu_s, fe.loop_cpu_s / h.loop_cpu_s);
+    std::fflush(stdout);
+  }
+}
+
+}  // namespace
+}  // namespace railvsi
+
+int main(int argc, char** argv) {
+  std::vector<int> dofs;
+  std::vector<double> cutoffs{30.0, 60.0, 100.0};
+  bool dip = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--dip") {
+      dip = true;
+    } else if (a == "--cutoffs" && i + 1 < argc) {
+      cutoffs.clear();
+      std::stringstream ss(argv[++i]);
+      for (std::string item; std::getline(ss, item, ',');) cutoffs.push_back(std::atof(item.c_str()));
+    } else {
+      dofs.push_back(std::atoi(a.c_str()));
+    }
+  }
+  if (dofs.empty()) dofs = {6000, 20000};
+  for (int n : dofs) railvsi::compare(n, dip, cutoffs);
+  return 0;
+}

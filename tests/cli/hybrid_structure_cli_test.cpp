@@ -1,0 +1,72 @@
+// The hybrid structure from a scene document: "structure": "hybrid" runs
+// and says so in its fidelity record; interaction on the modes of a
+// structure with track is refused (it misses any tolerance there), as is a
+// hybrid structure without a track to keep in FE.
+#include "vsi_test_support.hpp"
+
+namespace railvsi::test {
+namespace {
+
+using nlohmann::json;
+
+class HybridStructureCli : public VsiCliTest {
+ protected:
+  // The example viaduct (ballasted track) with one coach of ICE3.
+  static json viaduct() {
+    json doc = json::parse(read_text(std::filesystem::path(RAILVSI_SOURCE_DIR) / "jobs/examples/viaduct-ice3.json"));
+    doc.erase("$schema");
+    return doc;
+  }
+};
+
+TEST_F(HybridStructureCli, InteractionOnTheModesOfATrackIsRefusedNamingTheHybridStructure) {
+  json doc = viaduct();
+  doc["analysis"]["structure"] = "modal";
+  const auto scene = write_json("modal.json", doc);
+  expect_rejected(scene, "/analysis/structure");
+  const VsiRun run = vsi("simulate '" + scene.string() + "'");
+  EXPECT_NE(run.err.find("use \"hybrid\""), std::string::npos) << run.err;
+}
+
+TEST_F(HybridStructureCli, APinnedModalInteractionRungOnATrackIsRefusedAtTheFidelity) {
+  json doc = viaduct();
+  doc["fidelity"] = {{"model", "interaction"}, {"structure", "modal"}};
+  expect_rejected(write_json("pinned.json", doc), "/fidelity/structure");
+}
+
+TEST_F(HybridStructureCli, TheHybridStructureWithoutTrackIsRefused) {
+  json doc = small_scene();
+  doc["analysis"]["structure"] = "hybrid";
+  const auto scene = write_json("hybrid.json", doc);
+  const VsiRun run = vsi("simulate '" + scene.string() + "'");
+  expect_input_error(run, scene, "/analysis/structure");
+  EXPECT_NE(run.err.find("no track DOFs"), std::string::npos) << run.err;
+}
+
+TEST_F(HybridStructureCli, SimulateOnTheHybridStructureRecordsItsModesAndCutoff) {
+  json doc = viaduct();
+  doc["analysis"]["structure"] = "hybrid";
+  doc["analysis"]["cutoff_hz"] = 60;
+  const VsiRun run = vsi("simulate '" + write_json("hybrid.json", doc).string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(run.out);
+  EXPECT_EQ(s.at("status"), "ok");
+  const json& f = s.at("run").at("fidelity");
+  EXPECT_EQ(f.at("structure_backend").get<std::string>().rfind("hybrid (", 0), 0u) << f.dump();
+  EXPECT_EQ(f.at("rung"), "interaction/hybrid");
+  EXPECT_EQ(f.at("modal_cutoff_hz"), 60.0);
+  // The plane viaduct's deck DOFs all carry the ballast: no interior, no
+  // modes, the FE model reordered. Its deck displacement equals FE's.
+  EXPECT_EQ(f.at("modes"), 0);
+  doc["analysis"].erase("structure");
+  doc["analysis"].erase("cutoff_hz");
+  const VsiRun fe = vsi("simulate '" + write_json("fe.json", doc).string() + "'");
+  ASSERT_EQ(fe.exit_code, 0) << fe.err;
+  const double u_fe = json::parse(fe.out).at("deck").at("max_abs_displacement_m");
+  const double u_hy = s.at("deck").at("max_abs_displacement_m");
+  EXPECT_GT(u_fe, 1e-4);
+  EXPECT_NEAR(u_hy, u_fe, 1e-9 * u_fe);
+}
+
+}  // namespace
+}  // namespace railvsi::test
