@@ -68,5 +68,30 @@ TEST_F(HybridStructureCli, SimulateOnTheHybridStructureRecordsItsModesAndCutoff)
   EXPECT_NEAR(u_hy, u_fe, 1e-9 * u_fe);
 }
 
+// A study of a multibody train over a 3D deck with "fidelity": "auto": the
+// planner puts interaction on the hybrid structure (the deck's interior is
+// many times the DOFs the rails bear on) and the job records it.
+TEST_F(HybridStructureCli, TheAutomaticStudyOverA3dDeckRunsOnTheHybridStructure) {
+  const VsiRun g = vsi("generate deck-3d --dofs 3000 --spans 12,12 --approach 30 --out '" + (dir_ / "deck").string() + "'");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  json coach = json::parse(read_text(std::filesystem::path(RAILVSI_SOURCE_DIR) / "jobs/trains/ICE3.json")).at("vehicles").at(0);
+  coach.erase("count");
+  const json study = {
+      {"name", "one coach over a 3D deck"},
+      {"structure", {{"import", {{"K", "deck/K.mtx"}, {"M", "deck/M.mtx"}, {"C", "deck/C.mtx"}, {"map", "deck/map.json"}}}}},
+      {"trains", {{{"name", "ICE3 coach"}, {"vehicles", json::array({coach})}}}},
+      {"speeds_kmh", {250}},
+      {"irregularities", {nullptr}},
+      {"analysis", {{"contact", {{"law", "hertz"}, {"rail_lines", {0, 1}}}}}}};
+  const VsiRun run = vsi("run '" + write_json("study.json", study).string() + "' --db '" + (dir_ / "r.sqlite").string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const std::string sql = "sqlite3 '" + (dir_ / "r.sqlite").string() +
+                          "' \"SELECT rung || '|' || json_extract(fidelity, '$.structure_backend') FROM job_records "
+                          "WHERE state = 'done'\" > '" + (dir_ / "rung.txt").string() + "'";
+  ASSERT_EQ(std::system(sql.c_str()), 0);
+  const std::string rung = read_text(dir_ / "rung.txt");
+  EXPECT_EQ(rung.rfind("interaction/hybrid|hybrid (track in FE", 0), 0u) << rung;
+}
+
 }  // namespace
 }  // namespace railvsi::test

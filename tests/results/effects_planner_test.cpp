@@ -264,7 +264,7 @@ TEST(EffectsPlanner, InteractionOnADeckWithALargeInteriorRunsHybrid) {
   EXPECT_EQ(plan.rung.name(), "interaction/hybrid");
   EXPECT_DOUBLE_EQ(plan.modal_cutoff_hz, kHybridCutoffFactor * 45.0);
   EXPECT_NE(plan.reasons.back().find("hybrid structure"), std::string::npos);
-  EXPECT_TRUE(ignores(plan, "bridge's modes above 90.0 Hz"));
+  EXPECT_TRUE(ignores(plan, "bridge's modes above 270.0 Hz"));
   EXPECT_FALSE(ignores(plan, "damping coupling"));  // the track keeps its dampers in FE
   // Its next rung up is the same contact law on FE.
   const auto up = next_rung(plan.rung);
