@@ -104,13 +104,13 @@ EffectsPlan plan_effects(const PlannerInput& input);
 // Why interaction stays on the FE structure when the planner chooses: the
 // errors of the modal interaction rung against the FE rung at the planner's
 // cut-off (1.2 x the code frequency), from tests/verification/
-// modal_structure_test.cpp and the README's "The modal structure".
+// modal_structure_test.cpp and docs/method.md "The modal structure".
 inline constexpr const char* kModalInteractionNotTrusted =
     "interaction on the modes misses the tolerance at the modal cut-off: measured against the FE structure, its "
     "filtered deck acceleration is 1.0 % off on a beam viaduct without track (9 modes to 60 Hz; 0.16 % at 18 "
     "modes), 1.8 % on a 3D deck on pads (5 modes to 30 Hz) and 10-23 % under a ballasted track at any cut-off "
     "(its pads and ballast dampers couple the modes), and its minimum contact force up to 10 % "
-    "(README, \"The modal structure\"); pinned, {\"model\": \"interaction\", \"structure\": \"modal\"} runs it";
+    "(docs/method.md, \"The modal structure\"); pinned, {\"model\": \"interaction\", \"structure\": \"modal\"} runs it";
 
 // What a rung leaves out of the full model (FE, nonlinear unilateral Hertz)
 // and why, for the run's fidelity record.
