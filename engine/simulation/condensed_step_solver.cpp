@@ -1,4 +1,4 @@
-// The condensed direct method (README "The method", steps 1-5; the direct
+// The condensed direct method (docs/method.md, steps 1-5; the direct
 // method of Neves et al. (2014), Eng. Struct. 69, section 3).
 #include <fmt/format.h>
 

@@ -41,8 +41,9 @@ std::vector<RunWarning> scene_input_warnings(const Scene& scene) {
     out.push_back({"modal_interaction_unverified",
                    "interaction on the modes: its error against the FE structure depends on the track and the "
                    "cut-off and is not known for this scene (measured 0.07 % to 23 % on the filtered deck "
-                   "acceleration and up to 10 % on the minimum contact force, README \"The modal structure\"); in a "
-                   "study, \"accuracy\": {\"verify\": \"governing\"} re-runs the governing jobs on the FE structure",
+                   "acceleration and up to 10 % on the minimum contact force, docs/method.md \"The modal structure\"); "
+                   "in a study, \"accuracy\": {\"verify\": \"governing\"} re-runs the governing jobs on the FE "
+                   "structure",
                    {}, {}, {}});
   if (scene.train.is_moving_forces() && scene.irregularity)
     out.push_back({"irregularity_ignored",

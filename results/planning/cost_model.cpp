@@ -7,7 +7,8 @@
 namespace railvsi {
 namespace {
 
-// Seconds of one core, fitted by hand on `vsi price` of two README scenes
+// Seconds of one core, fitted by hand on `vsi price` of two scenes of
+// docs/accuracy-and-price.md
 // (2026-11-23, 2-core CI machine under load 14, thread CPU time): the
 // ICE3 viaduct (2,296 DOFs, 1,064 rail DOFs, 32 axles, 108 modes up to
 // 53 Hz) and HSLM-A1 on the 25 m beam (102 DOFs, 50 axles, 3 modes).

@@ -135,7 +135,7 @@ inline constexpr const char* kModalInteractionNotTrusted =
     "acceleration is 1.0 % off on a beam viaduct without track (9 modes to 60 Hz; 0.16 % at 18 modes), 1.8 % on a "
     "3D deck on pads (5 modes to 30 Hz) and 10 % to 84 % under a ballasted track at any cut-off (the track's own "
     "modes respond where the wheel forces have their content, and its pads and ballast dampers couple the modes), "
-    "and its minimum contact force up to 10 %";
+    "and its minimum contact force up to 10 % (docs/method.md, \"The modal structure\")";
 
 // What a rung leaves out of the full model (FE, nonlinear unilateral Hertz)
 // and why, for the run's fidelity record.

@@ -56,7 +56,7 @@ std::string csv_field(const std::string& text) {
   return out + "\"";
 }
 
-// A value of a run with warnings carries a mark (README "Run health").
+// A value of a run with warnings carries a mark (docs/user-guide.md "Run health").
 constexpr const char* kWarningMark = "*";
 
 std::string marked(const std::string& text, bool warned) { return warned ? text + kWarningMark : text; }

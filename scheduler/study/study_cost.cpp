@@ -53,7 +53,7 @@ StudyCostEstimate estimate_study_cost(const StudyPlan& plan) {
 std::string describe(const StudyCostEstimate& e) {
   return fmt::format("estimated CPU time {:.3g} s for {} jobs ({:.3g} s of it for {} setups: factorizations or "
                      "modal bases; cost model: "
-                     "README \"What accuracy costs\")",
+                     "docs/accuracy-and-price.md)",
                      e.cpu_s, e.jobs, e.setup_cpu_s, e.setups);
 }
 

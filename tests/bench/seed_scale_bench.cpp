@@ -1,11 +1,11 @@
-// Seed-scale benchmark (the paper's example at its size; README,
-// "Performance"): a generated 3D deck of 233,292 DOFs (the paper's count),
+// Seed-scale benchmark (the paper's example at its size;
+// docs/performance.md "Seed scale"): a generated 3D deck of 233,292 DOFs (the paper's count),
 // the 46-axle KHST of the train library at 120 m/s, dt = 2.5e-4 s, 2,000
 // steps, HHT alpha = -0.05, nonlinear Hertz, each wheelset on both rails.
 // It takes tens of minutes and a few GB: run by hand, never in CI:
 //   OPENBLAS_NUM_THREADS=1 build/tests/bench/seed_scale_bench
 // (RAILVSI_SEED_DOFS=50000 builds a smaller deck of the same kind, to try
-// changes; the numbers in the README are at the full size.)
+// changes; the numbers in docs/performance.md are at the full size.)
 // Times are also given as a ratio to a floor measured in the same process,
 // one structure solve with the cached factor:
 //   overhead = (wall - setup) / (steps x t_solve)
@@ -20,7 +20,7 @@
 // 1990 A2.4.4.2.1 asks (results/envelopes/code_filter.hpp) and unfiltered
 // (relative errors), max wheel unloading dQ/Q (absolute error). The
 // filter's cut-off is the code's floor, 30 Hz, as in the first tables of
-// the README (`vsi simulate` takes f3 = 36.3 Hz for this deck since it
+// docs/performance.md (`vsi simulate` takes f3 = 36.3 Hz for this deck since it
 // computes deck frequencies up to 300,000 DOFs); RAILVSI_SEED_CUTOFF_HZ
 // sets another.
 #include <benchmark/benchmark.h>

@@ -1,6 +1,6 @@
 // vsi price on a scene: every error it reports is recomputed here from
 // independent `vsi simulate` runs of the same rungs (the scene document
-// changed as the README says a rung changes it), not from price's code.
+// changed as docs/accuracy-and-price.md says a rung changes it), not from price's code.
 #include <cmath>
 #include <fstream>
 

@@ -197,7 +197,7 @@ TEST(ModalInteractionSections, WithEveryModeTheTrackedDeckIsTheFeRung) {
 
 // With the track's dampers (pads, ballast: a non-proportional damping the
 // modes keep only as phi^T C phi / 2 omega) the errors do not fall with
-// the mode count (README "The modal structure"): the bound guards the
+// the mode count (docs/method.md "The modal structure"): the bound guards the
 // measured level, it claims no convergence.
 TEST(ModalInteractionSections, DampedTrackStaysWithinTheMeasuredErrors) {
   const Scene scene = ice3_on_track(/*damped=*/true);
@@ -219,7 +219,7 @@ TEST(ModalInteractionSections, DampedTrackStaysWithinTheMeasuredErrors) {
 // each wheel load), and those converge slowly on the modal rung: they
 // depend on the local flexibility under a wheel, which the kept modes
 // miss and the static correction (the default) restores only statically
-// (README "The modal structure").
+// (docs/method.md "The modal structure").
 TEST(ModalInteractionSections, ViaductShearAndReactionConvergeSlowerThanMoment) {
   const std::string path = RAILVSI_SOURCE_DIR "/jobs/examples/viaduct-ice3.json";
   nlohmann::json doc = read_json_file(path);

@@ -1,4 +1,4 @@
-// The hard-case suite (README "Hard cases"): scenes that used to print
+// The hard-case suite (docs/verification.md "Hard cases"): scenes that used to print
 // "ok" on garbage or that stress the contact, the integrator and the
 // inputs. Each asserts no NaN, the expected status and warnings, a bounded
 // energy residual and, where the run claims a result, agreement between dt
@@ -6,7 +6,7 @@
 // car-body acceleration within a stated tolerance (measured values in the
 // comments; tolerances about 1.5-3x the measured difference).
 //
-// Each case prints one line of the README table (scene, status, warnings,
+// Each case prints one line of the table in docs/verification.md (scene, status, warnings,
 // energy residual, dt-convergence).
 #include <gtest/gtest.h>
 
@@ -128,7 +128,7 @@ std::string codes_text(const Outcome& o) {
   return t.empty() ? "-" : t;
 }
 
-// One README row.
+// One row of the table in docs/verification.md.
 void table_row(const std::string& scene, const Outcome& o, const std::string& convergence) {
   std::cout << fmt::format("| {} | {} | {} | {:.1e} | {} |\n", scene, o.result.status.name(), codes_text(o),
                            o.result.summary.energy_residual, convergence);
@@ -184,7 +184,7 @@ const double kTwoSpanCutoff = ss_cutoff(f0_of(15.0, 1.2e10, 15000));
 TEST(HardCases, DeepDipLosesContactAndReimpacts) {
   const json doc = with_irregularity(two_span_scene(300, 2.5e-4), defect("dip", 10.0, 1.0, 0.020));
   Outcome coarse;
-  // Measured dt 2.5e-4 vs 1.25e-4: see the README table.
+  // Measured dt 2.5e-4 vs 1.25e-4: see the table in docs/verification.md.
   claimed("deep dip 20 mm, Hertz, 300 km/h", doc, with_dt(doc, 1.25e-4), kTwoSpanCutoff, {}, 1e-9, 0.015,
           "dt/2", &coarse);  // measured 0.66 % (a_filt)
   EXPECT_GT(coarse.result.summary.contact_loss_s, 0.0);     // the wheel leaves the rail

@@ -32,7 +32,7 @@ TEST(RefinementSpeeds, AnEdgeMaximumIsRefinedInwardsAndAHoleBlocksRefinement) {
 
 class SpeedRefinement : public ServiceTest {
  protected:
-  // HSLM-A1 over the README example's 25 m span (jobs/examples/hslm-sweep.json).
+  // HSLM-A1 over the quick start example's 25 m span (jobs/examples/hslm-sweep.json).
   json hslm_a1_study(const json& speeds, bool refine) const {
     json doc = json::parse(read_text(std::filesystem::path(RAILVSI_SOURCE_DIR) / "jobs/examples/hslm-sweep.json"));
     doc.erase("$schema");

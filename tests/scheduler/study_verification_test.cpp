@@ -45,7 +45,7 @@ json verified_study(const json& verify) {
   return doc;
 }
 
-// The key quantities verification covers (README "Error estimates"), with
+// The key quantities verification covers (docs/accuracy-and-price.md "Error estimates"), with
 // whether the largest value governs.
 const std::pair<const char*, bool> kKeyQuantities[] = {
     {"deck_displacement_m", true}, {"deck_acceleration_mps2", true}, {"deck_acceleration_unfiltered_mps2", true},
@@ -126,7 +126,7 @@ TEST_F(StudyVerification, LeavesTheEnvelopesUntouchedAndAddsEstimatesEqualToInde
   }
 
   // The deck-acceleration governing job, recomputed here: its stored scene
-  // as it is and as the README says verification changes it (dt halved,
+  // as it is and as docs/accuracy-and-price.md says verification changes it (dt halved,
   // moving forces on FE), each run by vsi simulate.
   const std::string gov = governing_jobs(q).at("two axles deck_acceleration_mps2");
   json scene;

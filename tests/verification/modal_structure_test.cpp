@@ -130,7 +130,7 @@ Scene viaduct(bool track = true) {
 // The track's pads and ballast carry discrete dampers: the damping is not
 // proportional, and the modal backend keeps only phi^T C phi / (2 omega) of
 // each mode. That coupling, not the truncation, dominates here: the errors
-// do not fall steadily with the mode count (README "The modal structure").
+// do not fall steadily with the mode count (docs/method.md "The modal structure").
 // The bounds are the measured errors with a margin; they guard the rung
 // from getting worse, they do not claim convergence.
 TEST(ModalStructure, ViaductWithTrackStaysWithinTheMeasuredErrors) {
