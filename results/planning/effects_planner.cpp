@@ -56,8 +56,9 @@ EffectsPlan plan_effects(const PlannerInput& in) {
     // Never the modes alone (kModalInteractionNotTrusted); hybrid where the
     // bridge's modes replace an interior much larger than the interface.
     const double hybrid_cutoff_hz = kHybridCutoffFactor * plan.code_frequency_hz;
-    if (in.track_dofs > 0 && in.interior_dofs >= kHybridMinInteriorDofs &&
-        in.interior_dofs >= kHybridMinInteriorRatio * in.interface_dofs) {
+    const bool interior = in.track_dofs > 0 && in.interior_dofs >= kHybridMinInteriorDofs &&
+                          in.interior_dofs >= kHybridMinInteriorRatio * in.interface_dofs;
+    if (interior && hybrid_cutoff_hz <= kHybridMaxCutoffHz) {
       r.structure = "hybrid";
       plan.modal_cutoff_hz = hybrid_cutoff_hz;
       plan.reasons.push_back(fmt::format(
@@ -69,7 +70,13 @@ EffectsPlan plan_effects(const PlannerInput& in) {
       plan.ignores = rung_ignores(r, in.irregularity, plan.modal_cutoff_hz, plan.escalate_below_fraction);
       return plan;
     }
-    fe_because = in.track_dofs > 0
+    fe_because = interior
+                     ? fmt::format("the hybrid structure's cut-off, {:g} x the code frequency {:.1f} Hz = {:.1f} Hz, "
+                                   "is above the {:g} Hz up to which it was measured (a short stiff span: it would keep "
+                                   "most of the deck's modes); on the modes alone {}",
+                                   kHybridCutoffFactor, plan.code_frequency_hz, hybrid_cutoff_hz, kHybridMaxCutoffHz,
+                                   kModalInteractionNotTrusted)
+                 : in.track_dofs > 0
                      ? fmt::format("the bridge has {} DOFs off the track against {} the track bears on: its modes "
                                    "would not make the hybrid structure cheaper (it needs at least {} and {:g} x as "
                                    "many); on the modes alone {}",

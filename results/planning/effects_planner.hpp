@@ -23,8 +23,8 @@
 //   4. Interaction: hybrid (the track in FE, the bridge in its modes up to
 //      kHybridCutoffFactor x the code frequency) where the bridge has an
 //      interior that the modes replace (at least kHybridMinInteriorDofs
-//      DOFs and kHybridMinInteriorRatio x the DOFs the track bears on);
-//      else FE. Never the modal structure: the track's own modes respond
+//      DOFs and kHybridMinInteriorRatio x the DOFs the track bears on) and
+//      that cut-off is at most kHybridMaxCutoffHz; else FE. Never the modal structure: the track's own modes respond
 //      where the wheel forces have their content (kModalInteractionNotTrusted).
 #include <optional>
 #include <string>
@@ -71,6 +71,11 @@ inline constexpr double kWheelEscalationFraction = 0.7;
 // -9.1 % at 75 Hz and +0.08 % at 225 Hz (contact loss 37.0 against
 // 37.5 ms); the wheel values within 0.01 % at every cut-off without the dip.
 inline constexpr double kHybridCutoffFactor = 6.0;
+// ... but not above this: the cut-off of a short stiff span (a code
+// frequency of 119 Hz on two 12 m spans asks 711 Hz) keeps most of the
+// deck's modes, which costs more than FE and was never measured. Above it
+// interaction stays on FE.
+inline constexpr double kHybridMaxCutoffHz = 250.0;
 // The hybrid structure pays a dense block of (interface DOFs + modes)^2: it
 // is cheaper than FE only where the modes replace a bridge interior several
 // times larger than the interface (a 3D deck, an imported model), not on a

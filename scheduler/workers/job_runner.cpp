@@ -281,12 +281,18 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache, ImportedStr
     CacheLookup lookup;
     RungModels models;
     std::shared_ptr<const HybridBasis> hybrid;  // the first run's, for an escalation at another dt
+    std::optional<StructureBackend> first_backend;
     models.fe_operator = [&](const Scene& s) {
       // An escalation at a finer dt (wheel quantities) needs its own K_bar
       // (on the hybrid structure, of the same reduction).
-      const std::string key = s.analysis.dt_s == scene.analysis.dt_s
-                                  ? job.operator_key
-                                  : fmt::format("{}/dt={:.17g}", job.operator_key, s.analysis.dt_s);
+      // A run repeated on FE after an impact on the hybrid structure needs
+      // the FE operator.
+      if (!first_backend) first_backend = s.analysis.structure_backend;
+      std::string key = s.analysis.dt_s == scene.analysis.dt_s
+                            ? job.operator_key
+                            : fmt::format("{}/dt={:.17g}", job.operator_key, s.analysis.dt_s);
+      if (s.analysis.structure_backend != *first_backend)
+        key += fmt::format("/{}", structure_backend_name(s.analysis.structure_backend));
       const CacheLookup before = lookup;  // the first run's, counted with the escalation's
       lookup = cache.get(key, [&] { return make_structure_operator(s, nullptr, hybrid); });
       if (const auto* h = dynamic_cast<const HybridOperator*>(lookup.op.get())) hybrid = h->shared_basis();

@@ -7,11 +7,15 @@
 // factor, rail flexibility, statics) and the time loop, separately.
 //
 // Run by hand:
-//   OPENBLAS_NUM_THREADS=1 build/tests/bench/hybrid_bench [DOFS ...] [--cutoffs 30,60,100] [--dip]
-// default DOFS 6000 20000.
+//   OPENBLAS_NUM_THREADS=1 build/tests/bench/hybrid_bench [DOFS ...] [--cutoffs 30,60,100] [--dip] [--partition]
+// default DOFS 6000 20000; --fe-cache DIR keeps each FE reference run's
+// values in DIR and reads them from there the next time (the FE run of the
+// 20,000-DOF deck takes minutes); --partition prints how the hybrid structure
+// would split each deck (track, interface, interior DOFs) and runs nothing.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -96,13 +100,58 @@ Scene deck_scene(int dofs, bool dip) {
   return s;
 }
 
-void compare(int dofs, bool dip, const std::vector<double>& cutoffs) {
+void partition(int dofs) {
+  const double t0 = bench::thread_cpu_s();
+  const Scene s = deck_scene(dofs, false);
+  const double t1 = bench::thread_cpu_s();
+  const HybridPartition p = hybrid_partition(*s.structure);
+  std::printf("3D deck, %d DOFs (generated in %.1f s CPU): track %d, interface %d, interior %d DOFs (%.2f s CPU)\n",
+              s.structure->num_dofs(), t1 - t0, p.track_dofs, p.interface_dofs, p.interior_dofs,
+              bench::thread_cpu_s() - t1);
+}
+
+// The FE run's values from `cache_dir` when they were kept there, else run
+// and kept.
+Values fe_values(const Scene& s, double code_hz, const std::string& cache_dir, const std::string& name) {
+  const std::string file = cache_dir.empty() ? std::string() : cache_dir + "/" + name + ".json";
+  if (!file.empty()) {
+    std::ifstream in(file);
+    if (in) {
+      const nlohmann::json j = nlohmann::json::parse(in);
+      Values v;
+      v.displacement_m = j.at("displacement_m");
+      v.filtered_acc_mps2 = j.at("filtered_acc_mps2");
+      v.min_force_N = j.at("min_force_N");
+      v.unloading = j.at("unloading");
+      v.carbody_mps2 = j.at("carbody_mps2");
+      v.contact_loss_s = j.at("contact_loss_s");
+      v.setup_cpu_s = j.at("setup_cpu_s");
+      v.loop_cpu_s = j.at("loop_cpu_s");
+      std::printf("(FE values read from %s)\n", file.c_str());
+      return v;
+    }
+  }
+  const Values v = run(s, code_hz);
+  if (!file.empty())
+    std::ofstream(file) << nlohmann::json{{"displacement_m", v.displacement_m},
+                                          {"filtered_acc_mps2", v.filtered_acc_mps2},
+                                          {"min_force_N", v.min_force_N},
+                                          {"unloading", v.unloading},
+                                          {"carbody_mps2", v.carbody_mps2},
+                                          {"contact_loss_s", v.contact_loss_s},
+                                          {"setup_cpu_s", v.setup_cpu_s},
+                                          {"loop_cpu_s", v.loop_cpu_s}}
+                               .dump();
+  return v;
+}
+
+void compare(int dofs, bool dip, const std::vector<double>& cutoffs, const std::string& cache_dir) {
   Scene s = deck_scene(dofs, dip);
   const auto f = scheduler::deck_frequencies(*s.structure);
   const double code_hz = code_cutoff_hz(f.f0_hz, f.f3_hz);
   std::printf("\n## 3D deck, %d DOFs, ICE3 300 km/h, German low seed 1%s; f0 %.3f Hz, f3 %.3f Hz, filter %.3g Hz\n",
               s.structure->num_dofs(), dip ? " + 20 mm x 1 m dip at 37 m" : "", f.f0_hz, f.f3_hz, code_hz);
-  const Values fe = run(s, code_hz);
+  const Values fe = fe_values(s, code_hz, cache_dir, fmt::format("fe-{}{}", dofs, dip ? "-dip" : ""));
   std::printf("FE: disp %.6e m, acc %.6f m/s2, Qmin %.1f N, dQ/Q %.5f, car body %.5f m/s2, loss %.6f s; "
               "CPU setup %.2f s, loop %.2f s\n",
               fe.displacement_m, fe.filtered_acc_mps2, fe.min_force_N, fe.unloading, fe.carbody_mps2, fe.contact_loss_s,
@@ -130,10 +179,15 @@ void compare(int dofs, bool dip, const std::vector<double>& cutoffs) {
 int main(int argc, char** argv) {
   std::vector<int> dofs;
   std::vector<double> cutoffs{30.0, 60.0, 100.0};
-  bool dip = false;
+  bool dip = false, partition_only = false;
+  std::string cache_dir;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--dip") {
+    if (a == "--fe-cache" && i + 1 < argc) {
+      cache_dir = argv[++i];
+    } else if (a == "--partition") {
+      partition_only = true;
+    } else if (a == "--dip") {
       dip = true;
     } else if (a == "--cutoffs" && i + 1 < argc) {
       cutoffs.clear();
@@ -144,6 +198,6 @@ int main(int argc, char** argv) {
     }
   }
   if (dofs.empty()) dofs = {6000, 20000};
-  for (int n : dofs) railvsi::compare(n, dip, cutoffs);
+  for (int n : dofs) partition_only ? railvsi::partition(n) : railvsi::compare(n, dip, cutoffs, cache_dir);
   return 0;
 }

@@ -11,9 +11,10 @@ using nlohmann::json;
 
 class HybridStructureCli : public VsiCliTest {
  protected:
-  // The example viaduct (ballasted track) with one coach of ICE3.
+  // The example viaduct (ballasted track, German low-interference profile).
   static json viaduct() {
-    json doc = json::parse(read_text(std::filesystem::path(RAILVSI_SOURCE_DIR) / "jobs/examples/viaduct-ice3.json"));
+    json doc =
+        json::parse(read_text(std::filesystem::path(RAILVSI_SOURCE_DIR) / "jobs/examples/viaduct-ice3-german.json"));
     doc.erase("$schema");
     return doc;
   }
@@ -52,11 +53,12 @@ TEST_F(HybridStructureCli, SimulateOnTheHybridStructureRecordsItsModesAndCutoff)
   const json s = json::parse(run.out);
   EXPECT_EQ(s.at("status"), "ok");
   const json& f = s.at("run").at("fidelity");
-  EXPECT_EQ(f.at("structure_backend").get<std::string>().rfind("hybrid (", 0), 0u) << f.dump();
   EXPECT_EQ(f.at("rung"), "interaction/hybrid");
-  EXPECT_EQ(f.at("modal_cutoff_hz"), 60.0);
   // The plane viaduct's deck DOFs all carry the ballast: no interior, no
-  // modes, the FE model reordered. Its deck displacement equals FE's.
+  // modes (the record's cut-off is null without modes), the FE model
+  // reordered. Its deck displacement equals FE's.
+  EXPECT_EQ(f.at("structure_backend").get<std::string>().rfind("hybrid (", 0), 0u) << f.dump();
+  EXPECT_NE(f.at("structure_backend").get<std::string>().find("0 modes up to 60 Hz"), std::string::npos) << f.dump();
   EXPECT_EQ(f.at("modes"), 0);
   doc["analysis"].erase("structure");
   doc["analysis"].erase("cutoff_hz");
@@ -65,14 +67,16 @@ TEST_F(HybridStructureCli, SimulateOnTheHybridStructureRecordsItsModesAndCutoff)
   const double u_fe = json::parse(fe.out).at("deck").at("max_abs_displacement_m");
   const double u_hy = s.at("deck").at("max_abs_displacement_m");
   EXPECT_GT(u_fe, 1e-4);
-  EXPECT_NEAR(u_hy, u_fe, 1e-9 * u_fe);
+  // Measured 6.2e-11 relative (2026-11-27): a reordered factor and the
+  // contact Newton's tolerance.
+  EXPECT_NEAR(u_hy, u_fe, 1.8e-10 * u_fe);
 }
 
 // A study of a multibody train over a 3D deck with "fidelity": "auto": the
 // planner puts interaction on the hybrid structure (the deck's interior is
 // many times the DOFs the rails bear on) and the job records it.
 TEST_F(HybridStructureCli, TheAutomaticStudyOverA3dDeckRunsOnTheHybridStructure) {
-  const VsiRun g = vsi("generate deck-3d --dofs 3000 --spans 12,12 --approach 30 --out '" + (dir_ / "deck").string() + "'");
+  const VsiRun g = vsi("generate deck-3d --dofs 3000 --spans 25 --approach 30 --out '" + (dir_ / "deck").string() + "'");
   ASSERT_EQ(g.exit_code, 0) << g.err;
   json coach = json::parse(read_text(std::filesystem::path(RAILVSI_SOURCE_DIR) / "jobs/trains/ICE3.json")).at("vehicles").at(0);
   coach.erase("count");

@@ -248,8 +248,12 @@ namespace {
 
 // A multibody train over a structure with track: the partition the hybrid
 // structure would make.
+// The frequencies are those of the generated deck of three 25 m spans
+// (f0 4.2 Hz, f3 36.8 Hz).
 PlannerInput interaction_on_track(int track, int interface, int interior) {
-  PlannerInput in = span_15m();
+  PlannerInput in;
+  in.f0_hz = 4.2;
+  in.f3_hz = 36.8;
   in.load_model = false;
   in.track_dofs = track;
   in.interface_dofs = interface;
@@ -262,14 +266,27 @@ TEST(EffectsPlanner, InteractionOnADeckWithALargeInteriorRunsHybrid) {
   // bears on, the rest inside the deck.
   const EffectsPlan plan = plan_effects(interaction_on_track(2124, 540, 17205));
   EXPECT_EQ(plan.rung.name(), "interaction/hybrid");
-  EXPECT_DOUBLE_EQ(plan.modal_cutoff_hz, kHybridCutoffFactor * 45.0);
+  EXPECT_DOUBLE_EQ(plan.modal_cutoff_hz, kHybridCutoffFactor * 36.8);
   EXPECT_NE(plan.reasons.back().find("hybrid structure"), std::string::npos);
-  EXPECT_TRUE(ignores(plan, "bridge's modes above 270.0 Hz"));
+  EXPECT_TRUE(ignores(plan, "bridge's modes above 220.8 Hz"));
   EXPECT_FALSE(ignores(plan, "damping coupling"));  // the track keeps its dampers in FE
   // Its next rung up is the same contact law on FE.
   const auto up = next_rung(plan.rung);
   ASSERT_TRUE(up);
   EXPECT_EQ(up->name(), "interaction/fe");
+}
+
+TEST(EffectsPlanner, InteractionOnAShortStiffSpanStaysOnFe) {
+  // Two 12 m spans of the 3D deck: f3 = 118.6 Hz, the hybrid cut-off would
+  // be 711 Hz.
+  PlannerInput in = interaction_on_track(628, 90, 2298);
+  in.f3_hz = 118.6;
+  const EffectsPlan plan = plan_effects(in);
+  EXPECT_EQ(plan.rung.name(), "interaction/fe");
+  EXPECT_NE(plan.reasons.back().find("711.6 Hz, is above the 250 Hz"), std::string::npos) << plan.reasons.back();
+  // 250 Hz is still hybrid: a code frequency of 41.6 Hz.
+  in.f3_hz = kHybridMaxCutoffHz / kHybridCutoffFactor;
+  EXPECT_EQ(plan_effects(in).rung.structure, "hybrid");
 }
 
 TEST(EffectsPlanner, InteractionOnAPlaneViaductStaysOnFe) {
