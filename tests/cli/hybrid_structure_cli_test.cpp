@@ -97,5 +97,35 @@ TEST_F(HybridStructureCli, TheAutomaticStudyOverA3dDeckRunsOnTheHybridStructure)
   EXPECT_EQ(rung.rfind("interaction/hybrid|hybrid (track in FE", 0), 0u) << rung;
 }
 
+// A wheel that loses contact on the hybrid structure lands with an impact
+// whose response the bridge's cut-off leaves out: the run is repeated on FE
+// and its record says why.
+TEST_F(HybridStructureCli, ALostContactOnTheHybridStructureRepeatsTheRunOnFe) {
+  const VsiRun g = vsi("generate deck-3d --dofs 3000 --spans 25 --approach 30 --out '" + (dir_ / "deck").string() + "'");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  json coach = json::parse(read_text(std::filesystem::path(RAILVSI_SOURCE_DIR) / "jobs/trains/ICE3.json")).at("vehicles").at(0);
+  coach.erase("count");
+  json scene = {
+      {"structure", {{"import", {{"K", "deck/K.mtx"}, {"M", "deck/M.mtx"}, {"C", "deck/C.mtx"}, {"map", "deck/map.json"}}}}},
+      {"train", {{"name", "ICE3 coach"}, {"vehicles", json::array({coach})}}},
+      {"speed_kmh", 350},
+      {"irregularity", nullptr},
+      {"analysis", {{"dt_s", 2.5e-4}, {"contact", {{"law", "hertz"}, {"rail_lines", {0, 1}}}}}},
+      {"fidelity", {{"model", "interaction"}, {"structure", "hybrid"}, {"modal_cutoff_hz", 100}}}};
+  const VsiRun smooth = vsi("simulate '" + write_json("smooth.json", scene).string() + "'");
+  ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
+  EXPECT_EQ(json::parse(smooth.out).at("run").at("fidelity").at("rung"), "interaction/hybrid");
+  scene["irregularity"] = {{"defects", {{{"type", "dip"}, {"x_m", 12.0}, {"length_m", 1.0}, {"depth_m", 0.03}}}}};
+  const VsiRun dip = vsi("simulate '" + write_json("dip.json", scene).string() + "'");
+  ASSERT_EQ(dip.exit_code, 0) << dip.err;
+  const json s = json::parse(dip.out);
+  EXPECT_GT(s.at("wheels").at("contact_loss_s").get<double>(), 0.0);
+  const json& f = s.at("run").at("fidelity");
+  EXPECT_EQ(f.at("rung"), "interaction/fe");
+  EXPECT_EQ(f.at("structure_backend"), "cholmod");
+  EXPECT_NE(f.at("escalation").get<std::string>().find("lost contact"), std::string::npos) << f.dump();
+  EXPECT_NE(f.at("escalation").get<std::string>().find("repeated on the FE structure"), std::string::npos) << f.dump();
+}
+
 }  // namespace
 }  // namespace railvsi::test
