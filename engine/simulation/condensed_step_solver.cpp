@@ -98,25 +98,25 @@ class CondensedStepSolver final : public StepSolver {
 
  private:
   // (1+alpha) (N F_s N^T + E F_v E^T) + N R N^T, F_s the rail flexibility,
-  // R the residual one (null: none).
+  // R the residual one (null: none). The 4 x 4 blocks of F_s (and R) under
+  // two contacts are gathered from the large flexibility matrices only when
+  // one of the two contacts moved to another rail element (every few dozen
+  // steps); the sums are the same, term by term.
   void assemble_A(const std::vector<std::optional<RailContactRow>>& rows, const DenseMatrix* R) {
     const auto nc = A_.rows();
-    const DenseMatrix& F = op_->rail_flexibility();
+    refresh_blocks(rows, R);
     for (Eigen::Index c = 0; c < nc; ++c) {
       for (Eigen::Index e = c; e < nc; ++e) {
         double a = 0.0, residual = 0.0;
         if (rows[c] && rows[e]) {
+          const PairBlock& b = blocks_[static_cast<std::size_t>(c * nc + e)];
           for (int i = 0; i < 4; ++i) {
-            const int di = rows[c]->dof[i];
-            if (di < 0) continue;
-            const int ri = op_->rail_index(di);
+            if (rows[c]->dof[i] < 0) continue;
             for (int j = 0; j < 4; ++j) {
-              const int dj = rows[e]->dof[j];
-              if (dj < 0) continue;
+              if (rows[e]->dof[j] < 0) continue;
               const double w = rows[c]->weight[i] * rows[e]->weight[j];
-              const int rj = op_->rail_index(dj);
-              a += w * F(ri, rj);
-              if (R) residual += w * (*R)(ri, rj);
+              a += w * b.F[i][j];
+              if (R) residual += w * b.R[i][j];
             }
           }
         }
@@ -127,6 +127,34 @@ class CondensedStepSolver final : public StepSolver {
         A_(c, e) = A_(e, c) = (1.0 + options_.alpha) * a + residual;
       }
     }
+  }
+
+  // The blocks of the pairs with a contact on another element than at the
+  // last step (all at the first step).
+  void refresh_blocks(const std::vector<std::optional<RailContactRow>>& rows, const DenseMatrix* R) {
+    const auto nc = static_cast<std::size_t>(A_.rows());
+    blocks_.resize(nc * nc);
+    if (element_.size() != nc) element_.assign(nc, kNotLocated);
+    moved_.assign(nc, 0);
+    for (std::size_t c = 0; c < nc; ++c) {
+      const int now = rows[c] ? rows[c]->element : kOffTrack;
+      moved_[c] = now != element_[c] || R != blocks_R_;
+      element_[c] = now;
+    }
+    blocks_R_ = R;
+    const auto gather = [&](const RailContactRow& rc, const RailContactRow& re, PairBlock& b) {
+      const DenseMatrix& F = op_->rail_flexibility();
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+          const bool both = rc.dof[i] >= 0 && re.dof[j] >= 0;
+          const int ri = both ? op_->rail_index(rc.dof[i]) : 0, rj = both ? op_->rail_index(re.dof[j]) : 0;
+          b.F[i][j] = both ? F(ri, rj) : 0.0;
+          b.R[i][j] = both && R ? (*R)(ri, rj) : 0.0;
+        }
+    };
+    for (std::size_t c = 0; c < nc; ++c)
+      for (std::size_t e = c; e < nc; ++e)
+        if ((moved_[c] || moved_[e]) && rows[c] && rows[e]) gather(*rows[c], *rows[e], blocks_[c * nc + e]);
   }
 
   // u_v -= K_bar_v^-1 (M E^T da + (1+alpha) C E^T dv) for contact c's wheel.
@@ -208,6 +236,18 @@ class CondensedStepSolver final : public StepSolver {
   DenseMatrix A_, T_, S_;
   Vector delta_bar_, load_, y_;  // y_: the forward image of the step's load
   std::vector<WheelDefect> defect_;  // d_a, d_v of the free prediction
+  // F_s and R at the DOFs of two contacts' rail elements (rows: the first
+  // contact's DOFs), for the pairs c <= e at c * nc + e; the element each
+  // contact was on when they were gathered.
+  struct PairBlock {
+    double F[4][4];
+    double R[4][4];
+  };
+  static constexpr int kNotLocated = -2, kOffTrack = -1;
+  std::vector<PairBlock> blocks_;
+  std::vector<int> element_;
+  std::vector<char> moved_;
+  const DenseMatrix* blocks_R_ = nullptr;
   ContactWorkspace contact_ws_;
 };
 
