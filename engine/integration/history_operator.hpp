@@ -29,9 +29,13 @@ class SparseHistoryOperator {
   int n_ = 0;
   // Rows (gathered: y_i = sum_j A_ij x_j, A's own entries whatever its
   // round-off asymmetry) of the union pattern of K and C, and of M.
+  // K's and C's values in pairs {k, c} per entry of the union pattern.
   std::vector<int> kc_outer_, kc_inner_, m_outer_, m_inner_;
-  std::vector<double> k_, c_, m_;
-  Vector work_;  // scratch (one operator per run, in its RunState)
+  std::vector<double> kc_, m_;
+  // Scratch (one operator per run, in its RunState): C's history weights,
+  // and the state interleaved {u, v, a, w_c} per DOF.
+  Vector work_;
+  std::vector<double> state_;
 };
 
 }  // namespace railvsi
