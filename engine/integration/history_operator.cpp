@@ -11,23 +11,25 @@ using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 SparseHistoryOperator::SparseHistoryOperator(const SparseMatrix& M, const SparseMatrix& C,
                                              const SparseMatrix& K)
     : n_(static_cast<int>(M.rows())) {
-  // Union pattern of K and C with explicit zeros: the sums keep every
-  // structural entry, so both value arrays share one index array.
-  const SparseMatrix Z = 0.0 * C + 0.0 * K;
-  RowMatrix Cu = C + Z, Ku = K + Z, Mr = M;
+  // Union pattern of K, C and M with explicit zeros: the sums keep every
+  // structural entry, so the three value arrays share one index array. An
+  // explicit zero adds +-0 to a sum, which leaves it as it was: the sums
+  // are those over each matrix's own entries.
+  const SparseMatrix Z = 0.0 * C + 0.0 * K + 0.0 * M;
+  RowMatrix Cu = C + Z, Ku = K + Z, Mu = M + Z;
   Cu.makeCompressed();
   Ku.makeCompressed();
-  Mr.makeCompressed();
-  kc_outer_.assign(Ku.outerIndexPtr(), Ku.outerIndexPtr() + n_ + 1);
-  kc_inner_.assign(Ku.innerIndexPtr(), Ku.innerIndexPtr() + Ku.nonZeros());
-  kc_.resize(2 * static_cast<std::size_t>(Ku.nonZeros()));
+  Mu.makeCompressed();
+  outer_.assign(Ku.outerIndexPtr(), Ku.outerIndexPtr() + n_ + 1);
+  inner_.assign(Ku.innerIndexPtr(), Ku.innerIndexPtr() + Ku.nonZeros());
+  values_.resize(4 * static_cast<std::size_t>(Ku.nonZeros()));
   for (Eigen::Index p = 0; p < Ku.nonZeros(); ++p) {
-    kc_[2 * static_cast<std::size_t>(p)] = Ku.valuePtr()[p];
-    kc_[2 * static_cast<std::size_t>(p) + 1] = Cu.valuePtr()[p];
+    double* v = values_.data() + 4 * static_cast<std::size_t>(p);
+    v[0] = Ku.valuePtr()[p];
+    v[1] = Cu.valuePtr()[p];
+    v[2] = Mu.valuePtr()[p];
+    v[3] = 0.0;
   }
-  m_outer_.assign(Mr.outerIndexPtr(), Mr.outerIndexPtr() + n_ + 1);
-  m_inner_.assign(Mr.innerIndexPtr(), Mr.innerIndexPtr() + Mr.nonZeros());
-  m_.assign(Mr.valuePtr(), Mr.valuePtr() + Mr.nonZeros());
 }
 
 namespace {
@@ -68,22 +70,18 @@ void SparseHistoryOperator::apply(const HhtCoefficients& h, const KinematicState
     x[3] = work_[j];
   }
   const double* X = state_.data();
-  const double* kc = kc_.data();
+  const double* values = values_.data();
   for (int i = 0; i < n_; ++i) {
-    Pair ku_cv = {0.0, 0.0};  // K u, C v
-    double cw = 0.0;
-    for (int p = kc_outer_[i]; p < kc_outer_[i + 1]; ++p) {
-      const double* x = X + 4 * static_cast<std::size_t>(kc_inner_[p]);
-      ku_cv += load_pair(kc + 2 * static_cast<std::size_t>(p)) * load_pair(x);
-      cw += kc[2 * static_cast<std::size_t>(p) + 1] * x[3];
-    }
-    Pair mu_mv = {0.0, 0.0};  // M u, M v
-    double ma = 0.0;
-    for (int p = m_outer_[i]; p < m_outer_[i + 1]; ++p) {
-      const double* x = X + 4 * static_cast<std::size_t>(m_inner_[p]);
-      const double m = m_[p];
-      mu_mv += Pair{m, m} * load_pair(x);
-      ma += m * x[2];
+    Pair ku_cv = {0.0, 0.0}, mu_mv = {0.0, 0.0};  // K u, C v; M u, M v
+    double cw = 0.0, ma = 0.0;
+    for (int p = outer_[i]; p < outer_[i + 1]; ++p) {
+      const double* x = X + 4 * static_cast<std::size_t>(inner_[p]);
+      const double* v = values + 4 * static_cast<std::size_t>(p);
+      const Pair uv = load_pair(x);
+      ku_cv += load_pair(v) * uv;
+      cw += v[1] * x[3];
+      mu_mv += Pair{v[2], v[2]} * uv;
+      ma += v[2] * x[2];
     }
     const double ku = ku_cv[0], cv = ku_cv[1], mu = mu_mv[0], mv = mu_mv[1];
     rhs[i] = h.c0 * mu + h.c1 * mv + h.c2 * ma + cw + h.alpha * ku;
