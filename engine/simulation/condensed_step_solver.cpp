@@ -1,5 +1,6 @@
 // The condensed direct method (README "The method", steps 1-5; the direct
 // method of Neves et al. (2014), Eng. Struct. 69, section 3).
+#include <array>
 #include <fmt/format.h>
 
 #include "contact/contact_problem.hpp"
@@ -99,12 +100,19 @@ class CondensedStepSolver final : public StepSolver {
  private:
   // (1+alpha) (N F_s N^T + E F_v E^T) + N R N^T, F_s the rail flexibility,
   // R the residual one (null: none). The 4 x 4 blocks of F_s (and R) under
-  // two contacts are gathered from the large flexibility matrices only when
-  // one of the two contacts moved to another rail element (every few dozen
-  // steps); the sums are the same, term by term.
+  // two contacts are kept from step to step and read from the large
+  // flexibility matrices only for the DOFs a contact has newly reached (one
+  // node when it moves on to the next rail element); the sums are the same,
+  // term by term.
   void assemble_A(const std::vector<std::optional<RailContactRow>>& rows, const DenseMatrix* R) {
-    const auto nc = A_.rows();
     refresh_blocks(rows, R);
+    if (R) add_pairs<true>(rows);
+    else add_pairs<false>(rows);
+  }
+
+  template <bool kResidual>
+  void add_pairs(const std::vector<std::optional<RailContactRow>>& rows) {
+    const auto nc = A_.rows();
     for (Eigen::Index c = 0; c < nc; ++c) {
       for (Eigen::Index e = c; e < nc; ++e) {
         double a = 0.0, residual = 0.0;
@@ -116,7 +124,7 @@ class CondensedStepSolver final : public StepSolver {
               if (rows[e]->dof[j] < 0) continue;
               const double w = rows[c]->weight[i] * rows[e]->weight[j];
               a += w * b.F[i][j];
-              if (R) residual += w * b.R[i][j];
+              if constexpr (kResidual) residual += w * b.R[i][j];
             }
           }
         }
@@ -129,32 +137,51 @@ class CondensedStepSolver final : public StepSolver {
     }
   }
 
-  // The blocks of the pairs with a contact on another element than at the
-  // last step (all at the first step).
+  // The blocks of the pairs with a contact on other DOFs than at the last
+  // step (all at the first step): entries at DOFs both contacts had are
+  // moved within the block, the others read.
   void refresh_blocks(const std::vector<std::optional<RailContactRow>>& rows, const DenseMatrix* R) {
     const auto nc = static_cast<std::size_t>(A_.rows());
     blocks_.resize(nc * nc);
-    if (element_.size() != nc) element_.assign(nc, kNotLocated);
+    constexpr std::array<int, 4> kNone{-1, -1, -1, -1};
+    if (dofs_.size() != nc) dofs_.assign(nc, kNone);
     moved_.assign(nc, 0);
+    kept_.resize(nc);
+    const bool same_R = R == blocks_R_;
     for (std::size_t c = 0; c < nc; ++c) {
-      const int now = rows[c] ? rows[c]->element : kOffTrack;
-      moved_[c] = now != element_[c] || R != blocks_R_;
-      element_[c] = now;
+      const std::array<int, 4> now = rows[c] ? rows[c]->dof : kNone;
+      moved_[c] = !same_R || now != dofs_[c];
+      // Where each new DOF was in the old block (-1: to be read).
+      for (int i = 0; i < 4; ++i) {
+        kept_[c][i] = -1;
+        for (int m = 0; m < 4 && same_R && now[i] >= 0; ++m)
+          if (dofs_[c][m] == now[i]) kept_[c][i] = m;
+      }
+      dofs_[c] = now;
     }
     blocks_R_ = R;
-    const auto gather = [&](const RailContactRow& rc, const RailContactRow& re, PairBlock& b) {
-      const DenseMatrix& F = op_->rail_flexibility();
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-          const bool both = rc.dof[i] >= 0 && re.dof[j] >= 0;
-          const int ri = both ? op_->rail_index(rc.dof[i]) : 0, rj = both ? op_->rail_index(re.dof[j]) : 0;
-          b.F[i][j] = both ? F(ri, rj) : 0.0;
-          b.R[i][j] = both && R ? (*R)(ri, rj) : 0.0;
-        }
-    };
+    const DenseMatrix& F = op_->rail_flexibility();
     for (std::size_t c = 0; c < nc; ++c)
-      for (std::size_t e = c; e < nc; ++e)
-        if ((moved_[c] || moved_[e]) && rows[c] && rows[e]) gather(*rows[c], *rows[e], blocks_[c * nc + e]);
+      for (std::size_t e = c; e < nc; ++e) {
+        if (!(moved_[c] || moved_[e]) || !rows[c] || !rows[e]) continue;
+        PairBlock& b = blocks_[c * nc + e];
+        const PairBlock old = b;
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 4; ++j) {
+            const int di = dofs_[c][i], dj = dofs_[e][j];
+            const int mi = kept_[c][i], mj = kept_[e][j];
+            if (di < 0 || dj < 0) {
+              b.F[i][j] = b.R[i][j] = 0.0;
+            } else if (mi >= 0 && mj >= 0) {
+              b.F[i][j] = old.F[mi][mj];
+              b.R[i][j] = old.R[mi][mj];
+            } else {
+              const int ri = op_->rail_index(di), rj = op_->rail_index(dj);
+              b.F[i][j] = F(ri, rj);
+              b.R[i][j] = R ? (*R)(ri, rj) : 0.0;
+            }
+          }
+      }
   }
 
   // u_v -= K_bar_v^-1 (M E^T da + (1+alpha) C E^T dv) for contact c's wheel.
@@ -237,15 +264,14 @@ class CondensedStepSolver final : public StepSolver {
   Vector delta_bar_, load_, y_;  // y_: the forward image of the step's load
   std::vector<WheelDefect> defect_;  // d_a, d_v of the free prediction
   // F_s and R at the DOFs of two contacts' rail elements (rows: the first
-  // contact's DOFs), for the pairs c <= e at c * nc + e; the element each
-  // contact was on when they were gathered.
+  // contact's DOFs), for the pairs c <= e at c * nc + e.
   struct PairBlock {
     double F[4][4];
     double R[4][4];
   };
-  static constexpr int kNotLocated = -2, kOffTrack = -1;
   std::vector<PairBlock> blocks_;
-  std::vector<int> element_;
+  std::vector<std::array<int, 4>> dofs_;  // each contact's DOFs in the blocks (-1: none)
+  std::vector<std::array<int, 4>> kept_;  // scratch: a new DOF's place among the old ones
   std::vector<char> moved_;
   const DenseMatrix* blocks_R_ = nullptr;
   ContactWorkspace contact_ws_;
