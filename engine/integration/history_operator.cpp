@@ -1,7 +1,5 @@
 #include "integration/history_operator.hpp"
 
-#include <cstring>
-
 namespace railvsi {
 
 namespace {
@@ -11,41 +9,21 @@ using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 SparseHistoryOperator::SparseHistoryOperator(const SparseMatrix& M, const SparseMatrix& C,
                                              const SparseMatrix& K)
     : n_(static_cast<int>(M.rows())) {
-  // Union pattern of K, C and M with explicit zeros: the sums keep every
-  // structural entry, so the three value arrays share one index array. An
-  // explicit zero adds +-0 to a sum, which leaves it as it was: the sums
-  // are those over each matrix's own entries.
-  const SparseMatrix Z = 0.0 * C + 0.0 * K + 0.0 * M;
-  RowMatrix Cu = C + Z, Ku = K + Z, Mu = M + Z;
+  // Union pattern of K and C with explicit zeros: the sums keep every
+  // structural entry, so both value arrays share one index array.
+  const SparseMatrix Z = 0.0 * C + 0.0 * K;
+  RowMatrix Cu = C + Z, Ku = K + Z, Mr = M;
   Cu.makeCompressed();
   Ku.makeCompressed();
-  Mu.makeCompressed();
-  outer_.assign(Ku.outerIndexPtr(), Ku.outerIndexPtr() + n_ + 1);
-  inner_.assign(Ku.innerIndexPtr(), Ku.innerIndexPtr() + Ku.nonZeros());
-  values_.resize(4 * static_cast<std::size_t>(Ku.nonZeros()));
-  for (Eigen::Index p = 0; p < Ku.nonZeros(); ++p) {
-    double* v = values_.data() + 4 * static_cast<std::size_t>(p);
-    v[0] = Ku.valuePtr()[p];
-    v[1] = Cu.valuePtr()[p];
-    v[2] = Mu.valuePtr()[p];
-    v[3] = 0.0;
-  }
+  Mr.makeCompressed();
+  kc_outer_.assign(Ku.outerIndexPtr(), Ku.outerIndexPtr() + n_ + 1);
+  kc_inner_.assign(Ku.innerIndexPtr(), Ku.innerIndexPtr() + Ku.nonZeros());
+  k_.assign(Ku.valuePtr(), Ku.valuePtr() + Ku.nonZeros());
+  c_.assign(Cu.valuePtr(), Cu.valuePtr() + Cu.nonZeros());
+  m_outer_.assign(Mr.outerIndexPtr(), Mr.outerIndexPtr() + n_ + 1);
+  m_inner_.assign(Mr.innerIndexPtr(), Mr.innerIndexPtr() + Mr.nonZeros());
+  m_.assign(Mr.valuePtr(), Mr.valuePtr() + Mr.nonZeros());
 }
-
-namespace {
-
-// Two lanes of one sum each: every lane adds its products in the order of
-// the scalar loop (a multiply, then an add), so the sums are the scalar
-// ones bit for bit, two per instruction.
-using Pair = double __attribute__((vector_size(16)));
-
-Pair load_pair(const double* p) {
-  Pair v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-}  // namespace
 
 void SparseHistoryOperator::apply(const HhtCoefficients& h, const KinematicState& s, Vector& rhs,
                                   StateProducts* products) {
@@ -59,31 +37,25 @@ void SparseHistoryOperator::apply(const HhtCoefficients& h, const KinematicState
   const double one_alpha = 1.0 + h.alpha;
   // The damping's history weights w_c = (1+alpha)(c3 u - c4 v - c5 a) + alpha v.
   work_ = one_alpha * (h.c3 * s.u - h.c4 * s.v - h.c5 * s.a) + h.alpha * s.v;
-  // The state by DOF, {u, v, a, w_c}: one gather reads what a row's
-  // products need of a column.
-  state_.resize(4 * static_cast<std::size_t>(n_));
-  for (int j = 0; j < n_; ++j) {
-    double* x = state_.data() + 4 * static_cast<std::size_t>(j);
-    x[0] = s.u[j];
-    x[1] = s.v[j];
-    x[2] = s.a[j];
-    x[3] = work_[j];
-  }
-  const double* X = state_.data();
-  const double* values = values_.data();
+  const double* u = s.u.data();
+  const double* v = s.v.data();
+  const double* a = s.a.data();
+  const double* wc = work_.data();
   for (int i = 0; i < n_; ++i) {
-    Pair ku_cv = {0.0, 0.0}, mu_mv = {0.0, 0.0};  // K u, C v; M u, M v
-    double cw = 0.0, ma = 0.0;
-    for (int p = outer_[i]; p < outer_[i + 1]; ++p) {
-      const double* x = X + 4 * static_cast<std::size_t>(inner_[p]);
-      const double* v = values + 4 * static_cast<std::size_t>(p);
-      const Pair uv = load_pair(x);
-      ku_cv += load_pair(v) * uv;
-      cw += v[1] * x[3];
-      mu_mv += Pair{v[2], v[2]} * uv;
-      ma += v[2] * x[2];
+    double ku = 0.0, cw = 0.0, cv = 0.0;
+    for (int p = kc_outer_[i]; p < kc_outer_[i + 1]; ++p) {
+      const int j = kc_inner_[p];
+      ku += k_[p] * u[j];
+      cw += c_[p] * wc[j];
+      cv += c_[p] * v[j];
     }
-    const double ku = ku_cv[0], cv = ku_cv[1], mu = mu_mv[0], mv = mu_mv[1];
+    double mu = 0.0, mv = 0.0, ma = 0.0;
+    for (int p = m_outer_[i]; p < m_outer_[i + 1]; ++p) {
+      const int j = m_inner_[p];
+      mu += m_[p] * u[j];
+      mv += m_[p] * v[j];
+      ma += m_[p] * a[j];
+    }
     rhs[i] = h.c0 * mu + h.c1 * mv + h.c2 * ma + cw + h.alpha * ku;
     if (products) {
       products->Ku[i] = ku;
