@@ -5,26 +5,37 @@
 
 namespace railvsi {
 
+namespace {
+
+// The generalized Jacobian of Phi at the penetrations delta.
+void contact_jacobian(const DenseMatrix& A, const std::vector<const ContactLaw*>& laws, const Vector& delta,
+                      DenseMatrix& J) {
+  const auto n = delta.size();
+  J.setZero(n, n);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    const ContactLaw& law = *laws[static_cast<std::size_t>(c)];
+    if (law.is_constraint()) {
+      J.row(c) = A.row(c) / A(c, c);
+    } else {
+      J.row(c) = law.stiffness(delta[c]) * A.row(c);
+      J(c, c) += 1.0;
+    }
+  }
+}
+
+}  // namespace
+
 void contact_residual(const Vector& delta_bar, const DenseMatrix& A,
                       const std::vector<const ContactLaw*>& laws, const Vector& P, Vector& delta,
                       Vector& phi, DenseMatrix* J) {
   const auto n = P.size();
   delta.noalias() = delta_bar - A * P;
   phi.resize(n);
-  if (J) J->setZero(n, n);
   for (Eigen::Index c = 0; c < n; ++c) {
     const ContactLaw& law = *laws[static_cast<std::size_t>(c)];
-    if (law.is_constraint()) {
-      phi[c] = -delta[c] / A(c, c);
-      if (J) J->row(c) = A.row(c) / A(c, c);
-    } else {
-      phi[c] = P[c] - law.force(delta[c]);
-      if (J) {
-        J->row(c) = law.stiffness(delta[c]) * A.row(c);
-        (*J)(c, c) += 1.0;
-      }
-    }
+    phi[c] = law.is_constraint() ? -delta[c] / A(c, c) : P[c] - law.force(delta[c]);
   }
+  if (J) contact_jacobian(A, laws, delta, *J);
 }
 
 Status solve_contact_problem(const Vector& delta_bar, const DenseMatrix& A,
@@ -49,8 +60,11 @@ Status solve_contact_problem(const Vector& delta_bar, const DenseMatrix& A,
       contact_residual(delta_bar, A, laws, ws.P_trial, ws.delta, ws.phi_trial, nullptr);
       if (ws.phi_trial.norm() < norm) break;
     }
+    // The last trial is the accepted one: its delta and Phi are at hand,
+    // only the Jacobian is new.
     P = ws.P_trial;
-    contact_residual(delta_bar, A, laws, P, ws.delta, ws.phi, &ws.J);
+    ws.phi.swap(ws.phi_trial);
+    contact_jacobian(A, laws, ws.delta, ws.J);
     norm = ws.phi.norm();
     summary.relative_residual = norm / scale;
     if (!std::isfinite(norm)) return {StatusCode::kDiverged, "contact residual is not finite"};

@@ -31,6 +31,20 @@ void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new,
   }
 }
 
+void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new, const KinematicState& old,
+                KinematicState& out) {
+  const Eigen::Index n = u_new.size();
+  out.u.resize(n);
+  out.v.resize(n);
+  out.a.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double a_new = h.c0 * (u_new[i] - old.u[i]) - h.c1 * old.v[i] - h.c2 * old.a[i];
+    out.v[i] = old.v[i] + h.dt * ((1.0 - h.gamma) * old.a[i] + h.gamma * a_new);
+    out.a[i] = a_new;
+    out.u[i] = u_new[i];
+  }
+}
+
 namespace {
 
 // One step of m=1, k=Omega^2, c=0, dt=1 applied to the unit states.

@@ -70,5 +70,9 @@ void hht_history_rhs(const HhtCoefficients& h, const Mat& M, const Mat& C, const
 // Velocities and accelerations at t_{n+1} from the new displacements
 // (eqs. 16-17), in place.
 void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new, KinematicState& s);
+// The same into `out` (resized), from the state `old` at t_n: the time
+// loop swaps its two states instead of copying one.
+void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new, const KinematicState& old,
+                KinematicState& out);
 
 }  // namespace railvsi

@@ -1,5 +1,6 @@
 // The condensed direct method (docs/method.md, steps 1-5; the direct
 // method of Neves et al. (2014), Eng. Struct. 69, section 3).
+#include <array>
 #include <fmt/format.h>
 
 #include "contact/contact_problem.hpp"
@@ -98,25 +99,32 @@ class CondensedStepSolver final : public StepSolver {
 
  private:
   // (1+alpha) (N F_s N^T + E F_v E^T) + N R N^T, F_s the rail flexibility,
-  // R the residual one (null: none).
+  // R the residual one (null: none). The 4 x 4 blocks of F_s (and R) under
+  // two contacts are kept from step to step and read from the large
+  // flexibility matrices only for the DOFs a contact has newly reached (one
+  // node when it moves on to the next rail element); the sums are the same,
+  // term by term.
   void assemble_A(const std::vector<std::optional<RailContactRow>>& rows, const DenseMatrix* R) {
+    refresh_blocks(rows, R);
+    if (R) add_pairs<true>(rows);
+    else add_pairs<false>(rows);
+  }
+
+  template <bool kResidual>
+  void add_pairs(const std::vector<std::optional<RailContactRow>>& rows) {
     const auto nc = A_.rows();
-    const DenseMatrix& F = op_->rail_flexibility();
     for (Eigen::Index c = 0; c < nc; ++c) {
       for (Eigen::Index e = c; e < nc; ++e) {
         double a = 0.0, residual = 0.0;
         if (rows[c] && rows[e]) {
+          const PairBlock& b = blocks_[static_cast<std::size_t>(c * nc + e)];
           for (int i = 0; i < 4; ++i) {
-            const int di = rows[c]->dof[i];
-            if (di < 0) continue;
-            const int ri = op_->rail_index(di);
+            if (rows[c]->dof[i] < 0) continue;
             for (int j = 0; j < 4; ++j) {
-              const int dj = rows[e]->dof[j];
-              if (dj < 0) continue;
+              if (rows[e]->dof[j] < 0) continue;
               const double w = rows[c]->weight[i] * rows[e]->weight[j];
-              const int rj = op_->rail_index(dj);
-              a += w * F(ri, rj);
-              if (R) residual += w * (*R)(ri, rj);
+              a += w * b.F[i][j];
+              if constexpr (kResidual) residual += w * b.R[i][j];
             }
           }
         }
@@ -127,6 +135,53 @@ class CondensedStepSolver final : public StepSolver {
         A_(c, e) = A_(e, c) = (1.0 + options_.alpha) * a + residual;
       }
     }
+  }
+
+  // The blocks of the pairs with a contact on other DOFs than at the last
+  // step (all at the first step): entries at DOFs both contacts had are
+  // moved within the block, the others read.
+  void refresh_blocks(const std::vector<std::optional<RailContactRow>>& rows, const DenseMatrix* R) {
+    const auto nc = static_cast<std::size_t>(A_.rows());
+    blocks_.resize(nc * nc);
+    constexpr std::array<int, 4> kNone{-1, -1, -1, -1};
+    if (dofs_.size() != nc) dofs_.assign(nc, kNone);
+    moved_.assign(nc, 0);
+    kept_.resize(nc);
+    const bool same_R = R == blocks_R_;
+    for (std::size_t c = 0; c < nc; ++c) {
+      const std::array<int, 4> now = rows[c] ? rows[c]->dof : kNone;
+      moved_[c] = !same_R || now != dofs_[c];
+      // Where each new DOF was in the old block (-1: to be read).
+      for (int i = 0; i < 4; ++i) {
+        kept_[c][i] = -1;
+        for (int m = 0; m < 4 && same_R && now[i] >= 0; ++m)
+          if (dofs_[c][m] == now[i]) kept_[c][i] = m;
+      }
+      dofs_[c] = now;
+    }
+    blocks_R_ = R;
+    const DenseMatrix& F = op_->rail_flexibility();
+    for (std::size_t c = 0; c < nc; ++c)
+      for (std::size_t e = c; e < nc; ++e) {
+        if (!(moved_[c] || moved_[e]) || !rows[c] || !rows[e]) continue;
+        PairBlock& b = blocks_[c * nc + e];
+        const PairBlock old = b;
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 4; ++j) {
+            const int di = dofs_[c][i], dj = dofs_[e][j];
+            const int mi = kept_[c][i], mj = kept_[e][j];
+            if (di < 0 || dj < 0) {
+              b.F[i][j] = b.R[i][j] = 0.0;
+            } else if (mi >= 0 && mj >= 0) {
+              b.F[i][j] = old.F[mi][mj];
+              b.R[i][j] = old.R[mi][mj];
+            } else {
+              const int ri = op_->rail_index(di), rj = op_->rail_index(dj);
+              b.F[i][j] = F(ri, rj);
+              b.R[i][j] = R ? (*R)(ri, rj) : 0.0;
+            }
+          }
+      }
   }
 
   // u_v -= K_bar_v^-1 (M E^T da + (1+alpha) C E^T dv) for contact c's wheel.
@@ -208,6 +263,17 @@ class CondensedStepSolver final : public StepSolver {
   DenseMatrix A_, T_, S_;
   Vector delta_bar_, load_, y_;  // y_: the forward image of the step's load
   std::vector<WheelDefect> defect_;  // d_a, d_v of the free prediction
+  // F_s and R at the DOFs of two contacts' rail elements (rows: the first
+  // contact's DOFs), for the pairs c <= e at c * nc + e.
+  struct PairBlock {
+    double F[4][4];
+    double R[4][4];
+  };
+  std::vector<PairBlock> blocks_;
+  std::vector<std::array<int, 4>> dofs_;  // each contact's DOFs in the blocks (-1: none)
+  std::vector<std::array<int, 4>> kept_;  // scratch: a new DOF's place among the old ones
+  std::vector<char> moved_;
+  const DenseMatrix* blocks_R_ = nullptr;
   ContactWorkspace contact_ws_;
 };
 

@@ -33,9 +33,10 @@ void EnergyAccount<Mat>::step(const HhtCoefficients& h, const KinematicState& ol
 
 template <class Mat>
 void EnergyAccount<Mat>::step(const HhtCoefficients& h, const KinematicState& old, const KinematicState& now,
-                              const Vector& f_alpha, const StateProducts& p) {
+                              const Vector& f_alpha, StateProducts& p) {
   const double a = h.alpha;
-  const Vector du = now.u - old.u;
+  du_ = now.u - old.u;
+  const Vector& du = du_;
   // Loads: Du' <f^a>.
   const double w = 0.5 * du.dot(f_alpha + fa_);
   // Damping: Du' C <v^a>, v^a_{n+1} = (1+a) v_{n+1} - a v_n, v^a_n = (1+a) v_n - a v_{n-1}.
@@ -59,10 +60,10 @@ void EnergyAccount<Mat>::step(const HhtCoefficients& h, const KinematicState& ol
   e_.abs_damping_J += std::abs(d);
   e_.abs_hht_J += std::abs(e_hht);
   Ku_prev_.swap(Ku_);
-  Ku_ = Ku_new;
+  Ku_.swap(p.Ku);
   Cv_prev_.swap(Cv_);
-  Cv_ = Cv_new;
-  Ma_ = Ma_new;
+  Cv_.swap(p.Cv);
+  Ma_.swap(p.Ma);
   fa_ = f_alpha;
 }
 

@@ -56,8 +56,10 @@ class EnergyAccount {
   void step(const HhtCoefficients& h, const KinematicState& old, const KinematicState& now, const Vector& f_alpha);
   // The same with the products K u, C v, M v, M a of `now` given (computed
   // in the pass that forms the next step's history terms).
+  // Their vectors are swapped into the account (left with others of the
+  // same size, for the next pass to overwrite).
   void step(const HhtCoefficients& h, const KinematicState& old, const KinematicState& now, const Vector& f_alpha,
-            const StateProducts& now_products);
+            StateProducts& now_products);
 
   const EnergyTotals& totals() const { return e_; }
   double initial_mechanical_J() const { return e0_; }
@@ -71,6 +73,7 @@ class EnergyAccount {
   Vector Ma_;                 // M a_n
   Vector fa_;                 // f^a_n
   Vector work_;
+  Vector du_;                 // scratch: u_{n+1} - u_n
   EnergyTotals e_;
   double e0_ = 0.0;
 };

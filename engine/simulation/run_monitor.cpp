@@ -143,11 +143,12 @@ Status RunMonitor::after_step(const HhtCoefficients& h, double t_new, const Kine
                               const KinematicState& s, const std::vector<KinematicState>& vehicles_old,
                               const std::vector<KinematicState>& vehicles, const Vector& f_s_old,
                               const Vector& f_s_new, const Vector& P_old, const Vector& P_new, int iterations,
-                              const StateProducts* structure_products) {
+                              StateProducts* structure_products) {
   max_iterations_ = std::max(max_iterations_, iterations);
   // Energy.
   if (energy_checked_) {
-    const Vector f_alpha = (1.0 + h.alpha) * f_s_new - h.alpha * f_s_old;
+    f_alpha_ = (1.0 + h.alpha) * f_s_new - h.alpha * f_s_old;
+    const Vector& f_alpha = f_alpha_;
     if (structure_products) structure_energy_.step(h, s_old, s, f_alpha, *structure_products);
     else structure_energy_.step(h, s_old, s, f_alpha);
     for (std::size_t v = 0; v < vehicle_energy_.size(); ++v)

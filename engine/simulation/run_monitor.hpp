@@ -58,11 +58,12 @@ class RunMonitor {
   // After the step t_n -> t_new; `old` states at t_n, current ones at t_new,
   // total structure loads f_s (moving forces and rail loads of the contact
   // forces) and contact forces at both times. Not ok: the run is unstable.
-  // structure_products: K u, C v, M v, M a of s when the caller has them.
+  // structure_products: K u, C v, M v, M a of s when the caller has them
+  // (their vectors are swapped into the energy account).
   Status after_step(const HhtCoefficients& h, double t_new, const KinematicState& s_old, const KinematicState& s,
                     const std::vector<KinematicState>& vehicles_old, const std::vector<KinematicState>& vehicles,
                     const Vector& f_s_old, const Vector& f_s_new, const Vector& P_old, const Vector& P_new,
-                    int iterations, const StateProducts* structure_products = nullptr);
+                    int iterations, StateProducts* structure_products = nullptr);
   // Relative residual of the energy balance so far.
   double energy_residual() const;
   // Warnings and the energy residual into the summary.
@@ -96,6 +97,7 @@ class RunMonitor {
   std::vector<double> min_tension_ratio_;  // most negative P/Q0 of a bilateral contact
   std::vector<RunWarning> warnings_;
   int max_iterations_ = 0;
+  Vector f_alpha_;  // scratch: the structure's shifted load of the step
 };
 
 }  // namespace railvsi

@@ -1,6 +1,7 @@
 #include "simulation/run_state.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -102,11 +103,13 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   if (u_max > 1e3)
     return {StatusCode::kDiverged, fmt::format("structure displacement {:.3e} m: the solution diverged", u_max)};
 
-  s_old_ = s_;
+  // The state at t_n moves to s_old_ (a swap, no copy) and the new one is
+  // written from it.
+  std::swap(s_old_, s_);
   vehicles_old_ = vehicles_;
   P_old_ = P_;
-  f_s_old_ = f_s_;
-  hht_update(h, solution_.u_s, s_);
+  f_s_old_.swap(f_s_);
+  hht_update(h, solution_.u_s, s_old_, s_);
   // The next step's history terms now, in the pass that also gives the
   // energy balance its products of the new state.
   history_.apply(h, s_, rhs_s_, &products_);
@@ -116,7 +119,7 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
                vehicles_[i]);
   rigid_.follow_rail(x, s_, rows_, vehicles_, /*after_step=*/true, t_new);
   P_ = solution_.P;
-  f_s_ = f_new_;
+  f_s_.swap(f_new_);  // f_new_ is set anew at the next step
   add_rail_loads(rows_, P_, 1.0, f_s_, coords_);
   return monitor_->after_step(h, t_new, s_old_, s_, vehicles_old_, vehicles_, f_s_old_, f_s_, P_old_, P_, iterations,
                               &products_);
