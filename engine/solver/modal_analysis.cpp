@@ -3,78 +3,55 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <string>
 
-#include <Spectra/MatOp/SparseSymMatProd.h>
-#include <Spectra/SymGEigsShiftSolver.h>
+#include <Eigen/Eigenvalues>
+
 #include <fmt/format.h>
 
+#include "solver/lanczos_slices.hpp"
 #include "solver/shift_invert_factor.hpp"
 #include "solver/subspace_iteration.hpp"
 
 namespace railvsi {
 namespace {
 
-// Spectra's shift-invert operator on the factor. Spectra sets the shift in
-// the solver's constructor; the factor keeps a failure as its Status, which
-// is checked before the iteration starts.
-class SpectraShiftInvert {
- public:
-  using Scalar = double;
-  explicit SpectraShiftInvert(ShiftInvertFactor& factor) : factor_(factor) {}
-  Eigen::Index rows() const { return factor_.rows(); }
-  Eigen::Index cols() const { return factor_.rows(); }
-  void set_shift(double sigma) { factor_.factorize(sigma); }
-  void perform_op(const double* x, double* y) const { factor_.solve(x, y); }  // NaN: Spectra fails to converge
+// Up to this size, more than half of the modes are solved densely: a
+// Lanczos slice cannot take the last mode of a model (its basis, M-orthogonal
+// to the modes found, has no room for one more vector).
+constexpr Eigen::Index kDenseFromDofs = 3000;
 
- private:
-  ShiftInvertFactor& factor_;
-};
-
-// max_restarts: Spectra's iterations (implicit restarts) per attempt;
-// retry: double the eigenpairs after a miss (up to max_lanczos_pairs).
-ModalResult lanczos(const SparseMatrix& M, Eigen::Index nev, ShiftInvertFactor& factor, const ModalOptions& options,
-                    int max_restarts, bool retry) {
+// Eigen's dense solver on M x = mu (K - sigma M) x, mu = 1 / (lambda - sigma)
+// (K - sigma M positive definite): its error is rounding relative to the
+// largest mu, the lowest mode's, so the low modes come out to rounding.
+ModalResult dense_modes(const SparseMatrix& K, const SparseMatrix& M, Eigen::Index wanted,
+                        const ModalOptions& options) {
   ModalResult result;
-  const Eigen::Index n = M.rows();
-  SpectraShiftInvert op(factor);
-  Spectra::SparseSymMatProd<double> mass(M);
-  // A track on embankments has hundreds of nearly equal sleeper-on-ballast
-  // modes. Lanczos converges slowly when the edge of the wanted set falls
-  // into such a cluster: more eigenpairs than asked (and a basis twice as
-  // large) converge much faster, and a miss is retried with twice as many.
-  Eigen::Index wanted = std::min<Eigen::Index>(n - 1, std::max<Eigen::Index>(2 * nev, options.min_lanczos_pairs));
-  for (;;) {
-    const Eigen::Index ncv = std::min<Eigen::Index>(n, 2 * wanted + 1);
-    Spectra::SymGEigsShiftSolver<SpectraShiftInvert, Spectra::SparseSymMatProd<double>,
-                                 Spectra::GEigsMode::ShiftInvert>
-        solver(op, mass, wanted, ncv, options.shift_rad2_per_s2);
-    if (!factor.status().ok()) {
-      result.status = factor.status();
-      return result;
-    }
-    solver.init();
-    // Largest |1/(lambda - sigma)| are the eigenvalues nearest the shift;
-    // reported in ascending lambda.
-    solver.compute(Spectra::SortRule::LargestMagn, max_restarts, options.lanczos_tolerance,
-                   Spectra::SortRule::SmallestAlge);
-    if (solver.info() == Spectra::CompInfo::Successful) {
-      const Vector lambda = solver.eigenvalues().head(nev);
-      result.shapes = solver.eigenvectors().leftCols(nev);
-      for (Eigen::Index k = 0; k < nev; ++k) {
-        // A rigid-body mode comes out as a tiny negative lambda: frequency 0.
-        result.frequencies_hz.push_back(std::sqrt(std::max(lambda[k], 0.0)) / (2.0 * std::numbers::pi));
-        auto phi = result.shapes.col(k);
-        phi /= std::sqrt(phi.dot(M * phi));
-      }
-      return result;
-    }
-    if (!retry || wanted >= std::min<Eigen::Index>(n - 1, options.max_lanczos_pairs)) break;
-    wanted = std::min<Eigen::Index>({n - 1, 2 * wanted, options.max_lanczos_pairs});
+  result.solver = ModeSolver::kLanczos;  // (not subspace iteration)
+  const double sigma = options.shift_rad2_per_s2;
+  const DenseMatrix A = DenseMatrix(K) - sigma * DenseMatrix(M);
+  Eigen::GeneralizedSelfAdjointEigenSolver<DenseMatrix> dense(DenseMatrix(M), A);
+  if (dense.info() != Eigen::Success) {
+    result.status = {StatusCode::kDiverged,
+                     fmt::format("K - sigma M (sigma = {} rad^2/s^2) is not positive definite: a mechanism, or an "
+                                 "eigenvalue below the shift",
+                                 sigma)};
+    return result;
   }
-  result.status = {StatusCode::kNoConvergence,
-                   fmt::format("the eigenvalue iteration did not converge ({} iterations with up to {} eigenpairs)",
-                               max_restarts, wanted)};
+  const Eigen::Index n = K.rows();
+  wanted = std::min(wanted, n);
+  result.shapes.resize(n, wanted);
+  for (Eigen::Index k = 0; k < wanted; ++k) {
+    const Eigen::Index j = n - 1 - k;  // mu ascending: the largest first
+    const double lambda = sigma + 1.0 / dense.eigenvalues()[j];
+    result.frequencies_hz.push_back(std::sqrt(std::max(lambda, 0.0)) / (2.0 * std::numbers::pi));
+    auto phi = result.shapes.col(k);
+    phi = dense.eigenvectors().col(j);
+    phi /= std::sqrt(phi.dot(M * phi));
+    Eigen::Index at = 0;
+    phi.cwiseAbs().maxCoeff(&at);
+    if (phi[at] < 0.0) phi = -phi;
+  }
+  result.factorizations = 1;
   return result;
 }
 
@@ -83,50 +60,41 @@ ModalResult lanczos(const SparseMatrix& M, Eigen::Index nev, ShiftInvertFactor& 
 ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const ModalOptions& options) {
   ModalResult result;
   const Eigen::Index n = K.rows();
-  const Eigen::Index nev = std::min<Eigen::Index>(options.modes, n - 1);
-  if (nev < 1) {
+  const bool cut = options.max_frequency_hz > 0.0;
+  const Eigen::Index nev = std::min<Eigen::Index>(std::max(options.modes, 0), n - 1);
+  if (nev < 1 && !(cut && n > 1)) {
     result.status = {StatusCode::kInvalidInput,
                      fmt::format("cannot compute {} modes of a model with {} DOFs", options.modes, n)};
     return result;
   }
-  ShiftInvertFactor factor(K, M);
-  const auto full_lanczos = [&] { return lanczos(M, nev, factor, options, options.lanczos_max_restarts, true); };
-  const auto subspace = [&] {
-    ModalResult r;
-    if (factor.factorize(options.shift_rad2_per_s2).ok()) r = subspace_iteration(K, M, nev, factor, options);
-    else r.status = factor.status();
-    r.solver = ModeSolver::kSubspace;
-    return r;
-  };
-  switch (options.solver) {
-    case ModeSolver::kLanczos:
-      return full_lanczos();
-    case ModeSolver::kSubspace:
-      return subspace();
-    case ModeSolver::kAuto:
-      break;
-  }
-  // Each method has structures it is slow on (see ModeSolver): the other
-  // one is tried when the first misses, and Lanczos without a budget last.
-  // A factor that fails is not retried: neither method can do without it.
-  // A final failure says why each attempt failed.
-  std::string missed;
-  const auto attempt = [&](ModalResult r) {
-    if (!r.status.ok() && factor.status().ok()) {
-      missed += (missed.empty() ? "" : "; ") + r.status.message();
-      r.status = {r.status.code(), missed};
+  // A small model's count up to the cut-off first (one more factor): most
+  // of its modes are solved densely.
+  Eigen::Index wanted = nev;
+  if (cut && (options.solver == ModeSolver::kSubspace || n <= kDenseFromDofs)) {
+    Status counted;
+    const Eigen::Index below = count_modes_below(K, M, options.max_frequency_hz, &counted);
+    if (!counted.ok()) {
+      result.status = counted;
+      return result;
     }
-    return r;
-  };
-  const auto done = [&](const ModalResult& r) { return r.status.ok() || !factor.status().ok(); };
-  if (n >= options.subspace_from_dofs) {
-    ModalResult r = attempt(subspace());
-    return done(r) ? r : attempt(full_lanczos());
+    wanted = std::max(wanted, below);
   }
-  ModalResult r = attempt(lanczos(M, nev, factor, options, options.auto_lanczos_restarts, false));
-  if (done(r)) return r;
-  r = attempt(subspace());
-  return done(r) ? r : attempt(full_lanczos());
+  if (n <= kDenseFromDofs && 2 * wanted > n) return dense_modes(K, M, wanted, options);
+  if (options.solver != ModeSolver::kSubspace) return lanczos_slices(K, M, nev, options);
+
+  // Subspace iteration has one shift: its count comes from the Sturm count.
+  wanted = std::min(wanted, n - 1);
+  result.solver = ModeSolver::kSubspace;
+  if (wanted < 1) return result;  // no mode up to the cut-off, none asked
+  ShiftInvertFactor factor(K, M);
+  if (!factor.factorize(options.shift_rad2_per_s2).ok()) {
+    result.status = factor.status();
+    return result;
+  }
+  result = subspace_iteration(K, M, wanted, factor, options);
+  result.solver = ModeSolver::kSubspace;
+  result.factorizations = cut ? 2 : 1;
+  return result;
 }
 
 ModalResult modal_analysis(const StructureModel& structure, const ModalOptions& options) {

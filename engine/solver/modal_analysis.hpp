@@ -1,8 +1,8 @@
 #pragma once
 // Natural frequencies and mode shapes: the lowest eigenpairs of
-// K phi = omega^2 M phi on a CHOLMOD factor of K - sigma M, by Lanczos in
-// shift-invert mode (Spectra) or by subspace iteration
-// (solver/subspace_iteration.hpp).
+// K phi = omega^2 M phi (a count, or every one up to a cut-off), by
+// shift-invert Lanczos on slices of the spectrum (solver/lanczos_slices.hpp)
+// or by subspace iteration (solver/subspace_iteration.hpp).
 #include "core/types.hpp"
 #include "model/structure_model.hpp"
 #include "solver/modal_types.hpp"
@@ -10,7 +10,8 @@
 namespace railvsi {
 
 // K and M symmetric (full storage), M positive definite. Fewer modes than
-// asked when the model has fewer than modes + 1 DOFs. A failed
+// asked when the model has fewer than modes + 1 DOFs (at most n - 1). The
+// sign of a Lanczos shape: its largest entry positive. A failed
 // factorization or a Lanczos that does not converge is a Status, not an
 // exception.
 ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const ModalOptions& options = {});

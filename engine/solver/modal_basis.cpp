@@ -11,29 +11,15 @@
 namespace railvsi {
 namespace {
 
-// The lowest modes, enough of them to pass max_frequency_hz: asked in
-// growing batches until the highest one computed lies above it (or the
-// model has no more).
+// Every mode up to max_frequency_hz (a Sturm count certifies the count),
+// at least min_modes.
 ModalResult modes_up_to(const StructureModel& s, const ModalBasisOptions& o) {
-  int asked = std::max(8, o.min_modes);
-  while (o.modes_below_cutoff >= asked && asked < s.num_dofs() - 1) asked *= 2;  // these would not reach past it
-  for (;;) {
-    ModalOptions mo;
-    mo.modes = std::min(asked, s.num_dofs() - 1);
-    ModalResult r = modal_analysis(s, mo);
-    if (!r.status.ok()) throw InputError("/structure", "modal analysis: " + r.status.message());
-    const bool enough = r.frequencies_hz.empty() || r.frequencies_hz.back() > o.max_frequency_hz;
-    if (enough || mo.modes >= s.num_dofs() - 1) {
-      int keep = 0;
-      while (keep < static_cast<int>(r.frequencies_hz.size()) &&
-             (r.frequencies_hz[static_cast<std::size_t>(keep)] <= o.max_frequency_hz || keep < o.min_modes))
-        ++keep;
-      r.frequencies_hz.resize(static_cast<std::size_t>(keep));
-      r.shapes = r.shapes.leftCols(keep).eval();
-      return r;
-    }
-    asked *= 2;
-  }
+  ModalOptions mo;
+  mo.modes = o.min_modes;
+  mo.max_frequency_hz = o.max_frequency_hz;
+  ModalResult r = modal_analysis(s, mo);
+  if (!r.status.ok()) throw InputError("/structure", "modal analysis: " + r.status.message());
+  return r;
 }
 
 }  // namespace

@@ -18,16 +18,11 @@ struct ModalBasisOptions {
   double max_frequency_hz = 60.0;
   // Never fewer than this many modes (when the structure has them).
   int min_modes = 1;
-  // The modes up to max_frequency_hz when counted before (count_modes),
-  // else -1. The modes are asked in batches of 8, 16, 32, ... until the
-  // highest lies above the cut-off; a known count skips the batches below
-  // it. Each batch is solved afresh, so the modes are the same bits.
-  int modes_below_cutoff = -1;
 };
 
 class ModalBasis {
  public:
-  // Lanczos on K, M (modal_analysis). Throws InputError when the modes
+  // modal_analysis of K, M with the cut-off, in one solve. Throws InputError when the modes
   // cannot be computed.
   ModalBasis(std::shared_ptr<const StructureModel> structure, const ModalBasisOptions& options);
   // Modes computed elsewhere (mass-normalised shapes, one column per mode,

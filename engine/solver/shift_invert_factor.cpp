@@ -16,8 +16,10 @@ ShiftInvertFactor::~ShiftInvertFactor() {
 }
 
 const Status& ShiftInvertFactor::factorize(double sigma) {
-  if (sigma_ == sigma) return status_;  // factorized (or failed) already
+  if (sigma_ == sigma && !indefinite_) return status_;  // factorized (or failed) already
   sigma_ = sigma;
+  indefinite_ = false;
+  eigenvalues_below_ = 0;
   const SparseMatrix A = K_ - sigma * M_;
   cholmod_sparse view = cholmod_view_symmetric(A);
   cholmod_common* c = common_->get();
@@ -35,11 +37,49 @@ const Status& ShiftInvertFactor::factorize(double sigma) {
                            "eigenvalue below the shift",
                            sigma)};
   else
-    status_ = {StatusCode::kDiverged,
-               fmt::format("CHOLMOD could not factorize K - sigma M of {} DOFs (status {}{})", K_.rows(), c->status,
-                           c->status == CHOLMOD_OUT_OF_MEMORY ? ": out of memory" : "")};
+    status_ = failed(c->status);
   factor_.reset();
   return status_;
+}
+
+const Status& ShiftInvertFactor::factorize_indefinite(double sigma) {
+  if (sigma_ == sigma && indefinite_) return status_;
+  sigma_ = sigma;
+  indefinite_ = true;
+  eigenvalues_below_ = 0;
+  const SparseMatrix A = K_ - sigma * M_;
+  cholmod_sparse view = cholmod_view_symmetric(A);
+  cholmod_common* c = common_->get();
+  c->supernodal = CHOLMOD_SIMPLICIAL;
+  c->final_ll = 0;
+  // The pattern of K - sigma M is the same for every shift: a simplicial
+  // factor of an earlier shift keeps its ordering and is refactorized.
+  if (!factor_ || factor_->is_super || factor_->is_ll)
+    factor_ = Factor(cholmod_analyze(&view, c), CholmodFactorDeleter{c});
+  const bool factorized = factor_ && cholmod_factorize(&view, factor_.get(), c);
+  if (factorized && c->status != CHOLMOD_NOT_POSDEF && factor_->minor == factor_->n) {
+    // Simplicial L D L': D(j, j) is the first entry of column j.
+    // (The int interface: cholmod_start, CHOLMOD_INT indices.)
+    const auto* Lp = static_cast<const int*>(factor_->p);
+    const auto* Lx = static_cast<const double*>(factor_->x);
+    for (std::size_t j = 0; j < factor_->n; ++j)
+      if (Lx[Lp[j]] < 0.0) ++eigenvalues_below_;
+    status_ = Status::Ok();
+    return status_;
+  }
+  status_ = factorized ? Status{StatusCode::kDiverged,
+                                fmt::format("K - sigma M (sigma = {} rad^2/s^2) is singular: sigma is an eigenvalue "
+                                            "to rounding, or the model has a mechanism",
+                                            sigma)}
+                       : failed(c->status);
+  factor_.reset();
+  return status_;
+}
+
+Status ShiftInvertFactor::failed(int cholmod_status) const {
+  return {StatusCode::kDiverged,
+          fmt::format("CHOLMOD could not factorize K - sigma M of {} DOFs (status {}{})", K_.rows(), cholmod_status,
+                      cholmod_status == CHOLMOD_OUT_OF_MEMORY ? ": out of memory" : "")};
 }
 
 void ShiftInvertFactor::solve(const double* x, double* y) const {

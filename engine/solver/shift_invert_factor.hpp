@@ -1,7 +1,9 @@
 #pragma once
 // A CHOLMOD factor of K - sigma M for the mode solvers: y = (K - sigma M)^-1 x
 // for one vector (Lanczos) or a block of them (subspace iteration; one solve
-// of many columns runs on BLAS-3 kernels).
+// of many columns runs on BLAS-3 kernels). Below the spectrum it is L L'
+// (supernodal, BLAS-3); inside it L D L', whose inertia counts the
+// eigenvalues below the shift (spectrum slicing, lanczos_slices.hpp).
 #include <memory>
 #include <optional>
 
@@ -24,7 +26,16 @@ class ShiftInvertFactor {
   // Status: an L D L' factor would accept it, and the "lowest" modes found
   // would silently skip those below the shift.
   const Status& factorize(double sigma);
+  // Factorizes K - sigma M as L D L' (simplicial, no pivoting: CHOLMOD's
+  // supernodal factor is L L' only), for a shift inside the spectrum. A
+  // zero pivot (sigma an eigenvalue to rounding) is a Status.
+  const Status& factorize_indefinite(double sigma);
   const Status& status() const { return status_; }
+  // The number of eigenvalues below the shift factorized (Sylvester's law
+  // of inertia: the negative entries of D; 0 after factorize()). The Sturm
+  // count of spectrum slicing.
+  Eigen::Index eigenvalues_below() const { return eigenvalues_below_; }
+  double sigma() const { return sigma_.value_or(0.0); }
   Eigen::Index rows() const { return K_.rows(); }
 
   // The solves share workspaces: one caller at a time (not reentrant).
@@ -35,6 +46,7 @@ class ShiftInvertFactor {
 
  private:
   using Factor = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>;
+  Status failed(int cholmod_status) const;
   const SparseMatrix& K_;
   const SparseMatrix& M_;
   std::unique_ptr<CholmodCommon> common_ = std::make_unique<CholmodCommon>();
@@ -45,6 +57,8 @@ class ShiftInvertFactor {
   mutable cholmod_dense* E_ = nullptr;
   Status status_{StatusCode::kInvalidInput, "not factorized"};
   std::optional<double> sigma_;  // the shift factorized (or failed) last
+  bool indefinite_ = false;      // and how
+  Eigen::Index eigenvalues_below_ = 0;
 };
 
 }  // namespace railvsi

@@ -71,7 +71,6 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
       models.modal_basis = [&](double modal_cutoff_hz) {
         ModalBasisOptions o;
         o.max_frequency_hz = modal_cutoff_hz;
-        if (modal_cutoff_hz == plan.modal_cutoff_hz) o.modes_below_cutoff = plan.modes_below_cutoff;
         return std::make_shared<const ModalBasis>(scene.structure, o);
       };
       return scheduler::run_at_rung(scene, plan, models);

@@ -62,7 +62,7 @@ struct ClaimedJob {
   int attempt = 0;  // 1 for the first claim
   std::string rung;  // planned at submission; empty for older jobs
   // The modal moving-force rung: the modes counted up to the cut-off at
-  // submission (ModalBasisOptions::modes_below_cutoff); -1 when not known.
+  // submission; -1 when not known.
   int planned_modes = -1;
 };
 

@@ -50,7 +50,6 @@ DeckFrequencies deck_frequencies(const StructureModel& structure) {
   for (int n = kFirstModes;; n *= 2) {
     ModalOptions options;
     options.modes = n;
-    if (structure.num_dofs() >= options.subspace_from_dofs) options.solver = ModeSolver::kSubspace;  // see the header
     const ModalResult modes = modal_analysis(structure, options);
     if (!modes.status.ok()) {
       DeckFrequencies none;

@@ -32,10 +32,9 @@ DeckFrequencies deck_frequencies(const StructureModel& structure);
 
 // The largest structure vsi simulate and vsi price compute f0 and f3 for
 // (larger ones take the code frequency's floor of 30 Hz, with a warning):
-// the 233,000-DOF seed-scale deck takes 28 s and 2.1 GB for its 24 modes by
-// subspace iteration, 5 % of its FE run. From the size where subspace
-// iteration comes first, it alone is tried: Lanczos after it can take tens
-// of minutes there, and a miss leaves the floor, with the reason.
+// the 233,000-DOF seed-scale deck took 28 s and 2.1 GB for its 24 modes by
+// subspace iteration, 5 % of its FE run; a miss leaves the floor, with the
+// reason.
 inline constexpr int kMaxDofsForDeckFrequencies = 300000;
 
 }  // namespace railvsi::scheduler

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "solver/hybrid_basis.hpp"
-#include "solver/modal_analysis.hpp"
+#include "solver/lanczos_slices.hpp"
 #include "solver/modal_basis.hpp"
 #include "envelopes/code_filter.hpp"
 
@@ -58,25 +58,9 @@ int count_modes(const std::shared_ptr<const StructureModel>& structure, double c
   };
   const int known = below_cutoff(lowest_hz);
   if (known < static_cast<int>(lowest_hz.size()) || known > kMaxModalModes) return known;
-  const int dofs = structure->num_dofs();
-  if (dofs > max_dofs) return -1;
-  // In growing batches, and no further than the planner needs: beyond
-  // kMaxModalModes the answer is FE however many there are (a track on
-  // embankments has hundreds of modes below the cut-off). The batches are
-  // those of a ModalBasis (8, 16, 32, ...), from the first that can reach
-  // past the known modes: its last solve is then the basis's own.
-  int first = 8;
-  while (first <= known) first *= 2;
-  for (int asked = first;; asked *= 2) {
-    ModalOptions o;
-    o.modes = std::min(asked, dofs - 1);
-    if (dofs >= o.subspace_from_dofs) o.solver = ModeSolver::kSubspace;
-    const ModalResult r = modal_analysis(*structure, o);
-    if (!r.status.ok()) return -1;
-    const int below = below_cutoff(r.frequencies_hz);
-    if (below < static_cast<int>(r.frequencies_hz.size()) || o.modes >= dofs - 1) return below;
-    if (below > kMaxModalModes) return below;  // at least this many
-  }
+  if (structure->num_dofs() > max_dofs) return -1;
+  const Eigen::Index counted = count_modes_below(structure->K(), structure->M(), cutoff_hz);
+  return counted < 0 ? -1 : static_cast<int>(counted);
 }
 
 namespace {

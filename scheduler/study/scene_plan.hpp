@@ -41,13 +41,11 @@ StudyAsks asks_from_list(const std::vector<std::string>& list);
 // modes_below_cutoff as counted by count_modes (-1: not counted).
 PlannerInput planner_input(const Scene& scene, const StudyAsks& asks, const DeckFrequencies& f, int modes_below_cutoff);
 
-// Modes of the structure up to cutoff_hz, counted no further than just past
-// kMaxModalModes. Read from lowest_hz (the lowest modes already computed,
-// ascending: DeckFrequencies::lowest_hz) when they reach past the cut-off;
-// else computed in growing batches, from 20,000 DOFs (the 3D decks) by
-// subspace iteration alone, as deck_frequencies does (Lanczos after a miss
-// could take tens of minutes there). -1 when they are not read and the
-// structure is larger than max_dofs, or its modes cannot be computed.
+// Modes of the structure up to cutoff_hz. Read from lowest_hz (the lowest
+// modes already computed, ascending: DeckFrequencies::lowest_hz) when they
+// reach past the cut-off; else a Sturm count (one L D L' factor,
+// count_modes_below). -1 when they are not read and the structure is larger
+// than max_dofs, or K - sigma M cannot be factorized.
 int count_modes(const std::shared_ptr<const StructureModel>& structure, double cutoff_hz,
                 const std::vector<double>& lowest_hz = {}, int max_dofs = kMaxDofsForDeckFrequencies);
 

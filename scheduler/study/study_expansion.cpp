@@ -140,7 +140,6 @@ struct TrainFacts {
   Scene first_scene;
   EffectsPlan plan;             // the rung of this train's jobs
   int modes = 0;                // the exact modal rung: the modes of its basis
-  int modes_below_cutoff = -1;  // as the planner counted them, else -1
   nlohmann::json fidelity;      // what the job scenes say of it (null: the study's own)
   std::vector<double> speeds_kmh;
 };
@@ -315,7 +314,6 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
         auto [m, fresh] = modes_of_structure.try_emplace(f.structure_hash, -1);
         if (fresh) m->second = count_modes(f.structure, modal_cutoff_hz, f.frequencies.lowest_hz);
         modes = m->second;
-        f.modes_below_cutoff = modes;
       }
       f.plan = plan_effects(planner_input(f.first_scene, study_asks(doc, f.first_scene.train.is_moving_forces()),
                                           f.frequencies, modes));
@@ -356,7 +354,6 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
         if (!basis) {
           ModalBasisOptions mo;
           mo.max_frequency_hz = f.plan.modal_cutoff_hz;
-          mo.modes_below_cutoff = f.modes_below_cutoff;
           basis = std::make_shared<const ModalBasis>(f.structure, mo);
         }
         const ModalSweep sweep(*basis, dry.train, dry.analysis.contact.rail_lines, dry.analysis.dt_s);

@@ -28,7 +28,7 @@ struct JobSpec {
   std::string rung;        // the planned rung (Rung::name()), e.g. "moving_forces/modal"
   // The exact modal rung: the modes its dry run kept, all up to the cut-off
   // (0 otherwise, and for a job read back from a store); stored as
-  // jobs.planned_modes for the workers' bases.
+  // jobs.planned_modes.
   int modes = 0;
 };
 

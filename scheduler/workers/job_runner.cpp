@@ -122,9 +122,6 @@ std::unique_ptr<ModalPass> make_modal_pass(const ClaimedJob& job, Scene scene, S
   const BasisLookup lookup = cache.get_basis(job.operator_key, [&] {
     ModalBasisOptions o;
     o.max_frequency_hz = pass->plan.modal_cutoff_hz;
-    // The submission's count: the smaller batches of modes are not solved
-    // again (the same modes to the bit).
-    o.modes_below_cutoff = job.planned_modes;
     ModalModel m;
     m.basis = std::make_shared<const ModalBasis>(pass->scene.structure, o);
     m.sections = modal_section_forces(*m.basis, rails);

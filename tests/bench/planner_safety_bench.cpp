@@ -79,7 +79,6 @@ void compare(const Case& c) {
   const double dt_modal = modal_time_step_s(plan.code_frequency_hz, in.tolerance, c.peaks);
   ModalBasisOptions mo;
   mo.max_frequency_hz = plan.modal_cutoff_hz;
-  mo.modes_below_cutoff = in.modes_below_cutoff;
   const ModalBasis basis(structure, mo);
   double planner_s = cpu_s() - t_plan, full_s = 0.0;
   const CodeFilter filter(dt_modal, code_hz);

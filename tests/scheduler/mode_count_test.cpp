@@ -57,22 +57,21 @@ TEST(ModeCount, NoCutoffCountsNothing) {
   EXPECT_EQ(count_modes(structure, std::nan("")), -1);
 }
 
-TEST(ModeCount, ABasisGivenTheCountHasTheModesOfOneCountedInBatchesToTheBit) {
+TEST(ModeCount, ABasisHoldsExactlyTheModesCountedBelowItsCutoff) {
+  // Twelve modes below the cut-off (four bending frequencies x three spans),
+  // in one solve; the closed form says which.
   const auto structure = three_equal_spans();
   const double cutoff_hz = 0.5 * (span_hz(4) + span_hz(5));
   const int count = count_modes(structure, cutoff_hz);
   ASSERT_EQ(count, 12);
   ModalBasisOptions o;
   o.max_frequency_hz = cutoff_hz;
-  const ModalBasis batches(structure, o);  // 8 modes, then 16
-  o.modes_below_cutoff = count;
-  const ModalBasis known(structure, o);  // 16 at once
-  ASSERT_EQ(batches.num_modes(), 12);
-  ASSERT_EQ(known.num_modes(), 12);
-  EXPECT_EQ(batches.omega_rad_s(), known.omega_rad_s());
-  EXPECT_EQ(batches.zeta(), known.zeta());
-  for (int dof : structure->rail_dofs())
-    for (int k = 0; k < 12; ++k) ASSERT_EQ(batches.row(dof)[k], known.row(dof)[k]) << "DOF " << dof << ", mode " << k;
+  const ModalBasis basis(structure, o);
+  ASSERT_EQ(basis.num_modes(), 12);
+  for (int k = 0; k < 12; ++k)  // the mesh's error: measured below 1e-4 here
+    EXPECT_NEAR(basis.omega_rad_s()[static_cast<std::size_t>(k)] / (2.0 * std::numbers::pi) / span_hz(k / 3 + 1), 1.0,
+                1e-3)
+        << "mode " << k + 1;
 }
 
 }  // namespace
