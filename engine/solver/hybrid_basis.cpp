@@ -105,22 +105,12 @@ ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const H
   ModalOptions mo;
   if (o.modes > 0) {
     mo.modes = std::min<int>(o.modes, static_cast<int>(n) - 1);
-    r = modal_analysis(K, M, mo);
   } else {
-    // Batches of 8, 16, ... until the highest lies above the cut-off.
-    for (mo.modes = 8;; mo.modes = std::min<int>(2 * mo.modes, static_cast<int>(n) - 1)) {
-      r = modal_analysis(K, M, mo);
-      if (!r.status.ok() || r.frequencies_hz.back() > o.max_frequency_hz || mo.modes >= n - 1) break;
-    }
-    if (r.status.ok()) {
-      Eigen::Index keep = 0;
-      while (keep < static_cast<Eigen::Index>(r.frequencies_hz.size()) &&
-             r.frequencies_hz[static_cast<std::size_t>(keep)] <= o.max_frequency_hz)
-        ++keep;
-      r.frequencies_hz.resize(static_cast<std::size_t>(keep));
-      r.shapes = r.shapes.leftCols(keep).eval();
-    }
+    // Every mode up to the cut-off, the count certified by a Sturm count.
+    mo.modes = 0;
+    mo.max_frequency_hz = o.max_frequency_hz;
   }
+  r = modal_analysis(K, M, mo);
   if (!r.status.ok())
     throw InputError("/structure", "the bridge interior's modes could not be computed: " + r.status.message());
   return r;
