@@ -10,7 +10,8 @@
 //   OPENBLAS_NUM_THREADS=1 build/tests/bench/hybrid_bench [DOFS ...] [--cutoffs 30,60,100] [--dip] [--partition]
 // default DOFS 6000 20000; --fe-cache DIR keeps each FE reference run's
 // values in DIR and reads them from there the next time (the FE run of the
-// 20,000-DOF deck takes minutes); --partition prints how the hybrid structure
+// 20,000-DOF deck takes minutes); --duration-s T simulates T seconds only
+// (the seed-scale deck: 0.5 s is the paper's 2,000 steps); --partition prints how the hybrid structure
 // would split each deck (track, interface, interior DOFs) and runs nothing.
 #include <cmath>
 #include <cstdio>
@@ -81,7 +82,7 @@ Values run(const Scene& scene, double code_cutoff_hz) {
 
 double rel(double a, double b) { return (a - b) / std::abs(b); }
 
-Scene deck_scene(int dofs, bool dip) {
+Scene deck_scene(int dofs, bool dip, double duration_s = 0.0) {
   Deck3dOptions d;
   d.target_dofs = dofs;
   Scene s;
@@ -97,6 +98,7 @@ Scene deck_scene(int dofs, bool dip) {
   s.analysis.contact.law = "hertz";
   s.analysis.contact.rail_lines = {0, 1};
   s.analysis.history_stride = 1;
+  if (duration_s > 0.0) s.analysis.duration_s = duration_s;
   return s;
 }
 
@@ -145,13 +147,14 @@ Values fe_values(const Scene& s, double code_hz, const std::string& cache_dir, c
   return v;
 }
 
-void compare(int dofs, bool dip, const std::vector<double>& cutoffs, const std::string& cache_dir) {
-  Scene s = deck_scene(dofs, dip);
+void compare(int dofs, bool dip, const std::vector<double>& cutoffs, const std::string& cache_dir, double duration_s) {
+  Scene s = deck_scene(dofs, dip, duration_s);
   const auto f = scheduler::deck_frequencies(*s.structure);
   const double code_hz = code_cutoff_hz(f.f0_hz, f.f3_hz);
-  std::printf("\n## 3D deck, %d DOFs, ICE3 300 km/h, German low seed 1%s; f0 %.3f Hz, f3 %.3f Hz, filter %.3g Hz\n",
-              s.structure->num_dofs(), dip ? " + 20 mm x 1 m dip at 37 m" : "", f.f0_hz, f.f3_hz, code_hz);
-  const Values fe = fe_values(s, code_hz, cache_dir, fmt::format("fe-{}{}", dofs, dip ? "-dip" : ""));
+  std::printf("\n## 3D deck, %d DOFs, ICE3 300 km/h, German low seed 1%s%s; f0 %.3f Hz, f3 %.3f Hz, filter %.3g Hz\n",
+              s.structure->num_dofs(), dip ? " + 20 mm x 1 m dip at 37 m" : "",
+              duration_s > 0.0 ? fmt::format(", {} s", duration_s).c_str() : "", f.f0_hz, f.f3_hz, code_hz);
+  const Values fe = fe_values(s, code_hz, cache_dir, fmt::format("fe-{}{}{}", dofs, dip ? "-dip" : "", duration_s > 0.0 ? fmt::format("-{}s", duration_s) : ""));
   std::printf("FE: disp %.6e m, acc %.6f m/s2, Qmin %.1f N, dQ/Q %.5f, car body %.5f m/s2, loss %.6f s; "
               "CPU setup %.2f s, loop %.2f s\n",
               fe.displacement_m, fe.filtered_acc_mps2, fe.min_force_N, fe.unloading, fe.carbody_mps2, fe.contact_loss_s,
@@ -181,9 +184,12 @@ int main(int argc, char** argv) {
   std::vector<double> cutoffs{30.0, 60.0, 100.0};
   bool dip = false, partition_only = false;
   std::string cache_dir;
+  double duration_s = 0.0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--fe-cache" && i + 1 < argc) {
+    if (a == "--duration-s" && i + 1 < argc) {
+      duration_s = std::atof(argv[++i]);
+    } else if (a == "--fe-cache" && i + 1 < argc) {
       cache_dir = argv[++i];
     } else if (a == "--partition") {
       partition_only = true;
@@ -198,6 +204,6 @@ int main(int argc, char** argv) {
     }
   }
   if (dofs.empty()) dofs = {6000, 20000};
-  for (int n : dofs) partition_only ? railvsi::partition(n) : railvsi::compare(n, dip, cutoffs, cache_dir);
+  for (int n : dofs) partition_only ? railvsi::partition(n) : railvsi::compare(n, dip, cutoffs, cache_dir, duration_s);
   return 0;
 }
