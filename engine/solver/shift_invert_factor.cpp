@@ -15,49 +15,45 @@ ShiftInvertFactor::~ShiftInvertFactor() {
   factor_.reset();
 }
 
-const Status& ShiftInvertFactor::factorize(double sigma) {
-  if (sigma_ == sigma && !indefinite_) return status_;  // factorized (or failed) already
+ShiftInvertFactor::Outcome ShiftInvertFactor::factor_at(double sigma, bool indefinite) {
   sigma_ = sigma;
-  indefinite_ = false;
+  indefinite_ = indefinite;
   eigenvalues_below_ = 0;
   const SparseMatrix A = K_ - sigma * M_;
   cholmod_sparse view = cholmod_view_symmetric(A);
   cholmod_common* c = common_->get();
-  c->supernodal = CHOLMOD_AUTO;
-  c->final_ll = 1;  // L L' also when simplicial (see the header)
-  factor_ = Factor(cholmod_analyze(&view, c), CholmodFactorDeleter{c});
-  const bool factorized = factor_ && cholmod_factorize(&view, factor_.get(), c);
-  if (factorized && c->status != CHOLMOD_NOT_POSDEF && factor_->minor == factor_->n) {
+  c->supernodal = indefinite ? CHOLMOD_SIMPLICIAL : CHOLMOD_AUTO;
+  c->final_ll = indefinite ? 0 : 1;  // L L' also when simplicial (see the header)
+  // The pattern of K - sigma M is the same for every shift: a simplicial
+  // L D L' factor of an earlier shift keeps its ordering and is refactorized.
+  if (!indefinite || !factor_ || factor_->is_super || factor_->is_ll)
+    factor_ = Factor(cholmod_analyze(&view, c), CholmodFactorDeleter{c});
+  if (!factor_ || !cholmod_factorize(&view, factor_.get(), c)) return Outcome::kFailed;
+  return c->status != CHOLMOD_NOT_POSDEF && factor_->minor == factor_->n ? Outcome::kComplete : Outcome::kStopped;
+}
+
+const Status& ShiftInvertFactor::factorize(double sigma) {
+  if (sigma_ == sigma && !indefinite_) return status_;  // factorized (or failed) already
+  const Outcome o = factor_at(sigma, false);
+  if (o == Outcome::kComplete) {
     status_ = Status::Ok();
     return status_;
   }
-  if (factorized)  // but not positive definite: CHOLMOD stopped at column `minor`
+  if (o == Outcome::kStopped)  // not positive definite: CHOLMOD stopped at column `minor`
     status_ = {StatusCode::kDiverged,
                fmt::format("K - sigma M (sigma = {} rad^2/s^2) is not positive definite: a mechanism, or an "
                            "eigenvalue below the shift",
                            sigma)};
   else
-    status_ = failed(c->status);
+    status_ = failed(common_->get()->status);
   factor_.reset();
   return status_;
 }
 
 const Status& ShiftInvertFactor::factorize_indefinite(double sigma) {
   if (sigma_ == sigma && indefinite_) return status_;
-  sigma_ = sigma;
-  indefinite_ = true;
-  eigenvalues_below_ = 0;
-  const SparseMatrix A = K_ - sigma * M_;
-  cholmod_sparse view = cholmod_view_symmetric(A);
-  cholmod_common* c = common_->get();
-  c->supernodal = CHOLMOD_SIMPLICIAL;
-  c->final_ll = 0;
-  // The pattern of K - sigma M is the same for every shift: a simplicial
-  // factor of an earlier shift keeps its ordering and is refactorized.
-  if (!factor_ || factor_->is_super || factor_->is_ll)
-    factor_ = Factor(cholmod_analyze(&view, c), CholmodFactorDeleter{c});
-  const bool factorized = factor_ && cholmod_factorize(&view, factor_.get(), c);
-  if (factorized && c->status != CHOLMOD_NOT_POSDEF && factor_->minor == factor_->n) {
+  const Outcome o = factor_at(sigma, true);
+  if (o == Outcome::kComplete) {
     // Simplicial L D L': D(j, j) is the first entry of column j.
     // (The int interface: cholmod_start, CHOLMOD_INT indices.)
     const auto* Lp = static_cast<const int*>(factor_->p);
@@ -67,11 +63,12 @@ const Status& ShiftInvertFactor::factorize_indefinite(double sigma) {
     status_ = Status::Ok();
     return status_;
   }
-  status_ = factorized ? Status{StatusCode::kDiverged,
-                                fmt::format("K - sigma M (sigma = {} rad^2/s^2) is singular: sigma is an eigenvalue "
-                                            "to rounding, or the model has a mechanism",
-                                            sigma)}
-                       : failed(c->status);
+  status_ = o == Outcome::kStopped
+                ? Status{StatusCode::kDiverged,
+                         fmt::format("K - sigma M (sigma = {} rad^2/s^2) is singular: sigma is an eigenvalue "
+                                     "to rounding, or the model has a mechanism",
+                                     sigma)}
+                : failed(common_->get()->status);
   factor_.reset();
   return status_;
 }

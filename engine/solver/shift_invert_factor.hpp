@@ -46,6 +46,11 @@ class ShiftInvertFactor {
 
  private:
   using Factor = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>;
+  // Factorizes K - sigma M: L L' (supernodal where it pays), or with
+  // `indefinite` simplicial L D L'. kStopped: CHOLMOD stopped at a pivot
+  // that is not positive (L L') or zero (L D L').
+  enum class Outcome { kComplete, kStopped, kFailed };
+  Outcome factor_at(double sigma, bool indefinite);
   Status failed(int cholmod_status) const;
   const SparseMatrix& K_;
   const SparseMatrix& M_;
