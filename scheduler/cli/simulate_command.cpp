@@ -14,7 +14,6 @@
 #include "io/scene_loader.hpp"
 #include "planning/time_step_warnings.hpp"
 #include "simulation/simulation.hpp"
-#include "solver/hybrid_operator.hpp"
 #include "study/deck_frequencies.hpp"
 #include "study/scene_plan.hpp"
 #include "workers/rung_runner.hpp"
@@ -61,12 +60,8 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
     try {
       const scheduler::ScenePlan plan = scheduler::plan_scene(scene, f);
       scheduler::RungModels models;
-      // An escalation at another dt on the hybrid structure reuses its reduction.
-      std::shared_ptr<const HybridBasis> hybrid;
-      models.fe_operator = [&hybrid](const Scene& s) {
-        auto op = make_structure_operator(s, nullptr, hybrid);
-        if (const auto* h = dynamic_cast<const HybridOperator*>(op.get())) hybrid = h->shared_basis();
-        return op;
+      models.fe_operator = [](const Scene& s, std::shared_ptr<const HybridBasis> reuse) {
+        return make_structure_operator(s, nullptr, std::move(reuse));
       };
       models.modal_basis = [&](double modal_cutoff_hz) {
         ModalBasisOptions o;

@@ -14,7 +14,6 @@
 #include "io/scene_loader.hpp"
 #include "simulation/run_monitor.hpp"
 #include "simulation/simulation.hpp"
-#include "solver/hybrid_operator.hpp"
 #include "envelopes/code_filter.hpp"
 #include "envelopes/envelope_rows.hpp"
 #include "envelopes/job_envelopes.hpp"
@@ -277,12 +276,10 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache, ImportedStr
       return run_modal_jobs({job}, cache, std::make_pair(std::move(scene), std::move(plan)), imports).front();
     CacheLookup lookup;
     RungModels models;
-    std::shared_ptr<const HybridBasis> hybrid;  // the first run's, for an escalation at another dt
     std::optional<StructureBackend> first_backend;
-    models.fe_operator = [&](const Scene& s) {
-      // An escalation at a finer dt (wheel quantities) needs its own K_bar
-      // (on the hybrid structure, of the same reduction).
-      // A run repeated on FE after an impact on the hybrid structure needs
+    models.fe_operator = [&](const Scene& s, std::shared_ptr<const HybridBasis> reuse) {
+      // An escalation at a finer dt (wheel quantities) needs its own K_bar,
+      // and a run repeated on FE after an impact on the hybrid structure
       // the FE operator.
       if (!first_backend) first_backend = s.analysis.structure_backend;
       std::string key = s.analysis.dt_s == scene.analysis.dt_s
@@ -291,8 +288,7 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache, ImportedStr
       if (s.analysis.structure_backend != *first_backend)
         key += fmt::format("/{}", structure_backend_name(s.analysis.structure_backend));
       const CacheLookup before = lookup;  // the first run's, counted with the escalation's
-      lookup = cache.get(key, [&] { return make_structure_operator(s, nullptr, hybrid); });
-      if (const auto* h = dynamic_cast<const HybridOperator*>(lookup.op.get())) hybrid = h->shared_basis();
+      lookup = cache.get(key, [&] { return make_structure_operator(s, nullptr, reuse); });
       lookup.factorized = lookup.factorized || before.factorized;
       lookup.factorization_s += before.factorization_s;
       lookup.evictions += before.evictions;

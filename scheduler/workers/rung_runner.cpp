@@ -7,6 +7,7 @@
 #include "analysis/modal_moving_forces.hpp"
 #include "core/input_error.hpp"
 #include "simulation/simulation.hpp"
+#include "solver/hybrid_operator.hpp"
 
 namespace railvsi::scheduler {
 
@@ -52,7 +53,10 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
     on_rung.analysis.contact.unilateral = plan.rung.unilateral;
   }
   apply_rung_structure(plan, on_rung.analysis);
-  const std::shared_ptr<const StructureOperator> op = models.fe_operator(on_rung);
+  const std::shared_ptr<const StructureOperator> op = models.fe_operator(on_rung, nullptr);
+  // A hybrid run's reduction serves its escalation at another dt.
+  const auto* hybrid_op = dynamic_cast<const HybridOperator*>(op.get());
+  const std::shared_ptr<const HybridBasis> reduction = hybrid_op ? hybrid_op->shared_basis() : nullptr;
   Result r = Simulation(on_rung, op).run();
   record_rung(on_rung, plan, plan.rung, r.summary);
   if (scene.train.is_moving_forces()) return r;
@@ -66,7 +70,7 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
     fe.analysis.structure_backend = StructureBackend::kFiniteElements;
     Rung fe_rung = rung;
     fe_rung.structure = "fe";
-    Result again = Simulation(fe, models.fe_operator(fe)).run();
+    Result again = Simulation(fe, models.fe_operator(fe, nullptr)).run();
     record_rung(fe, plan, fe_rung, again.summary);
     const std::string& before = last.summary.fidelity.escalation;
     again.summary.fidelity.escalation = before.empty() ? *impact : before + "; " + *impact;
@@ -83,7 +87,7 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
   full.analysis.contact.unilateral = true;
   const double dt_factor = plan.escalation_dt_factor.value_or(1.0);
   if (dt_factor != 1.0) full.analysis.dt_s *= dt_factor;
-  Result again = Simulation(full, dt_factor != 1.0 ? models.fe_operator(full) : op).run();
+  Result again = Simulation(full, dt_factor != 1.0 ? models.fe_operator(full, reduction) : op).run();
   record_rung(full, plan, escalated(plan.rung), again.summary);
   again.summary.fidelity.escalation = *why;
   again.summary.wall_s += r.summary.wall_s;

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 
+#include "solver/hybrid_basis.hpp"
 #include "solver/modal_basis.hpp"
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
@@ -20,7 +21,11 @@ namespace railvsi::scheduler {
 
 // Where the rung's structure comes from (a cache, or built for this run).
 struct RungModels {
-  std::function<std::shared_ptr<const StructureOperator>(const Scene&)> fe_operator;
+  // The operator of a scene's structure backend; `reuse`: the hybrid
+  // reduction of an earlier run of the same job (another dt, or the FE
+  // structure asked next), null when there is none.
+  std::function<std::shared_ptr<const StructureOperator>(const Scene&, std::shared_ptr<const HybridBasis> reuse)>
+      fe_operator;
   std::function<std::shared_ptr<const ModalBasis>(double cutoff_hz)> modal_basis;
 };
 

@@ -33,7 +33,7 @@ Scene dip_scene(double depth_m) {
 
 RungModels fe_models() {
   RungModels m;
-  m.fe_operator = [](const Scene& s) { return make_structure_operator(s); };
+  m.fe_operator = [](const Scene& s, std::shared_ptr<const HybridBasis>) { return make_structure_operator(s); };
   return m;
 }
 
@@ -64,7 +64,7 @@ TEST(RungRunner, WheelQuantitiesEscalateAtTheFinerTimeStepOnItsOwnOperator) {
   plan.escalation_dt_factor = 0.5;
   std::vector<double> operator_dts;
   RungModels models;
-  models.fe_operator = [&](const Scene& s) {
+  models.fe_operator = [&](const Scene& s, std::shared_ptr<const HybridBasis>) {
     operator_dts.push_back(s.analysis.dt_s);
     return make_structure_operator(s);
   };
@@ -97,7 +97,7 @@ TEST(RungRunner, NoEscalationKeepsTheTimeStepWhateverTheFactor) {
   plan.escalation_dt_factor = 0.5;
   int operators = 0;
   RungModels models;
-  models.fe_operator = [&](const Scene& s) {
+  models.fe_operator = [&](const Scene& s, std::shared_ptr<const HybridBasis>) {
     ++operators;
     return make_structure_operator(s);
   };
