@@ -169,8 +169,8 @@ ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::
 
   // The first shift lies below the spectrum (its L L' factor proves it);
   // the next ones inside, each factorized once as L D L'.
-  auto here = std::make_unique<ShiftInvertFactor>(K, M);
-  auto next = std::make_unique<ShiftInvertFactor>(K, M);
+  auto here = std::make_unique<ShiftInvertFactor>(K, M, options.indefinite);
+  auto next = std::make_unique<ShiftInvertFactor>(K, M, options.indefinite);
   if (!here->factorize(options.shift_rad2_per_s2).ok()) {
     result.status = here->status();
     return result;
@@ -303,8 +303,9 @@ ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::
   return result;
 }
 
-Eigen::Index count_modes_below(const SparseMatrix& K, const SparseMatrix& M, double frequency_hz, Status* status) {
-  ShiftInvertFactor factor(K, M);
+Eigen::Index count_modes_below(const SparseMatrix& K, const SparseMatrix& M, double frequency_hz, Status* status,
+                               IndefiniteFactorizer indefinite) {
+  ShiftInvertFactor factor(K, M, indefinite);
   const Status& s = factor.factorize_indefinite(eigenvalue_of(frequency_hz));
   if (status) *status = s;
   return s.ok() ? factor.eigenvalues_below() : -1;

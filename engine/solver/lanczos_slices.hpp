@@ -29,6 +29,7 @@ ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::
 // The number of eigenvalues of K phi = omega^2 M phi with a frequency below
 // frequency_hz (one L D L' factor; -1 with the status when it fails).
 Eigen::Index count_modes_below(const SparseMatrix& K, const SparseMatrix& M, double frequency_hz,
-                               Status* status = nullptr);
+                               Status* status = nullptr,
+                               IndefiniteFactorizer indefinite = IndefiniteFactorizer::kMumps);
 
 }  // namespace railvsi

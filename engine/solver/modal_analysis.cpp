@@ -72,7 +72,7 @@ ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const M
   Eigen::Index wanted = nev;
   if (cut && (options.solver == ModeSolver::kSubspace || n <= kDenseFromDofs)) {
     Status counted;
-    const Eigen::Index below = count_modes_below(K, M, options.max_frequency_hz, &counted);
+    const Eigen::Index below = count_modes_below(K, M, options.max_frequency_hz, &counted, options.indefinite);
     if (!counted.ok()) {
       result.status = counted;
       return result;

@@ -52,6 +52,15 @@ const Status& ShiftInvertFactor::factorize(double sigma) {
 
 const Status& ShiftInvertFactor::factorize_indefinite(double sigma) {
   if (sigma_ == sigma && indefinite_) return status_;
+  if (indefinite_factorizer_ == IndefiniteFactorizer::kMumps) {
+    sigma_ = sigma;
+    indefinite_ = true;
+    factor_.reset();
+    if (!mumps_) mumps_ = std::make_unique<MumpsLdlt>();
+    status_ = mumps_->factorize(K_ - sigma * M_);
+    eigenvalues_below_ = status_.ok() ? mumps_->negative_pivots() : 0;
+    return status_;
+  }
   const Outcome o = factor_at(sigma, true);
   if (o == Outcome::kComplete) {
     // Simplicial L D L': D(j, j) is the first entry of column j.
@@ -81,6 +90,10 @@ Status ShiftInvertFactor::failed(int cholmod_status) const {
 
 void ShiftInvertFactor::solve(const double* x, double* y) const {
   const Eigen::Index n = rows();
+  if (uses_mumps()) {
+    if (!mumps_->solve(x, y)) std::fill(y, y + n, std::numeric_limits<double>::quiet_NaN());
+    return;
+  }
   if (!factor_) {  // not reached: callers check the status first
     std::fill(y, y + n, std::numeric_limits<double>::quiet_NaN());
     return;
@@ -96,6 +109,7 @@ void ShiftInvertFactor::solve(const double* x, double* y) const {
 }
 
 bool ShiftInvertFactor::solve(const DenseMatrix& B, DenseMatrix& X) const {
+  if (uses_mumps()) return mumps_->solve(B, X);
   if (!factor_) return false;
   DenseMatrix& b = const_cast<DenseMatrix&>(B);  // CHOLMOD reads B only
   cholmod_dense bview = cholmod_view(b);

@@ -3,20 +3,25 @@
 // for one vector (Lanczos) or a block of them (subspace iteration; one solve
 // of many columns runs on BLAS-3 kernels). Below the spectrum it is L L'
 // (supernodal, BLAS-3); inside it L D L', whose inertia counts the
-// eigenvalues below the shift (spectrum slicing, lanczos_slices.hpp).
+// eigenvalues below the shift (spectrum slicing, lanczos_slices.hpp): by
+// MUMPS, or CHOLMOD's simplicial factor (IndefiniteFactorizer).
 #include <memory>
 #include <optional>
 
 #include "core/status.hpp"
 #include "core/types.hpp"
 #include "solver/cholmod_handles.hpp"
+#include "solver/modal_types.hpp"
+#include "solver/mumps_ldlt.hpp"
 
 namespace railvsi {
 
 class ShiftInvertFactor {
  public:
   // Keeps references to K and M: both must outlive the factor.
-  ShiftInvertFactor(const SparseMatrix& K, const SparseMatrix& M) : K_(K), M_(M) {}
+  ShiftInvertFactor(const SparseMatrix& K, const SparseMatrix& M,
+                    IndefiniteFactorizer indefinite = IndefiniteFactorizer::kMumps)
+      : K_(K), M_(M), indefinite_factorizer_(indefinite) {}
   ~ShiftInvertFactor();
   ShiftInvertFactor(const ShiftInvertFactor&) = delete;
   ShiftInvertFactor& operator=(const ShiftInvertFactor&) = delete;
@@ -26,9 +31,10 @@ class ShiftInvertFactor {
   // Status: an L D L' factor would accept it, and the "lowest" modes found
   // would silently skip those below the shift.
   const Status& factorize(double sigma);
-  // Factorizes K - sigma M as L D L' (simplicial, no pivoting: CHOLMOD's
-  // supernodal factor is L L' only), for a shift inside the spectrum. A
-  // zero pivot (sigma an eigenvalue to rounding) is a Status.
+  // Factorizes K - sigma M as L D L' for a shift inside the spectrum: by
+  // MUMPS (with pivoting), or by CHOLMOD simplicial without pivoting (its
+  // supernodal factor is L L' only). A zero pivot (sigma an eigenvalue to
+  // rounding) is a Status.
   const Status& factorize_indefinite(double sigma);
   const Status& status() const { return status_; }
   // The number of eigenvalues below the shift factorized (Sylvester's law
@@ -52,8 +58,11 @@ class ShiftInvertFactor {
   enum class Outcome { kComplete, kStopped, kFailed };
   Outcome factor_at(double sigma, bool indefinite);
   Status failed(int cholmod_status) const;
+  bool uses_mumps() const { return indefinite_ && mumps_ && mumps_->factorized(); }
   const SparseMatrix& K_;
   const SparseMatrix& M_;
+  IndefiniteFactorizer indefinite_factorizer_;
+  std::unique_ptr<MumpsLdlt> mumps_;  // the L D L' factor when MUMPS made it
   std::unique_ptr<CholmodCommon> common_ = std::make_unique<CholmodCommon>();
   Factor factor_{nullptr, CholmodFactorDeleter{nullptr}};
   // Solve workspaces, reused between the solves of one analysis.
