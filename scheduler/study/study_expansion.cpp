@@ -11,6 +11,7 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "io/schema_validator.hpp"
+#include "io/train_sets.hpp"
 #include "simulation/simulation.hpp"
 #include "study/canonical_json.hpp"
 #include "envelopes/code_filter.hpp"
@@ -190,14 +191,18 @@ JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequenci
 
 }  // namespace
 
-StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, const std::string& file,
+StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir, const std::string& file,
                        const ExpandOptions& options) {
   // Absolute from the start: a relative directory ("d3", or "" for a study
   // in the working directory) would leave names relative in the stored
   // scenes, and the check below would resolve them against it a second time.
   const std::filesystem::path base_dir =
       (study_dir.empty() ? std::filesystem::current_path() : std::filesystem::absolute(study_dir)).lexically_normal();
-  shared_schema_validator("study.schema.json").validate(doc, file);
+  shared_schema_validator("study.schema.json").validate(given, file);
+  // "set:<name>" trains become the set's trains: the stored study, its jobs
+  // and its reports see the trains themselves.
+  json doc = given;
+  doc["trains"] = expand_train_sets(given.at("trains"), file);
   // analysis may be left out: every option at its default.
   const json analysis = doc.contains("analysis") ? doc.at("analysis") : json::object();
   const bool dt_given = analysis.contains("dt_s");
