@@ -1,6 +1,5 @@
 #include "io/train_sets.hpp"
 
-#include <algorithm>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -20,23 +19,13 @@ std::filesystem::path train_set_dir() { return train_library_dir() / "sets"; }
 
 }  // namespace
 
-std::vector<std::string> library_train_set_names() {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(train_set_dir(), ec))
-    if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
+std::vector<std::string> library_train_set_names() { return json_file_names(train_set_dir()); }
 
 nlohmann::json load_train_set(const std::string& name) {
-  // As for a train: a name is one file name of the folder, never a path.
   const std::filesystem::path dir = train_set_dir();
-  const bool plain = !name.empty() && name.find_first_of(std::string_view("/\\\0", 3)) == std::string::npos &&
-                     name != "." && name != "..";
   const std::filesystem::path file = dir / (name + ".json");
   std::error_code ec;
-  if (!plain || !std::filesystem::is_regular_file(file, ec)) {
+  if (!is_plain_file_name(name) || !std::filesystem::is_regular_file(file, ec)) {
     const auto names = library_train_set_names();
     throw InputError("", fmt::format("unknown train set '{}'; the library {} has: {}", name, dir.string(),
                                      names.empty() ? std::string("no sets") : fmt::format("{}", fmt::join(names, ", "))));
@@ -50,12 +39,15 @@ nlohmann::json load_train_set(const std::string& name) {
   return doc.at("trains");
 }
 
-nlohmann::json expand_train_sets(const nlohmann::json& trains, const std::string& file) {
+nlohmann::json expand_train_sets(const nlohmann::json& trains, const std::string& file,
+                                 std::vector<std::string>* paths) {
   nlohmann::json out = nlohmann::json::array();
   for (std::size_t i = 0; i < trains.size(); ++i) {
     const nlohmann::json& t = trains[i];
+    const std::string path = child_path("/trains", i);
     if (!t.is_string() || !t.get<std::string>().starts_with(kSetPrefix)) {
       out.push_back(t);
+      if (paths != nullptr) paths->push_back(path);
       continue;
     }
     nlohmann::json members;
@@ -63,9 +55,12 @@ nlohmann::json expand_train_sets(const nlohmann::json& trains, const std::string
       members = load_train_set(t.get<std::string>().substr(kSetPrefix.size()));
     } catch (const InputError& e) {
       if (!e.file().empty()) throw;  // an error inside the set file
-      throw InputError(child_path("/trains", i), e.what(), file);
+      throw InputError(path, e.what(), file);
     }
-    for (const nlohmann::json& m : members) out.push_back(m);
+    for (const nlohmann::json& m : members) {
+      out.push_back(m);
+      if (paths != nullptr) paths->push_back(path);
+    }
   }
   return out;
 }

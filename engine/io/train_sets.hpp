@@ -17,7 +17,10 @@ std::vector<std::string> library_train_set_names();
 nlohmann::json load_train_set(const std::string& name);
 
 // A study's "trains" with every "set:<name>" item replaced by the set's
-// trains. An unknown set is an InputError at /trains/<i> of `file`.
-nlohmann::json expand_train_sets(const nlohmann::json& trains, const std::string& file);
+// trains. An unknown set is an InputError at /trains/<i> of `file`. When
+// `paths` is given, it receives each train's place in the study
+// (/trains/<i>, the set's for a train of a set), for the errors found later.
+nlohmann::json expand_train_sets(const nlohmann::json& trains, const std::string& file,
+                                 std::vector<std::string>* paths = nullptr);
 
 }  // namespace railvsi

@@ -37,7 +37,8 @@ double fundamental_hz(const StructureModel& structure) { return scheduler::deck_
 ordered_json study_report(const nlohmann::json& given, const std::filesystem::path& file, int modes) {
   shared_schema_validator("study.schema.json").validate(given, file.string());
   nlohmann::json doc = given;
-  doc["trains"] = expand_train_sets(given.at("trains"), file.string());
+  std::vector<std::string> train_paths;  // each train's place in the given study
+  doc["trains"] = expand_train_sets(given.at("trains"), file.string(), &train_paths);
   // The given speeds and the steps of a line_speed_kmh range (its speeds
   // around the resonances are listed with the resonance speeds below).
   std::vector<double> speeds;
@@ -67,7 +68,7 @@ ordered_json study_report(const nlohmann::json& given, const std::filesystem::pa
         return parse_scene(scene, file.parent_path(), file.string());
       } catch (const InputError& e) {
         const std::string& path = e.json_path();
-        if (path.starts_with("/train")) throw InputError(child_path("/trains", i) + path.substr(6), e.what(), file.string());
+        if (path.starts_with("/train")) throw InputError(train_paths[i] + path.substr(6), e.what(), file.string());
         throw e.with_file(file.string());
       }
     }();

@@ -144,5 +144,14 @@ TEST_F(RealTrains, UnknownSetIsAnInputErrorAtItsPlaceInTheStudy) {
   }
 }
 
+// A train listed directly and again through a set is refused at the set's
+// place: the study's items, not the expanded list, name it.
+TEST_F(RealTrains, TrainGivenTwiceThroughASetIsRefusedAtTheSet) {
+  const auto file = write_json("study.json", set_study(json::array({"Talgo350", "HSLM-A1", "set:hsl-real"})));
+  const VsiRun run = vsi("submit '" + file.string() + "' --db '" + (dir_ / "r.sqlite").string() + "'");
+  expect_input_error(run, file, "/trains/2");
+  EXPECT_NE(run.err.find("the same train as /trains/0"), std::string::npos) << run.err;
+}
+
 }  // namespace
 }  // namespace railvsi::test
