@@ -133,14 +133,17 @@ TEST_F(RealTrains, SetHslRealStandsForItsTrainsInOrder) {
 }
 
 TEST_F(RealTrains, UnknownSetIsAnInputErrorAtItsPlaceInTheStudy) {
-  const auto file = write_json("study.json", set_study(json::array({"HSLM-A1", "set:no-such-set"})));
-  for (const char* command : {"inspect", "submit"}) {
-    SCOPED_TRACE(command);
-    const std::string db = std::string(command) == "submit" ? " --db '" + (dir_ / "r.sqlite").string() + "'" : "";
-    const VsiRun run = vsi(std::string(command) + " '" + file.string() + "'" + db);
-    expect_input_error(run, file, "/trains/1");
-    EXPECT_NE(run.err.find("unknown train set 'no-such-set'"), std::string::npos) << run.err;
-    EXPECT_NE(run.err.find("hsl-real"), std::string::npos) << "lists the sets: " << run.err;
+  // A set's name is one file name of the sets folder, never a path.
+  for (const std::string set : {"no-such-set", "../sets/hsl-real"}) {
+    const auto file = write_json("study.json", set_study(json::array({"HSLM-A1", "set:" + set})));
+    for (const char* command : {"inspect", "submit"}) {
+      SCOPED_TRACE(std::string(command) + " " + set);
+      const std::string db = std::string(command) == "submit" ? " --db '" + (dir_ / "r.sqlite").string() + "'" : "";
+      const VsiRun run = vsi(std::string(command) + " '" + file.string() + "'" + db);
+      expect_input_error(run, file, "/trains/1");
+      EXPECT_NE(run.err.find("unknown train set '" + set + "'"), std::string::npos) << run.err;
+      EXPECT_NE(run.err.find("hsl-real"), std::string::npos) << "lists the sets: " << run.err;
+    }
   }
 }
 
