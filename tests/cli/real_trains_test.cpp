@@ -71,6 +71,11 @@ TEST_F(RealTrains, AveS103HasTheRealConsistOfGoicolea2014) {
   }
 }
 
+// The library's ICE3: 8 of Goicolea's (2014) intermediate cars.
+TEST_F(RealTrains, Ice3IsEightIntermediateCarsOfGoicolea2014) {
+  expect_figures("ICE3", 32, 193.3, 8 * (47800.0 + 7000.0 + 7200.0));
+}
+
 // Domenech Monforte (2014) rows: 2 power cars (51,500 + 2 x 2,200 + 4 x
 // 1,700 kg), 2 half-rakes of 9 bodies (22,525 kg) on 10 bogies (2,900 kg,
 // 2 wheelsets of 1,900 kg); 48 axles over 386.435 m (the file's layout).
