@@ -206,14 +206,21 @@ std::filesystem::path train_library_dir() {
   return std::filesystem::path(RAILVSI_SOURCE_DIR "/jobs") / "trains";
 }
 
-std::vector<std::string> library_train_names() {
+std::vector<std::string> json_file_names(const std::filesystem::path& dir) {
   std::vector<std::string> names;
   std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(train_library_dir(), ec))
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
     if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
   std::sort(names.begin(), names.end());
   return names;
 }
+
+bool is_plain_file_name(const std::string& name) {
+  return !name.empty() && name.find_first_of(std::string_view("/\\\0", 3)) == std::string::npos && name != "." &&
+         name != "..";
+}
+
+std::vector<std::string> library_train_names() { return json_file_names(train_library_dir()); }
 
 namespace {
 
@@ -224,11 +231,9 @@ std::pair<json, std::filesystem::path> library_document(const std::string& name)
   // the message (a sweep loads a train per scene: listing it each time cost
   // more than reading the file).
   const std::filesystem::path dir = train_library_dir();
-  const bool plain = !name.empty() && name.find_first_of(std::string_view("/\\\0", 3)) == std::string::npos &&
-                     name != "." && name != "..";
   std::filesystem::path file = dir / (name + ".json");
   std::error_code ec;
-  if (!plain || !std::filesystem::is_regular_file(file, ec)) {
+  if (!is_plain_file_name(name) || !std::filesystem::is_regular_file(file, ec)) {
     const auto names = library_train_names();
     throw InputError("", fmt::format("unknown train '{}'; the library {} has: {}", name, dir.string(),
                                      names.empty() ? std::string("no trains") : fmt::format("{}", fmt::join(names, ", "))));

@@ -17,6 +17,13 @@ namespace railvsi {
 std::filesystem::path train_library_dir();
 std::vector<std::string> library_train_names();
 
+// The names of the *.json files of `dir` without the extension, sorted
+// (none if it cannot be listed).
+std::vector<std::string> json_file_names(const std::filesystem::path& dir);
+// A name of the library is one file name, never a path: no separator, not
+// "." or "..".
+bool is_plain_file_name(const std::string& name);
+
 // A train of the library by name. Unknown name: InputError at "" (the
 // caller's path) listing the available names; errors inside the library file
 // name that file.

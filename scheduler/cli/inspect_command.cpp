@@ -14,7 +14,9 @@
 #include "io/scene_loader.hpp"
 #include "io/schema_validator.hpp"
 #include "io/train_loader.hpp"
+#include "io/train_sets.hpp"
 #include "core/terminal_text.hpp"
+#include "core/types.hpp"
 #include "study/deck_frequencies.hpp"
 #include "study/speed_list.hpp"
 
@@ -32,8 +34,11 @@ double fundamental_hz(const StructureModel& structure) { return scheduler::deck_
 // A study: its structure (with the first train on it), the lowest modes,
 // every train in short, the speeds, and the HSLM resonance speeds within
 // the study's speed range.
-ordered_json study_report(const nlohmann::json& doc, const std::filesystem::path& file, int modes) {
-  shared_schema_validator("study.schema.json").validate(doc, file.string());
+ordered_json study_report(const nlohmann::json& given, const std::filesystem::path& file, int modes) {
+  shared_schema_validator("study.schema.json").validate(given, file.string());
+  nlohmann::json doc = given;
+  std::vector<std::string> train_paths;  // each train's place in the given study
+  doc["trains"] = expand_train_sets(given.at("trains"), file.string(), &train_paths);
   // The given speeds and the steps of a line_speed_kmh range (its speeds
   // around the resonances are listed with the resonance speeds below).
   std::vector<double> speeds;
@@ -63,7 +68,7 @@ ordered_json study_report(const nlohmann::json& doc, const std::filesystem::path
         return parse_scene(scene, file.parent_path(), file.string());
       } catch (const InputError& e) {
         const std::string& path = e.json_path();
-        if (path.starts_with("/train")) throw InputError(child_path("/trains", i) + path.substr(6), e.what(), file.string());
+        if (path.starts_with("/train")) throw InputError(train_paths[i] + path.substr(6), e.what(), file.string());
         throw e.with_file(file.string());
       }
     }();
@@ -108,7 +113,12 @@ ordered_json build_report(const std::filesystem::path& file, int modes) {
         }
         break;
       }
-      case DocumentKind::kTrain: report["train"] = train_report(parse_train_document(doc, file)); break;
+      case DocumentKind::kTrain:
+        report["train"] = train_report(parse_train_document(doc, file));
+        // Where the numbers come from, to check them against the source.
+        for (const char* key : {"sources", "assumptions"})
+          if (doc.contains(key)) report["train"][key] = doc.at(key);
+        break;
       case DocumentKind::kIrregularity:
         report["irregularity"] = irregularity_report(*parse_irregularity_document(doc, file));
         break;
@@ -166,9 +176,12 @@ void print_modes(const ordered_json& m, std::ostream& out) {
 }
 
 void print_train_summary(const ordered_json& t, std::ostream& out) {
-  out << fmt::format("train '{}' ({}): {} axles over {:.3f} m (first to last), total static load {:.1f} kN\n",
+  // The mass a designer compares with a data sheet: the load over the g of
+  // the static wheel loads.
+  out << fmt::format("train '{}' ({}): {} axles over {:.3f} m (first to last), total static load {:.1f} kN ({:.1f} t)\n",
                      scheduler::terminal_safe(t["name"].get<std::string>()), t["model"].get<std::string>(), t["axles"].get<int>(),
-                     t["length_m"].get<double>(), t["total_static_load_N"].get<double>() / 1e3);
+                     t["length_m"].get<double>(), t["total_static_load_N"].get<double>() / 1e3,
+                     t["total_static_load_N"].get<double>() / kGravity_mps2 / 1e3);
   if (t.contains("vehicles"))
     out << fmt::format("  {} vehicles, {} DOFs, total mass {:.1f} t\n", t["vehicles"].get<int>(),
                        t["vehicle_dofs"].get<int>(), t["total_mass_kg"].get<double>() / 1e3);
@@ -176,6 +189,9 @@ void print_train_summary(const ordered_json& t, std::ostream& out) {
 
 void print_train(const ordered_json& t, std::ostream& out) {
   print_train_summary(t, out);
+  for (const char* key : {"sources", "assumptions"})
+    if (t.contains(key))
+      for (const auto& line : t[key]) out << "  " << key << ": " << scheduler::terminal_safe(line.get<std::string>()) << '\n';
   out << "  axle    offset_m  static_load_kN\n";
   int n = 0;
   for (const auto& a : t["axle_list"])

@@ -11,6 +11,7 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "io/schema_validator.hpp"
+#include "io/train_sets.hpp"
 #include "simulation/simulation.hpp"
 #include "study/canonical_json.hpp"
 #include "envelopes/code_filter.hpp"
@@ -190,14 +191,19 @@ JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequenci
 
 }  // namespace
 
-StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, const std::string& file,
+StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir, const std::string& file,
                        const ExpandOptions& options) {
   // Absolute from the start: a relative directory ("d3", or "" for a study
   // in the working directory) would leave names relative in the stored
   // scenes, and the check below would resolve them against it a second time.
   const std::filesystem::path base_dir =
       (study_dir.empty() ? std::filesystem::current_path() : std::filesystem::absolute(study_dir)).lexically_normal();
-  shared_schema_validator("study.schema.json").validate(doc, file);
+  shared_schema_validator("study.schema.json").validate(given, file);
+  // "set:<name>" trains become the set's trains: the stored study, its jobs
+  // and its reports see the trains themselves.
+  json doc = given;
+  std::vector<std::string> train_paths;  // each train's place in the given study
+  doc["trains"] = expand_train_sets(given.at("trains"), file, &train_paths);
   // analysis may be left out: every option at its default.
   const json analysis = doc.contains("analysis") ? doc.at("analysis") : json::object();
   const bool dt_given = analysis.contains("dt_s");
@@ -217,8 +223,10 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
     std::map<std::string, std::size_t> first_at;
     for (std::size_t j = 0; j < trains.size(); ++j)
       if (const auto [it, fresh] = first_at.try_emplace(canonical_text(trains[j]), j); !fresh)
-        throw InputError(child_path("/trains", j),
-                         fmt::format("the same train as /trains/{}: list each train once", it->second), file);
+        throw InputError(train_paths[j],
+                         fmt::format("the same train as {}: list each train once ({})", train_paths[it->second],
+                                     study_train_label(trains[j])),
+                         file);
   }
   std::vector<double> speeds;  // given in speeds_kmh; a line_speed_kmh range adds per train and variant
   std::optional<LineSpeedRange> line_range;
@@ -293,7 +301,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   for (std::size_t n = 0; n < facts.size(); ++n) {
     const std::size_t i = n % trains.size();
     const StructureVariant& variant = variants[n / trains.size()];
-    const std::string train_path = child_path("/trains", i);
+    const std::string& train_path = train_paths[i];
     TrainFacts& f = facts[n];
     f.first_scene = parse(scene_doc(variant, trains[i], first_speed_kmh, profiles.front().value, placeholder_dt_s),
                           train_path, profiles.front().path);
@@ -379,7 +387,7 @@ StudyPlan expand_study(const json& doc, const std::filesystem::path& study_dir, 
   }
   for (std::size_t j = 1; j < profiles.size(); ++j)
     parse(scene_doc(variants.front(), trains[0], first_speed_kmh, profiles[j].value, placeholder_dt_s),
-          child_path("/trains", 0), profiles[j].path);
+          train_paths[0], profiles[j].path);
 
   std::vector<std::string> train_labels;
   for (const json& t : trains) train_labels.push_back(study_train_label(t));
