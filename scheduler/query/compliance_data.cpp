@@ -257,7 +257,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   report.study_document = study.dump(2);
   report.accuracy_tolerance = info.tolerance;
 
-  const std::vector<JobResult> jobs = options.jobs ? *options.jobs : study_results(db, {study_id, {}, {}, {}, {}});
+  const std::vector<JobResult> jobs = options.jobs ? *options.jobs : study_results(db, {study_id, {}, {}, {}, {}, {}});
   std::vector<std::string> train_order;
   std::map<std::string, std::vector<const JobResult*>> by_train;
   for (const JobResult& j : jobs) {
