@@ -67,7 +67,7 @@ StudyInfo study_info(Database& db, const std::string& study_id) {
 }
 
 std::vector<std::string> study_structure_names(Database& db, const std::string& study_id) {
-  Statement s = db.prepare("SELECT structure FROM study_structures INDEXED BY study_structures_name WHERE study_id = ? "
+  Statement s = db.prepare("SELECT structure FROM study_structures WHERE study_id = ? "
                            "GROUP BY structure ORDER BY min(position)");
   s.bind(1, study_id);
   std::vector<std::string> names;

@@ -244,7 +244,6 @@ CREATE TABLE study_structures (
   position  INTEGER NOT NULL,         -- the bridge's place in the study's structures
   PRIMARY KEY (study_id, job_id, structure)
 ) WITHOUT ROWID;
-CREATE INDEX study_structures_name ON study_structures (study_id, structure);
 )sql"},
   };
   return all;
