@@ -16,6 +16,9 @@ const CheckCase* governing_case(const CheckResult& c) {
   return c.governing && c.governing->value ? &*c.governing : nullptr;
 }
 
+// A static check (LM71) has no speed.
+bool has_speed(const CheckCase* g) { return g && std::isfinite(g->speed_kmh) && g->speed_kmh > 0.0; }
+
 }  // namespace
 
 std::vector<LineBridge> line_bridges(Database& db, const std::string& study_id, const std::vector<JobResult>& jobs,
@@ -52,8 +55,7 @@ std::string format_line_table(const std::vector<LineBridge>& bridges) {
       checks += fmt::format("{}{} {}", checks.empty() ? "" : "; ", c.id, verdict_name(c.verdict));
       if (g) {
         checks += fmt::format(" {:.4g}/{:.4g}{}{}", *g->value, c.limit, c.unit.empty() ? "" : " ", c.unit);
-        // A static check (LM71) has no speed.
-        if (std::isfinite(g->speed_kmh) && g->speed_kmh > 0.0)
+        if (has_speed(g))
           checks += fmt::format(" ({} at {:g} km/h)", terminal_safe(g->train), g->speed_kmh);
       }
     }
@@ -70,7 +72,8 @@ std::string format_line_csv(const std::vector<LineBridge>& bridges) {
       out += fmt::format("{},{},{},{},{},{},{},{},{}\n", csv_field(b.name), c.id, verdict_name(c.verdict),
                          g ? fmt::format("{}", *g->value) : std::string(), fmt::format("{}", c.limit),
                          csv_field(c.unit), g ? csv_field(g->train) : std::string(),
-                         g ? fmt::format("{}", g->speed_kmh) : std::string(), g ? csv_field(g->location) : std::string());
+                         has_speed(g) ? fmt::format("{}", g->speed_kmh) : std::string(),
+                         g ? csv_field(g->location) : std::string());
     }
   return out;
 }
@@ -88,7 +91,7 @@ nlohmann::ordered_json format_line_json(const std::vector<LineBridge>& bridges) 
                         {"unit", c.unit},
                         {"value", g ? ordered_json(*g->value) : ordered_json(nullptr)},
                         {"train", g ? ordered_json(g->train) : ordered_json(nullptr)},
-                        {"speed_kmh", g ? ordered_json(g->speed_kmh) : ordered_json(nullptr)},
+                        {"speed_kmh", has_speed(g) ? ordered_json(g->speed_kmh) : ordered_json(nullptr)},
                         {"location", g ? ordered_json(g->location) : ordered_json(nullptr)}});
     }
     list.push_back({{"structure", b.name}, {"verdict", verdict_name(b.report.overall)}, {"checks", checks}});

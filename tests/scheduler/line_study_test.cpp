@@ -213,6 +213,28 @@ TEST_F(LineStudyFiles, ABridgeOfALineHasTheValuesOfItsOwnStudyToTheBitAndTheLine
   for (const char* name : {"2.1 A", "2.2 B", "2.3 C"}) EXPECT_NE(text.find(name), std::string::npos) << name;
 }
 
+TEST_F(LineStudyFiles, AShardedLineMergesIntoTheAnswersOfAnUnshardedRun) {
+  const auto study = write_json("line.json", line_study());
+  const std::string whole = (dir_ / "whole.sqlite").string(), merged = (dir_ / "merged.sqlite").string();
+  ASSERT_EQ(vsi({"run", study.string(), "--db", whole}, "run").exit_code, 0);
+  const auto out = dir_ / "shards";
+  ASSERT_EQ(vsi({"shard", study.string(), "--shards", "2", "--out", out.string()}, "shard").exit_code, 0);
+  for (int k = 0; k < 2; ++k)
+    ASSERT_EQ(vsi({"work", "--db", (out / ("shard-" + std::to_string(k) + ".sqlite")).string()}, "work").exit_code, 0);
+  ASSERT_EQ(vsi({"merge", (out / "shard-0.sqlite").string(), (out / "shard-1.sqlite").string(), "--into", merged},
+                "merge").exit_code, 0);
+  const std::string id = study_id(whole);
+  for (const char* what : {"--line", "--wide"}) {
+    std::vector<std::string> args{"query", "--db", whole, "--study", id, "--format", "csv", what};
+    const VsiResult a = vsi(args, "a");
+    args[2] = merged;
+    const VsiResult b = vsi(args, "b");
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    EXPECT_NE(a.out.find("\nC,"), std::string::npos) << what << "\n" << a.out;  // every bridge, by name
+    EXPECT_EQ(a.out, b.out) << what;
+  }
+}
+
 TEST_F(LineStudyFiles, AShardsJobsKeepTheirPlannedRungAndModes) {
   json doc = one_bridge_study(10);
   doc["analysis"].erase("dt_s");  // the planner's rung and step
