@@ -115,8 +115,16 @@ std::string render_line_html(const ComplianceReport& line, const std::vector<Lin
                          esc(c.title), esc(c.clause), governing_cell(c), c.cases, c.missing, verdict_span(c.verdict));
     out += "</table>\n";
     for (const std::string& n : r.notes) out += "<p class=\"small\">" + esc(n) + "</p>\n";
-    for (const ReportFigure& f : r.check_figures)
-      out += "<figure>\n" + render_svg(f.plot) + "<figcaption>" + esc(f.caption) + "</figcaption>\n</figure>\n";
+    const auto figure = [](const ReportFigure& f) {
+      return "<figure>\n" + render_svg(f.plot) + "<figcaption>" + esc(f.caption) + "</figcaption>\n</figure>\n";
+    };
+    for (const ReportFigure& f : r.check_figures) out += figure(f);
+    // The governing cases re-run (vsi report without --no-histories).
+    for (const GoverningCase& g : r.governing_cases) {
+      out += "<h4>" + esc(g.heading) + "</h4>\n";
+      if (g.status != "ok") out += "<p>Re-run status: <b>" + esc(g.status) + "</b></p>\n";
+      for (const ReportFigure& f : g.figures) out += figure(f);
+    }
     out += "<table class=\"model\">\n";
     for (const ReportRow& row : r.model) out += "<tr><th>" + esc(row.key) + "</th><td>" + esc(row.value) + "</td></tr>\n";
     out += "</table>\n</section>\n";

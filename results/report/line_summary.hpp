@@ -2,7 +2,8 @@
 // The report of a line study (a study with "structures"): one file with the
 // line summary (one row per bridge, failing ones first: its verdict and,
 // per check, the governing value, train and speed) and a section per bridge
-// (its checks, its response against speed and its model). Each bridge's
+// (its checks, its response against speed, its governing cases re-run when
+// the reports have them, and its model). Each bridge's
 // content is the compliance report of its jobs alone.
 #include <string>
 #include <vector>
