@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "cli/commands.hpp"
+#include "study/study_structures.hpp"
 #include "cli/inspect_report.hpp"
 #include "io/document_kind.hpp"
 #include "io/irregularity_loader.hpp"
@@ -53,16 +54,25 @@ ordered_json study_report(const nlohmann::json& given, const std::filesystem::pa
   report["file"] = file.string();
   report["document"] = "study";
   report["name"] = doc.contains("name") ? doc.at("name").get<std::string>() : file.filename().string();
+  // A line study: its first bridge stands for the structure here.
+  const std::vector<scheduler::NamedStructure> structures =
+      scheduler::study_structures(doc, file.parent_path(), file.string());
+  if (!structures.front().name.empty()) {
+    ordered_json names = ordered_json::array();
+    for (const auto& s : structures) names.push_back(s.name);
+    report["structures"] = names;
+  }
   ordered_json trains = ordered_json::array(), resonances = ordered_json::array();
   double f0_hz = 0.0;
   for (std::size_t i = 0; i < doc.at("trains").size(); ++i) {
-    nlohmann::json scene = {{"structure", doc.at("structure")},
+    nlohmann::json scene = {{"structure", structures.front().structure},
                             {"train", doc.at("trains")[i]},
                             {"speed_kmh", speeds.front()},
                             {"irregularity", nullptr},
                             {"analysis", doc.contains("analysis") ? doc.at("analysis") : nlohmann::json::object()}};
     if (!scene["analysis"].contains("dt_s")) scene["analysis"]["dt_s"] = 1e-3;  // not used: no run
     if (doc.contains("outputs")) scene["outputs"] = doc.at("outputs");
+    if (!structures.front().outputs.is_null()) scene["outputs"] = structures.front().outputs;
     Scene parsed = [&] {
       try {
         return parse_scene(scene, file.parent_path(), file.string());

@@ -6,6 +6,7 @@
 #include "cli/service_store.hpp"
 #include "cli/verdict_exit.hpp"
 #include "core/terminal_text.hpp"
+#include "query/line_table.hpp"
 #include "query/static_effects.hpp"
 #include "query/study_report.hpp"
 #include "queue/job_queue.hpp"
@@ -18,7 +19,8 @@ int query_command(const ServiceArgs& args) {
   const auto id = find_study(*db, args.study_id);
   if (!id) return kExitInvalidInput;
   scheduler::require_consistent_study(*db, *id);
-  const scheduler::QueryFilter filter{*id, args.train, args.speed_min_kmh, args.speed_max_kmh, args.irregularity};
+  const scheduler::QueryFilter filter{*id,          args.train,        args.speed_min_kmh,
+                                      args.speed_max_kmh, args.irregularity, args.structure};
   if (const auto why = scheduler::filter_error(*db, filter)) {
     std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';  // it lists the study's names
     return kExitInvalidInput;
@@ -29,6 +31,22 @@ int query_command(const ServiceArgs& args) {
   }
   const scheduler::StudyInfo info = scheduler::study_info(*db, *id);
   const auto jobs = scheduler::study_results(*db, filter);
+  if (args.line) {
+    if (scheduler::study_structure_names(*db, *id).empty()) {
+      std::cerr << "error: --line: the study " << id->substr(0, 12) << " has one structure (no \"structures\")\n";
+      return kExitInvalidInput;
+    }
+    scheduler::ComplianceOptions options;
+    options.histories = false;
+    const auto bridges = scheduler::line_bridges(*db, *id, jobs, options);
+    if (args.format == "csv") std::cout << scheduler::format_line_csv(bridges);
+    else if (args.format == "json") std::cout << scheduler::format_line_json(bridges).dump(2) << '\n';
+    else std::cout << scheduler::format_line_table(bridges);
+    if (!args.fail_on_exceeded) return kExitOk;
+    std::vector<CheckResult> all;
+    for (const LineBridge& b : bridges) all.insert(all.end(), b.report.checks.begin(), b.report.checks.end());
+    return verdict_exit_code(overall_verdict(all));
+  }
   // The verdicts of vsi report's checks, over the jobs shown.
   std::optional<ComplianceReport> judged;
   std::string not_judged;

@@ -22,6 +22,7 @@
 #include "cli/verdict_exit.hpp"
 #include "core/terminal_text.hpp"
 #include "query/compliance_data.hpp"
+#include "query/line_table.hpp"
 #include "report/compliance_report.hpp"
 #include "store/store_check.hpp"
 
@@ -127,8 +128,23 @@ int report_command(const ReportArgs& args) {
   options.version = RAILVSI_VERSION_STRING;
   options.date = report_date();
   options.histories = args.histories;
-  const ComplianceReport report = scheduler::build_compliance_report(*db, *id, options);
-  const std::string html = render_html(report);
+  ComplianceReport report;
+  std::string html;
+  if (scheduler::study_structure_names(*db, *id).empty()) {
+    report = scheduler::build_compliance_report(*db, *id, options);
+    html = render_html(report);
+  } else {
+    // A line study: the line summary and a section per bridge, each judged over its own jobs.
+    const auto bridges =
+        scheduler::line_bridges(*db, *id, scheduler::study_results(*db, {*id, {}, {}, {}, {}, {}}), options);
+    const std::vector<scheduler::JobResult> none;
+    options.jobs = &none;  // the study's name, id and inputs only
+    report = scheduler::build_compliance_report(*db, *id, options);
+    std::vector<CheckResult> all;
+    for (const LineBridge& b : bridges) all.insert(all.end(), b.report.checks.begin(), b.report.checks.end());
+    report.overall = overall_verdict(all);
+    html = render_line_html(report, bridges);
+  }
 
   const std::filesystem::path out = args.out.empty() ? "report-" + id->substr(0, 12) + ".html" : args.out;
   if (const auto why = unusable_out(out)) {  // the default name, or the path changed while the report was built

@@ -109,6 +109,10 @@ ServiceCommands::ServiceCommands(CLI::App& app) {
   query_->add_option("--speed-min", args_.speed_min_kmh, "Only speeds >= this, km/h")->check(finite_in(0.0, 1.0e4));
   query_->add_option("--speed-max", args_.speed_max_kmh, "Only speeds <= this, km/h")->check(finite_in(0.0, 1.0e4));
   query_->add_option("--irregularity", args_.irregularity, "Only this irregularity profile (its label as shown)");
+  query_->add_option("--structure", args_.structure, "Only this bridge of a line study (its name in \"structures\")");
+  query_->add_flag("--line", args_.line,
+                   "The line table of a line study: one row per bridge with the verdict of each check, its governing "
+                   "value, train and speed (csv: one line per bridge and check; json: one object per bridge)");
 
   cancel_ = app.add_subcommand("cancel", "Cancel the queued and running jobs of a study");
   add_db_option(cancel_, args_, false);

@@ -24,7 +24,8 @@ struct ServiceArgs {
   std::string format = "table";
   bool wide = false;              // query --format csv --wide
   bool fail_on_exceeded = false;  // query, run: exit 4 / 5 on the checks' verdict
-  std::optional<std::string> train, irregularity;
+  std::optional<std::string> train, irregularity, structure;  // query filters
+  bool line = false;  // query --line: one row per bridge of a line study
   std::optional<double> speed_min_kmh, speed_max_kmh;
 };
 

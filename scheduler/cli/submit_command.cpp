@@ -157,7 +157,7 @@ int run_command(const ServiceArgs& args) {
   spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id, r.jobs, r.new_jobs, scheduler::terminal_safe(args.db));
   if (!work_and_refine(args, db, {r.study_id}).error.empty()) return kExitRuntimeFailure;
   const scheduler::StudyInfo info = scheduler::study_info(db, r.study_id);
-  const auto jobs = scheduler::study_results(db, {r.study_id, {}, {}, {}, {}});
+  const auto jobs = scheduler::study_results(db, {r.study_id, {}, {}, {}, {}, {}});
   std::cout << scheduler::format_table(info, jobs);
   const scheduler::StateCounts c = scheduler::state_counts(db, r.study_id);
   int code = kExitOk;

@@ -257,7 +257,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   report.study_document = study.dump(2);
   report.accuracy_tolerance = info.tolerance;
 
-  const std::vector<JobResult> jobs = options.jobs ? *options.jobs : study_results(db, {study_id, {}, {}, {}, {}});
+  const std::vector<JobResult> jobs = options.jobs ? *options.jobs : study_results(db, {study_id, {}, {}, {}, {}, {}});
   std::vector<std::string> train_order;
   std::map<std::string, std::vector<const JobResult*>> by_train;
   for (const JobResult& j : jobs) {
@@ -289,7 +289,12 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   const double cutoff = jobs.empty() ? 0.0 : jobs.front().cutoff_hz;
   // An import without supports_x_m: the supports read from its modes.
   const std::vector<double> spans = spans_of(freq.supports.x_m);
-  const bool continuous = study.contains("structure") && study.at("structure").value("continuous", false);
+  // The structure as the jobs give it (a bridge of a line study has its own).
+  const json scene_structure = [&] {
+    Statement s = db.prepare("SELECT json_extract(scene, '$.structure') FROM job_scenes WHERE job_id = ?");
+    return s.bind(1, jobs.front().id).step() && !s.is_null(0) ? json::parse(s.text(0)) : json::object();
+  }();
+  const bool continuous = scene_structure.value("continuous", false);
   const double L_phi = determinant_length_m(spans, continuous);
   const bool phi2 = checks.value("dynamic_factor", std::string("phi3")) == "phi2";
   const double Phi = L_phi > 0.0 ? (phi2 ? dynamic_factor_phi2(L_phi) : dynamic_factor_phi3(L_phi)) : 0.0;
@@ -317,8 +322,8 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
                                                                          "(the model gives none)"
                                                                        : "")});
   }
-  if (study.contains("structure") && study.at("structure").contains("deck")) {
-    const json& deck = study.at("structure").at("deck");
+  if (scene_structure.contains("deck")) {
+    const json& deck = scene_structure.at("deck");
     for (const char* key : {"EI_Nm2", "first_frequency_hz", "mass_kg_per_m"})
       if (deck.contains(key)) report.model.push_back({std::string("deck ") + key, deck.at(key).dump()});
   }

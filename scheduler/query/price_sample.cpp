@@ -12,7 +12,7 @@ namespace railvsi::scheduler {
 std::vector<SampledJob> price_sample(Database& db, const std::string& study_id, int jobs, bool every_train) {
   (void)study_info(db, study_id);  // throws for a study not in the database
   std::vector<JobResult> ok;
-  for (JobResult& j : study_results(db, {study_id, {}, {}, {}, {}}))
+  for (JobResult& j : study_results(db, {study_id, {}, {}, {}, {}, {}}))
     if (j.state == "done" && j.status == "ok") ok.push_back(std::move(j));
   if (ok.empty()) throw std::runtime_error("study " + study_id + " has no job done with status ok to price");
 

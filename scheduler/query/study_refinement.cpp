@@ -22,7 +22,7 @@ std::size_t refine_study(Database& db, const std::string& study_id, int max_atte
   // The governing value per train and speed: the largest over the profiles,
   // absent when any profile has none there.
   std::map<std::string, std::map<double, std::optional<double>>> curves;
-  for (const JobResult& j : study_results(db, {study_id, {}, {}, {}, {}})) {
+  for (const JobResult& j : study_results(db, {study_id, {}, {}, {}, {}, {}})) {
     const std::optional<double> v = j.overall("deck_acceleration_mps2");
     auto [it, fresh] = curves[j.train].try_emplace(j.speed_kmh, v);
     if (!fresh && it->second) it->second = v ? std::optional(std::max(*it->second, *v)) : std::nullopt;

@@ -43,19 +43,6 @@ ordered_json number(std::optional<double> v) {
   return v && std::isfinite(*v) ? ordered_json(*v) : ordered_json(nullptr);
 }
 
-std::string csv_field(const std::string& text) {
-  // A name that a spreadsheet would read as a formula (=, +, -, @, or a tab
-  // or CR first) is written after a quote: the CSV is meant for spreadsheets,
-  // and a train named =HYPERLINK(...) must stay text there.
-  const std::string s = !text.empty() && std::string_view("=+-@\t\r").find(text.front()) != std::string_view::npos
-                            ? "'" + text
-                            : text;
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
 // A value of a run with warnings carries a mark (docs/user-guide.md "Run health").
 constexpr const char* kWarningMark = "*";
 
@@ -82,6 +69,11 @@ const JobResult* governing_job(const std::vector<JobResult>& jobs, const TrainEn
   return nullptr;
 }
 
+// Is it a line study (its "structures"): rows name their bridge?
+bool is_line(const std::vector<JobResult>& jobs) {
+  return std::any_of(jobs.begin(), jobs.end(), [](const JobResult& j) { return !j.structure.empty(); });
+}
+
 // Does the study run several bounds of the structure (its "variants")?
 bool has_variants(const std::vector<JobResult>& jobs) {
   return std::any_of(jobs.begin(), jobs.end(), [](const JobResult& j) { return j.variant != "nominal"; });
@@ -97,6 +89,19 @@ bool any_value(const std::vector<JobResult>& jobs, const char* quantity) {
 }
 
 }  // namespace
+
+std::string csv_field(const std::string& text) {
+  // A name that a spreadsheet would read as a formula (=, +, -, @, or a tab
+  // or CR first) is written after a quote: the CSV is meant for spreadsheets,
+  // and a train named =HYPERLINK(...) must stay text there.
+  const std::string s = !text.empty() && std::string_view("=+-@\t\r").find(text.front()) != std::string_view::npos
+                            ? "'" + text
+                            : text;
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
 
 std::vector<TrainEnvelope> study_envelope_over_speeds(const std::vector<JobResult>& jobs, const std::string& quantity) {
   std::vector<CaseValue> cases;
@@ -355,12 +360,15 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
 }
 
 std::string format_csv(const std::vector<JobResult>& jobs) {
-  // A study with bounds of the structure gets a last column naming each row's.
-  const bool variants = has_variants(jobs);
+  // A study with bounds of the structure gets a last column naming each row's;
+  // a line study a first column naming its bridge.
+  const bool variants = has_variants(jobs), line = is_line(jobs);
   std::string out = variants ? "train,irregularity,speed_kmh,quantity,location,value,state,variant,error_estimate\n"
                              : "train,irregularity,speed_kmh,quantity,location,value,state,error_estimate\n";
+  if (line) out.insert(0, "structure,");
   for (const JobResult& j : jobs) {
-    const std::string job = fmt::format("{},{},{}", csv_field(j.train), csv_field(j.irregularity), j.speed_kmh);
+    const std::string job = fmt::format("{}{},{},{}", line ? csv_field(j.structure) + "," : std::string(),
+                                        csv_field(j.train), csv_field(j.irregularity), j.speed_kmh);
     std::string variant;
     if (variants) variant.append(",").append(csv_field(j.variant));
     if (j.envelopes.empty()) out += fmt::format("{},,,,{}{},\n", job, csv_field(j.state), variant);
@@ -383,13 +391,15 @@ std::string format_wide_csv(const std::vector<JobResult>& jobs) {
   for (const JobResult& j : jobs)
     for (const auto& [quantity, locations] : j.envelopes)
       for (const auto& [location, value] : locations) columns[quantity].insert(location);
-  const bool variants = has_variants(jobs);
+  const bool variants = has_variants(jobs), line = is_line(jobs);
   std::string out = variants ? "train,irregularity,speed_kmh,variant,state" : "train,irregularity,speed_kmh,state";
+  if (line) out.insert(0, "structure,");
   for (const auto& [quantity, locations] : columns)
     for (const std::string& location : locations)
       out.append(",").append(csv_field(location.empty() ? quantity : quantity + "@" + location));
   out += "\n";
   for (const JobResult& j : jobs) {
+    if (line) out += csv_field(j.structure) + ",";
     out += fmt::format("{},{},{},{}{}", csv_field(j.train), csv_field(j.irregularity), j.speed_kmh,
                        variants ? csv_field(j.variant) + "," : std::string(), csv_field(j.state));
     for (const auto& [quantity, locations] : columns) {
@@ -510,6 +520,7 @@ ordered_json format_json(const StudyInfo& study, const std::vector<JobResult>& j
                         {"speed_kmh", j.speed_kmh},
                         {"irregularity", j.irregularity},
                         {"variant", j.variant},
+                        {"structure", j.structure.empty() ? ordered_json(nullptr) : ordered_json(j.structure)},
                         {"state", j.state},
                         {"status", j.status.empty() ? ordered_json(nullptr) : ordered_json(j.status)},
                         {"dt_s", j.dt_s},

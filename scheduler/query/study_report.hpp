@@ -40,6 +40,9 @@ bool at_edge_of_speed_range(const std::vector<JobResult>& jobs, const TrainEnvel
 
 std::string format_table(const StudyInfo& study, const std::vector<JobResult>& jobs);
 std::string format_csv(const std::vector<JobResult>& jobs);
+// A CSV field: quoted when it holds a comma, quote or line break, and after
+// a quote when a spreadsheet would read it as a formula.
+std::string csv_field(const std::string& text);
 // Columns: train, irregularity, speed_kmh, state, then per quantity (in the
 // order of format_csv) the whole job's value named by the quantity
 // ("deck_acceleration_mps2") and one column per location named

@@ -18,7 +18,12 @@ namespace {
 // The filters are bound parameters; a NULL parameter disables its filter.
 constexpr const char* kFilter =
     "sj.study_id = ?1 AND (?2 IS NULL OR j.train = ?2) AND (?3 IS NULL OR j.speed_kmh >= ?3) "
-    "AND (?4 IS NULL OR j.speed_kmh <= ?4) AND (?5 IS NULL OR j.irregularity = ?5)";
+    "AND (?4 IS NULL OR j.speed_kmh <= ?4) AND (?5 IS NULL OR j.irregularity = ?5) "
+    "AND (?6 IS NULL OR ss.structure = ?6)";
+
+// The bridge of each row of a line study (none in a study of one structure).
+constexpr const char* kStructureJoin =
+    "LEFT JOIN study_structures ss ON ss.study_id = sj.study_id AND ss.job_id = sj.job_id";
 
 void bind_filter(Statement& s, const QueryFilter& f) {
   s.bind(1, f.study_id);
@@ -26,6 +31,7 @@ void bind_filter(Statement& s, const QueryFilter& f) {
   if (f.speed_min_kmh) s.bind(3, *f.speed_min_kmh); else s.bind_null(3);
   if (f.speed_max_kmh) s.bind(4, *f.speed_max_kmh); else s.bind_null(4);
   if (f.irregularity) s.bind(5, *f.irregularity); else s.bind_null(5);
+  if (f.structure) s.bind(6, *f.structure); else s.bind_null(6);
 }
 
 }  // namespace
@@ -60,9 +66,18 @@ StudyInfo study_info(Database& db, const std::string& study_id) {
   return {s.text(0), s.text(1), s.text(2), nlohmann::json::parse(s.text(3)), s.int64(4), s.real(5)};
 }
 
+std::vector<std::string> study_structure_names(Database& db, const std::string& study_id) {
+  Statement s = db.prepare("SELECT structure FROM study_structures WHERE study_id = ? "
+                           "GROUP BY structure ORDER BY min(position)");
+  s.bind(1, study_id);
+  std::vector<std::string> names;
+  while (s.step()) names.push_back(s.text(0));
+  return names;
+}
+
 std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
   std::vector<JobResult> jobs;
-  std::unordered_map<std::string, std::size_t> index;
+  std::unordered_map<std::string, std::vector<std::size_t>> index;  // a job on two bridges is two rows
   // Whether a scene's train is axle forces, read once per train.
   std::unordered_map<std::string, std::optional<bool>> trains;
   const auto axle_forces = [&trains](const std::string& type, const std::string& text) -> std::optional<bool> {
@@ -83,10 +98,10 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
       "CASE WHEN json_extract(j.scene, '$.irregularity.seed') IS NOT NULL "
       "THEN json_remove(json_extract(j.scene, '$.irregularity'), '$.seed') END, "
       "json_extract(j.scene, '$.irregularity.spectrum'), json_extract(j.scene, '$.structure.variant'), "
-      "json_extract(j.fidelity, '$.dt_s'), json_type(j.scene, '$.train'), json_extract(j.scene, '$.train') "
-      "FROM study_jobs sj JOIN job_records j ON j.id = sj.job_id "
-      "WHERE {} ORDER BY sj.position",
-      kFilter));
+      "json_extract(j.fidelity, '$.dt_s'), json_type(j.scene, '$.train'), json_extract(j.scene, '$.train'), "
+      "ss.structure FROM study_jobs sj {} JOIN job_records j ON j.id = sj.job_id "
+      "WHERE {} ORDER BY coalesce(ss.position, 0), sj.position",
+      kStructureJoin, kFilter));
   bind_filter(s, filter);
   while (s.step()) {
     JobResult r;
@@ -109,19 +124,22 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     if (!s.is_null(16)) r.variant = variant_label(nlohmann::json::parse(s.text(16)));
     r.ran_dt_s = s.optional_real(17).value_or(r.dt_s);
     r.axle_forces = axle_forces(s.text(18), s.text(19));
-    index.emplace(r.id, jobs.size());
+    r.structure = s.text(20);
+    index[r.id].push_back(jobs.size());
     jobs.push_back(std::move(r));
   }
   Statement e = db.prepare(fmt::format(
-      "SELECT j.id, e.quantity, e.location, e.value, e.error_estimate FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
-      "JOIN job_envelopes e ON e.job_seq = j.seq WHERE {}",
-      kFilter));
+      "SELECT DISTINCT j.id, e.quantity, e.location, e.value, e.error_estimate FROM study_jobs sj {} "
+      "JOIN jobs j ON j.id = sj.job_id JOIN job_envelopes e ON e.job_seq = j.seq WHERE {}",
+      kStructureJoin, kFilter));
   bind_filter(e, filter);
   while (e.step()) {
     const auto it = index.find(e.text(0));
     if (it == index.end()) continue;
-    jobs[it->second].envelopes[e.text(1)][e.text(2)] = e.optional_real(3);
-    if (const auto estimate = e.optional_real(4)) jobs[it->second].error_estimates[e.text(1)][e.text(2)] = *estimate;
+    for (std::size_t k : it->second) {
+      jobs[k].envelopes[e.text(1)][e.text(2)] = e.optional_real(3);
+      if (const auto estimate = e.optional_real(4)) jobs[k].error_estimates[e.text(1)][e.text(2)] = *estimate;
+    }
   }
   return jobs;
 }
@@ -168,6 +186,18 @@ std::optional<std::string> filter_error(Database& db, const QueryFilter& f) {
     if (auto why = unknown_label(db, f.study_id, "train", "--train", *f.train)) return why;
   if (f.irregularity)
     if (auto why = unknown_label(db, f.study_id, "irregularity", "--irregularity", *f.irregularity)) return why;
+  if (f.structure) {
+    const std::vector<std::string> known = study_structure_names(db, f.study_id);
+    if (known.empty())
+      return fmt::format("--structure '{}': the study {} has one structure (no \"structures\")", *f.structure,
+                         f.study_id.substr(0, 12));
+    if (std::find(known.begin(), known.end(), *f.structure) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += fmt::format("{}'{}'", list.empty() ? "" : ", ", k);
+      return fmt::format("--structure '{}': the study {} has no such structure; it has: {}", *f.structure,
+                         f.study_id.substr(0, 12), list);
+    }
+  }
   if (f.speed_min_kmh || f.speed_max_kmh) {
     // A range that holds none of the study's speeds, outside them or between
     // two of them, matches nothing.

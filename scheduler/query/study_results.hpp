@@ -19,6 +19,7 @@ struct QueryFilter {
   std::optional<std::string> train;
   std::optional<double> speed_min_kmh, speed_max_kmh;
   std::optional<std::string> irregularity;
+  std::optional<std::string> structure;  // a bridge of a line study (its name)
 };
 
 struct JobResult {
@@ -27,6 +28,9 @@ struct JobResult {
   double speed_kmh = 0.0;
   std::string irregularity;
   std::string variant = "nominal";  // bound of the structure, from the scene's structure.variant
+  // The bridge of a line study ("structures") the row is for; empty in a
+  // study of one structure. A job listed under two names is two rows.
+  std::string structure;
   std::string state;
   std::string status;  // engine status, empty before a run
   std::string error;
@@ -72,6 +76,9 @@ struct StudyInfo {
 
 // Throws std::runtime_error when the study is not in the database.
 StudyInfo study_info(Database& db, const std::string& study_id);
+// The names of a line study's structures in its order; empty for a study
+// of one structure.
+std::vector<std::string> study_structure_names(Database& db, const std::string& study_id);
 std::vector<JobResult> study_results(Database& db, const QueryFilter& filter);
 // A stored job's scene, loaded as the worker loaded it (job_scenes.scene).
 // Throws std::runtime_error when the job is not in the database.

@@ -52,6 +52,13 @@ SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts)
   }
   db.prepare("INSERT OR IGNORE INTO cache_stats (study_id) VALUES (?)").bind(1, plan.id).run();
   result.new_jobs = insert_study_jobs(db, plan.id, plan.jobs, 0, max_attempts, now);
+  if (!plan.structures.empty()) {
+    Statement on = db.prepare(
+        "INSERT OR IGNORE INTO study_structures (study_id, job_id, structure, position) VALUES (?, ?, ?, ?)");
+    for (const JobSpec& j : plan.jobs)
+      for (int k : j.structures)
+        on.bind(1, plan.id).bind(2, j.id).bind(3, plan.structures[static_cast<std::size_t>(k)]).bind(4, k).run();
+  }
   tx.commit();
   return result;
 }

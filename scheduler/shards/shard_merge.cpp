@@ -120,6 +120,10 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
                  "SELECT study_id, job_id, position FROM src.study_jobs WHERE study_id = ?")
       .bind(1, study)
       .run();
+  target.prepare("INSERT OR IGNORE INTO main.study_structures (study_id, job_id, structure, position) "
+                 "SELECT study_id, job_id, structure, position FROM src.study_structures WHERE study_id = ?")
+      .bind(1, study)
+      .run();
   // The shard's cache statistics replace those of its last merge; the
   // study's are their sum. Unchanged values write nothing.
   target.prepare(

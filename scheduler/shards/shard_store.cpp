@@ -119,15 +119,22 @@ void copy_shard(Database& source, const std::string& study_id, const std::vector
   source.prepare("INSERT INTO dst.cache_stats (study_id) VALUES (?)").bind(1, study_id).run();
   // The definition of each job; its state starts afresh (queued).
   // seq: the source's numbers are unique, so they serve the new store.
+  // With its planned rung and modes: a worker batches the modal moving-force
+  // jobs of one key only when they carry their rung.
   source.prepare("INSERT INTO dst.jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
-                 "cutoff_hz, max_attempts, enqueued_at, seq) SELECT id, train, speed_kmh, irregularity, operator_key, "
-                 "dt_s, dt_reason, cutoff_hz, max_attempts, ?, seq FROM main.jobs WHERE id IN temp.shard_job_ids")
+                 "cutoff_hz, max_attempts, enqueued_at, seq, rung, planned_modes) SELECT id, train, speed_kmh, "
+                 "irregularity, operator_key, dt_s, dt_reason, cutoff_hz, max_attempts, ?, seq, rung, planned_modes "
+                 "FROM main.jobs WHERE id IN temp.shard_job_ids")
       .bind(1, unix_now_s())
       .run();
   source.exec("INSERT INTO dst.job_scenes (job_id, scene) SELECT job_id, scene FROM main.job_scenes "
               "WHERE job_id IN temp.shard_job_ids");
   source.prepare("INSERT INTO dst.study_jobs (study_id, job_id, position) SELECT study_id, job_id, position "
                  "FROM main.study_jobs WHERE study_id = ? AND job_id IN temp.shard_job_ids")
+      .bind(1, study_id)
+      .run();
+  source.prepare("INSERT INTO dst.study_structures (study_id, job_id, structure, position) SELECT study_id, job_id, "
+                 "structure, position FROM main.study_structures WHERE study_id = ? AND job_id IN temp.shard_job_ids")
       .bind(1, study_id)
       .run();
   source.prepare("INSERT INTO dst.shard (study_id, shard_index, shard_count, estimated_cost, created_at) "

@@ -139,6 +139,13 @@ CREATE VIEW envelopes AS
 CREATE VIEW study_envelopes AS
   SELECT sj.study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
   FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id JOIN job_envelopes e ON e.job_seq = j.seq;
+CREATE TABLE study_structures (
+  study_id  TEXT NOT NULL REFERENCES studies (id),
+  job_id    TEXT NOT NULL REFERENCES jobs (id),
+  structure TEXT NOT NULL,            -- name of the bridge in the study
+  position  INTEGER NOT NULL,         -- the bridge's place in the study's structures
+  PRIMARY KEY (study_id, job_id, structure)
+) WITHOUT ROWID;
 )sql";
   return kSql;
 }

@@ -234,6 +234,17 @@ CREATE VIEW study_envelopes AS
        R"sql(
 ALTER TABLE jobs ADD COLUMN planned_modes INTEGER;  -- NULL: not counted (FE rungs, jobs of an older vsi)
 )sql"},
+      {"study_structures: the bridges of a line study (its \"structures\"), one row per bridge a job runs for; a "
+       "job stays keyed by its scene, so a bridge that two lines (or two names) share is one job",
+       R"sql(
+CREATE TABLE study_structures (
+  study_id  TEXT NOT NULL REFERENCES studies (id),
+  job_id    TEXT NOT NULL REFERENCES jobs (id),
+  structure TEXT NOT NULL,            -- name of the bridge in the study
+  position  INTEGER NOT NULL,         -- the bridge's place in the study's structures
+  PRIMARY KEY (study_id, job_id, structure)
+) WITHOUT ROWID;
+)sql"},
   };
   return all;
 }

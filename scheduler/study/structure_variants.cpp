@@ -30,7 +30,7 @@ nlohmann::json StructureVariant::scene_value() const {
 
 std::vector<StructureVariant> study_variants(const nlohmann::json& study, std::size_t max_count) {
   if (!study.contains("variants")) return {StructureVariant{}};
-  if (study.at("structure").contains("variant"))
+  if (study.contains("structure") && study.at("structure").contains("variant"))
     throw InputError("/structure/variant", "give the bounds of the structure in the study's variants, not both");
   const nlohmann::json& v = study.at("variants");
   const std::vector<double> masses = factors(v, "mass_factor"), stiffnesses = factors(v, "EI_factor");

@@ -24,6 +24,7 @@
 #include "study/structure_key.hpp"
 #include "planning/time_step_warnings.hpp"
 #include "study/structure_variants.hpp"
+#include "study/study_structures.hpp"
 #include "study/study_plan.hpp"
 
 namespace railvsi::scheduler {
@@ -43,16 +44,28 @@ bool starts_path(const std::string& path, std::string_view prefix) {
 
 // An error found while building one scene of the study, placed in the study:
 // /train -> /trains/<i>, /irregularity -> /irregularities/<j>, /speed_kmh ->
-// /speeds_kmh. Errors of another document (a library train) pass as they are.
+// /speeds_kmh, /structure (and /outputs of a bridge that has its own) -> the
+// bridge (a CSV line names itself). Errors of another document (a library
+// train) pass as they are.
 InputError in_study(const InputError& e, const std::string& file, const std::string& train_path,
-                    const std::string& profile_path) {
+                    const std::string& profile_path, const NamedStructure& structure) {
   if (!e.file().empty() && e.file() != file) return e;
   const std::string& p = e.json_path();
   std::string mapped = p;
+  std::string what = e.what();
+  const bool own_outputs = !structure.outputs.is_null() && starts_path(p, "/outputs");
   if (starts_path(p, "/train")) mapped = train_path + p.substr(6);
   else if (starts_path(p, "/irregularity")) mapped = profile_path + p.substr(13);
   else if (starts_path(p, "/speed_kmh")) mapped = "/speeds_kmh" + p.substr(10);
-  return InputError(mapped, e.what(), file);
+  else if (!structure.name.empty() && (starts_path(p, "/structure") || own_outputs)) {
+    if (!structure.origin.empty()) {
+      mapped = structure.path;
+      what = fmt::format("{}: bridge '{}': {}: {}", structure.origin, structure.name, p, what);
+    } else {
+      mapped = own_outputs ? structure.path.substr(0, structure.path.size() - 10) + p : structure.path + p.substr(10);
+    }
+  }
+  return InputError(mapped, what, file);
 }
 
 }  // namespace
@@ -123,9 +136,11 @@ void make_absolute(json& node, const char* key, const std::filesystem::path& bas
     node[key] = resolve_relative(base_dir, node.at(key).get<std::string>()).lexically_normal().string();
 }
 
-void absolute_file_names(json& structure, std::vector<Profile>& profiles, const std::filesystem::path& base_dir) {
-  if (structure.contains("import"))
-    for (const char* key : {"K", "M", "C", "map"}) make_absolute(structure["import"], key, base_dir);
+void absolute_file_names(std::vector<NamedStructure>& structures, std::vector<Profile>& profiles,
+                         const std::filesystem::path& base_dir) {
+  for (NamedStructure& s : structures)
+    if (s.structure.contains("import"))
+      for (const char* key : {"K", "M", "C", "map"}) make_absolute(s.structure["import"], key, base_dir);
   for (Profile& p : profiles) make_absolute(p.value, "csv", base_dir);
 }
 
@@ -231,6 +246,11 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
   std::vector<double> speeds;  // given in speeds_kmh; a line_speed_kmh range adds per train and variant
   std::optional<LineSpeedRange> line_range;
   std::vector<StructureVariant> variants;
+  std::vector<NamedStructure> structures = study_structures(doc, base_dir, file);
+  if (structures.size() > 1 || !structures.front().name.empty())
+    if (doc.value("refine", false))
+      throw InputError("/refine", "speed refinement is not available for a line of structures yet: give the "
+                                  "speeds finer, or refine a study of one bridge", file);
   try {
     if (doc.contains("speeds_kmh")) speeds = expand_speeds(doc.at("speeds_kmh"), max_jobs);
     line_range = line_speed_range(doc);
@@ -244,17 +264,17 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
   const auto check_count = [&](std::size_t count, std::size_t speed_count) {
     if (count > max_jobs)
       throw InputError(line_range ? "/line_speed_kmh" : "/speeds_kmh",
-                       fmt::format("the study expands into {} jobs ({} variants x {} trains x {} speeds x {} "
-                                   "profiles), more than {}; pass --allow-large to submit it anyway",
-                                   count, variants.size(), trains.size(), speed_count, profiles.size(), max_jobs),
+                       fmt::format("the study expands into {} jobs ({} structures x {} variants x {} trains x {} "
+                                   "speeds x {} profiles), more than {}; pass --allow-large to submit it anyway",
+                                   count, structures.size(), variants.size(), trains.size(), speed_count,
+                                   profiles.size(), max_jobs),
                        file);
   };
-  check_count(variants.size() * trains.size() * speeds.size() * profiles.size(), speeds.size());
+  check_count(structures.size() * variants.size() * trains.size() * speeds.size() * profiles.size(), speeds.size());
   const double first_speed_kmh = speeds.empty() ? line_range->min_kmh : speeds.front();
 
+  absolute_file_names(structures, profiles, base_dir);
   json base = json::object();
-  base["structure"] = doc.at("structure");
-  absolute_file_names(base["structure"], profiles, base_dir);
   base["analysis"] = analysis;
   if (doc.contains("outputs")) base["outputs"] = doc.at("outputs");
   if (doc.contains("accuracy")) {
@@ -268,9 +288,12 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
   // Fidelity "auto" (the default): the planner pins each train's rung in its jobs.
   const bool auto_fidelity = !doc.contains("fidelity") || doc.at("fidelity").is_string();
   if (!auto_fidelity) base["fidelity"] = doc.at("fidelity");
-  const auto scene_doc = [&](const StructureVariant& variant, const json& train, double speed_kmh, const json& profile,
-                             double dt_s) {
+  // A bridge of a line: the scene of a study of it alone.
+  const auto scene_doc = [&](const NamedStructure& structure, const StructureVariant& variant, const json& train,
+                             double speed_kmh, const json& profile, double dt_s) {
     json scene = base;
+    scene["structure"] = structure.structure;
+    if (!structure.outputs.is_null()) scene["outputs"] = structure.outputs;
     if (!variant.nominal()) scene["structure"]["variant"] = variant.scene_value();
     scene["train"] = train;
     scene["speed_kmh"] = speed_kmh;
@@ -279,11 +302,12 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
     return scene;
   };
   ImportedStructures imports;  // a model's files read once for every train
-  const auto parse = [&](const json& scene, const std::string& train_path, const std::string& profile_path) {
+  const auto parse = [&](const json& scene, const std::string& train_path, const std::string& profile_path,
+                         const NamedStructure& structure) {
     try {
       return parse_scene(scene, base_dir, file, &imports);
     } catch (const InputError& e) {
-      throw in_study(e, file, train_path, profile_path);
+      throw in_study(e, file, train_path, profile_path, structure);
     }
   };
 
@@ -291,8 +315,8 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
   // structure it runs on and the engine's setup (a dry run, without the
   // time loop). Then every other profile with the first train.
   const double placeholder_dt_s = dt_given ? analysis.at("dt_s").get<double>() : 1e-3;
-  // Facts of train i on variant v at [v * trains + i].
-  std::vector<TrainFacts> facts(variants.size() * trains.size());
+  // Facts of train i on variant v of structure s at [(s * variants + v) * trains + i].
+  std::vector<TrainFacts> facts(structures.size() * variants.size() * trains.size());
   std::map<std::string, DeckFrequencies> frequencies_of_structure;
   std::map<std::string, std::shared_ptr<const StructureOperator>> operators;
   std::map<std::string, int> modes_of_structure;
@@ -300,11 +324,13 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
   std::size_t count = 0, most_speeds = 0;
   for (std::size_t n = 0; n < facts.size(); ++n) {
     const std::size_t i = n % trains.size();
-    const StructureVariant& variant = variants[n / trains.size()];
+    const StructureVariant& variant = variants[(n / trains.size()) % variants.size()];
+    const NamedStructure& structure = structures[n / (trains.size() * variants.size())];
     const std::string& train_path = train_paths[i];
     TrainFacts& f = facts[n];
-    f.first_scene = parse(scene_doc(variant, trains[i], first_speed_kmh, profiles.front().value, placeholder_dt_s),
-                          train_path, profiles.front().path);
+    f.first_scene =
+        parse(scene_doc(structure, variant, trains[i], first_speed_kmh, profiles.front().value, placeholder_dt_s),
+              train_path, profiles.front().path, structure);
     f.structure = f.first_scene.structure;
     f.structure_hash = structure_model_hash(*f.structure);
     f.rail_flexibility = !f.first_scene.train.is_moving_forces();
@@ -382,22 +408,29 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
           doc.at("accuracy").contains("tolerance") && doc.at("accuracy").at("tolerance").get<double>() < FidelityRequest{}.tolerance)
         throw InputError("/accuracy/tolerance",
                          fmt::format("{} (the step was planned from this tolerance)", e.what()), file);
-      throw in_study(e.with_file(file), file, train_path, profiles.front().path);
+      throw in_study(e.with_file(file), file, train_path, profiles.front().path, structure);
     }
   }
   for (std::size_t j = 1; j < profiles.size(); ++j)
-    parse(scene_doc(variants.front(), trains[0], first_speed_kmh, profiles[j].value, placeholder_dt_s),
-          train_paths[0], profiles[j].path);
+    parse(scene_doc(structures.front(), variants.front(), trains[0], first_speed_kmh, profiles[j].value,
+                    placeholder_dt_s),
+          train_paths[0], profiles[j].path, structures.front());
 
   std::vector<std::string> train_labels;
   for (const json& t : trains) train_labels.push_back(study_train_label(t));
   make_unique(train_labels);
 
   plan.jobs.reserve(count);
-  std::set<std::string> ids;
+  for (const NamedStructure& s : structures)
+    if (!s.name.empty()) plan.structures.push_back(s.name);
+  // Where each job is in plan.jobs: a bridge listed twice (the same
+  // structure under two names) shares its jobs.
+  std::map<std::string, std::size_t> ids;
   for (std::size_t n = 0; n < facts.size(); ++n) {
     const std::size_t i = n % trains.size();
-    const StructureVariant& variant = variants[n / trains.size()];
+    const StructureVariant& variant = variants[(n / trains.size()) % variants.size()];
+    const std::size_t structure_index = n / (trains.size() * variants.size());
+    const NamedStructure& structure = structures[structure_index];
     const TrainFacts& f = facts[n];
     std::string modal_key;
     double modal_key_dt_s = 0.0;
@@ -427,7 +460,7 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
         const Profile& p = profiles[k];
         JobSpec job;
         const auto scene_at = [&](double at_speed_kmh) {
-          json scene = scene_doc(variant, trains[i], at_speed_kmh, p.value, dt.dt_s);
+          json scene = scene_doc(structure, variant, trains[i], at_speed_kmh, p.value, dt.dt_s);
           if (auto_fidelity) scene["fidelity"] = f.fidelity;
           else if (modal && !scene["fidelity"].contains("modal_cutoff_hz"))
             scene["fidelity"]["modal_cutoff_hz"] = f.plan.modal_cutoff_hz;  // the job runs without the frequencies
@@ -439,7 +472,14 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
         }
         job.scene = slots[k] ? slots[k]->text(speed_kmh) : canonical_text(scene_at(speed_kmh));
         job.id = sha256_hex(job.scene);
-        if (!ids.insert(job.id).second) continue;  // the same scene listed twice is one job
+        // The same scene listed twice is one job (on each bridge it stands for).
+        if (const auto [it, fresh] = ids.try_emplace(job.id, plan.jobs.size()); !fresh) {
+          std::vector<int>& on = plan.jobs[it->second].structures;
+          if (!structure.name.empty() && std::find(on.begin(), on.end(), static_cast<int>(structure_index)) == on.end())
+            on.push_back(static_cast<int>(structure_index));
+          continue;
+        }
+        if (!structure.name.empty()) job.structures.push_back(static_cast<int>(structure_index));
         job.train = train_labels[i];
         job.speed_kmh = speed_kmh;
         job.irregularity = p.label;

@@ -1,6 +1,7 @@
 #pragma once
-// A study (schemas/study.schema.json) expanded into jobs: structure variants
-// x trains x speeds x irregularity profiles (x seeds). Each job is one canonical scene; its id is
+// A study (schemas/study.schema.json) expanded into jobs: structures (a
+// line's bridges) x structure variants x trains x speeds x irregularity
+// profiles (x seeds). Each job is one canonical scene; its id is
 // the SHA-256 of that text, so the same job submitted twice is one job.
 #include <cstddef>
 #include <filesystem>
@@ -30,6 +31,10 @@ struct JobSpec {
   // (0 otherwise, and for a job read back from a store); stored as
   // jobs.planned_modes.
   int modes = 0;
+  // The bridges of a line study (StudyPlan::structures) this job runs for,
+  // by index: one, or several when the same structure is listed under
+  // several names. Empty for a study of one structure.
+  std::vector<int> structures;
 };
 
 struct StudyPlan {
@@ -39,6 +44,9 @@ struct StudyPlan {
   std::string document;  // canonical study JSON
   nlohmann::json checks = nlohmann::json::object();
   std::vector<JobSpec> jobs;
+  // The names of a line study's structures ("structures"), in its order;
+  // empty for a study of one structure.
+  std::vector<std::string> structures;
 };
 
 struct ExpandOptions {

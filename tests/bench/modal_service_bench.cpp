@@ -11,7 +11,9 @@
 //              with their own modal steps, loads precomputed) in this thread.
 // Run by hand: OPENBLAS_NUM_THREADS=1 build/tests/bench/modal_service_bench
 //
-// --service-only [--reps N]: only the service part of the deck-alone study
+// --service-only [--deck-alone] [--reps N]: only the service part of the
+// study as a user runs it by default (no asks: the deck and the section
+// forces), or with --deck-alone of the study that asks the deck alone
 // (asks ["deck"]), N times (default 2) in this process, each on a new
 // store; prints machine-readable lines (what tests/bench/peer_ratio reads):
 //   rep K cpu_s C wall_s W jobs J failed F expand_s E submit_s S work_s K
@@ -276,11 +278,11 @@ json deck_only_study() {
   return deck_only;
 }
 
-// --service-only: the deck-alone service, reps times, machine-readable.
-int service_only(int reps) {
+// --service-only: the default (or deck-alone) study's service, reps times, machine-readable.
+int service_only(int reps, bool deck_alone) {
   ServiceRun last;
   for (int k = 1; k <= reps; ++k) {
-    last = run_service(deck_only_study());
+    last = run_service(deck_alone ? deck_only_study() : hslm_study());
     std::printf("rep %d cpu_s %.4f wall_s %.4f jobs %ld failed %lld expand_s %.4f submit_s %.4f work_s %.4f\n", k,
                 last.service_cpu_s, last.service_s, last.jobs, static_cast<long long>(last.work.jobs_failed),
                 last.expand_s, last.submit_s, last.work.wall_s);
@@ -303,15 +305,17 @@ int main(int argc, char** argv) {
   keep_freed_memory();
   one_heap_for_all_threads();
   single_threaded_blas();
-  bool only_service = false;
+  bool only_service = false, deck_alone = false;
   int reps = 2;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--service-only") == 0) {
       only_service = true;
+    } else if (std::strcmp(argv[i], "--deck-alone") == 0) {
+      deck_alone = true;
     } else if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc) {
       reps = std::atoi(argv[++i]);
     } else {
-      std::fprintf(stderr, "usage: modal_service_bench [--service-only [--reps N]]\n");
+      std::fprintf(stderr, "usage: modal_service_bench [--service-only [--deck-alone] [--reps N]]\n");
       return 2;
     }
   }
@@ -320,7 +324,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "modal_service_bench: --reps must be at least 1\n");
       return 2;
     }
-    return service_only(reps);
+    return service_only(reps, deck_alone);
   }
   // The study's checks ask the deck; a study without asks gets the section
   // forces too (what the report's dynamic increments need) ...

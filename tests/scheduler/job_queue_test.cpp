@@ -237,7 +237,7 @@ TEST_F(JobQueueTest, UserTextIsStoredAndQueriedBackIntact) {
   EXPECT_EQ(study_info(*db_, p.id).name, study_name);
   JobQueue w(*db_, "w", 60.0);
   for (auto job = w.claim(); job; job = w.claim()) ASSERT_TRUE(w.complete(*job, outcome_with(job->speed_kmh)));
-  QueryFilter f{p.id, train_name, std::nullopt, std::nullopt, std::nullopt};
+  QueryFilter f{p.id, train_name, std::nullopt, std::nullopt, std::nullopt, std::nullopt};
   const auto jobs = study_results(*db_, f);
   ASSERT_EQ(jobs.size(), 5u);
   for (const auto& j : jobs) {

@@ -1,0 +1,270 @@
+// A whole line in one study: "structures" (a list of named structures or a
+// CSV of a line's bridges) as a dimension beside trains x speeds x
+// profiles. A bridge's jobs are the jobs of a study of it alone, so its
+// values equal that study's to the bit; a structure listed twice is one
+// set of jobs; the query and the report read the study per bridge; and a
+// shard keeps the planned rung of its jobs.
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+
+#include "core/input_error.hpp"
+#include "scheduler_test_support.hpp"
+#include "study/study_plan.hpp"
+
+namespace railvsi::test {
+namespace {
+
+using nlohmann::json;
+
+// tiny_study()'s 10 m span, and a 12 m one.
+json span(double length_m) {
+  json s = tiny_study()["structure"];
+  s["spans_m"] = {length_m};
+  return s;
+}
+
+// Bridges A (10 m), B (12 m) and C (10 m again, under another name).
+json line_study() {
+  json doc = tiny_study();
+  doc.erase("structure");
+  doc["name"] = "tiny line";
+  doc["structures"] = json::array({{{"name", "A"}, {"structure", span(10)}},
+                                   {{"name", "B"}, {"structure", span(12)}},
+                                   {{"name", "C"}, {"structure", span(10)}}});
+  return doc;
+}
+
+json one_bridge_study(double length_m) {
+  json doc = tiny_study();
+  doc["structure"] = span(length_m);
+  return doc;
+}
+
+scheduler::StudyPlan expand(const json& doc, const std::filesystem::path& dir = std::filesystem::temp_directory_path()) {
+  return scheduler::expand_study(doc, dir, "line.json");
+}
+
+TEST(LineStudy, StructuresAreADimensionAndABridgeListedTwiceSharesItsJobs) {
+  const scheduler::StudyPlan plan = expand(line_study());
+  EXPECT_EQ(plan.structures, (std::vector<std::string>{"A", "B", "C"}));
+  // 2 distinct structures x 2 trains x 5 speeds: A and C are one structure.
+  ASSERT_EQ(plan.jobs.size(), 20u);
+  std::map<std::vector<int>, int> on;
+  for (const auto& j : plan.jobs) ++on[j.structures];
+  EXPECT_EQ(on, (std::map<std::vector<int>, int>{{{0, 2}, 10}, {{1}, 10}}));
+  // Each bridge's jobs are the jobs (the ids) of a study of it alone.
+  for (const auto& [length_m, index] : {std::pair{10.0, 0}, std::pair{12.0, 1}}) {
+    std::set<std::string> alone, in_line;
+    for (const auto& j : expand(one_bridge_study(length_m)).jobs) alone.insert(j.id);
+    for (const auto& j : plan.jobs)
+      if (j.structures.front() == index) in_line.insert(j.id);
+    EXPECT_EQ(in_line, alone) << length_m << " m";
+  }
+}
+
+TEST(LineStudy, StructureAndStructuresTogetherOrNeitherAreRefused) {
+  json both = line_study();
+  both["structure"] = span(10);
+  try {
+    expand(both);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/structures");
+    EXPECT_EQ(e.file(), "line.json");
+  }
+  json neither = line_study();
+  neither.erase("structures");
+  EXPECT_THROW(expand(neither), InputError);
+  json twice = line_study();
+  twice["structures"][2]["name"] = "A";
+  try {
+    expand(twice);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/structures/2/name");
+  }
+  // A bad value inside a bridge is reported at the bridge.
+  json bad = line_study();
+  bad["structures"][1]["structure"]["deck"]["EI_Nm2"] = -1.0;
+  try {
+    expand(bad);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/structures/1/structure/deck/EI_Nm2") << e.what();
+  }
+}
+
+class LineStudyFiles : public ServiceTest {
+ protected:
+  std::filesystem::path write_text(const std::string& name, const std::string& text) const {
+    const auto file = dir_ / name;
+    std::ofstream(file, std::ios::binary) << text;
+    return file;
+  }
+  std::string study_id(const std::string& db) const {
+    scheduler::Database d(db);
+    scheduler::Statement s = d.prepare("SELECT id FROM studies");
+    EXPECT_TRUE(s.step());
+    return s.text(0);
+  }
+};
+
+TEST_F(LineStudyFiles, ACsvOfBridgesIsOneStructurePerLineAndABadLineNamesFileAndLine) {
+  write_text("line.csv",
+             "# two bridges\nname,spans_m,EI_Nm2,mass_kg_per_m,damping,output_points_m,continuous\n"
+             "P1,10,5.0e9,8000,0.01,2.5;5,\n"
+             "P2,8 8,4.0e9,7000,prestressed-concrete,,true\n");
+  json doc = tiny_study();
+  doc.erase("structure");
+  doc.erase("outputs");
+  doc["structures"] = {{"csv", "line.csv"}};
+  const scheduler::StudyPlan plan = expand(doc, dir_);
+  ASSERT_EQ(plan.structures, (std::vector<std::string>{"P1", "P2"}));
+  std::map<int, json> scenes;
+  for (const auto& j : plan.jobs) scenes.emplace(j.structures.front(), json::parse(j.scene));
+  const json& p1 = scenes.at(0);
+  EXPECT_EQ(p1["structure"]["spans_m"], json::array({10.0}));
+  EXPECT_EQ(p1["structure"]["deck"]["EI_Nm2"], 5.0e9);
+  EXPECT_EQ(p1["structure"]["damping"]["ratio"], 0.01);
+  EXPECT_EQ(p1["outputs"]["points"][1]["x_m"], 5.0);
+  const json& p2 = scenes.at(1);
+  EXPECT_EQ(p2["structure"]["spans_m"], json::array({8.0, 8.0}));
+  EXPECT_EQ(p2["structure"]["continuous"], true);
+  EXPECT_EQ(p2["structure"]["damping"]["en1991"]["bridge_type"], "prestressed-concrete");
+  EXPECT_FALSE(p2.contains("outputs"));  // the midspans by default
+
+  write_text("line.csv", "name,spans_m,EI_Nm2,mass_kg_per_m,damping\nP1,10,5.0e9,8000,0.01\nP2,10,stiff,8000,0.01\n");
+  try {
+    expand(doc, dir_);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/structures/csv");
+    EXPECT_EQ(e.file(), "line.json");
+    EXPECT_NE(std::string(e.what()).find("line.csv:3: EI_Nm2"), std::string::npos) << e.what();
+  }
+  // vsi submit: exit 2, the file and the path named, nothing written.
+  const auto study = write_json("line.json", doc);
+  const std::string db = (dir_ / "l.sqlite").string();
+  const VsiResult r = vsi({"submit", study.string(), "--db", db}, "submit");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("/structures/csv"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line.csv:3"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(db));
+}
+
+TEST_F(LineStudyFiles, ABridgeOfALineHasTheValuesOfItsOwnStudyToTheBitAndTheLineTableOneRowPerBridge) {
+  const std::string line_db = (dir_ / "line.sqlite").string(), alone_db = (dir_ / "alone.sqlite").string();
+  ASSERT_EQ(vsi({"run", write_json("line.json", line_study()).string(), "--db", line_db, "--threads", "2"}, "l").exit_code, 0);
+  ASSERT_EQ(vsi({"run", write_json("b.json", one_bridge_study(12)).string(), "--db", alone_db}, "b").exit_code, 0);
+  const std::string line = study_id(line_db), alone = study_id(alone_db);
+  {
+    scheduler::Database d(line_db);
+    EXPECT_EQ(count_rows(d, "SELECT count(*) FROM jobs"), 20);  // A and C computed once
+    EXPECT_EQ(count_rows(d, "SELECT count(*) FROM study_structures"), 30);
+  }
+  const VsiResult in_line = vsi({"query", "--db", line_db, "--study", line, "--structure", "B", "--format", "csv"}, "q1");
+  const VsiResult own = vsi({"query", "--db", alone_db, "--study", alone, "--format", "csv"}, "q2");
+  ASSERT_EQ(in_line.exit_code, 0) << in_line.err;
+  ASSERT_EQ(own.exit_code, 0) << own.err;
+  // Every value printed with the shortest text that reads back to the same
+  // double: equal text is equal bits. Drop the line's structure column.
+  const std::string without_column = std::regex_replace(in_line.out, std::regex("^[^,\n]*,", std::regex::multiline), "");
+  EXPECT_EQ(without_column, own.out);
+  // Guards against two empty outputs comparing equal: 10 jobs, each with values.
+  EXPECT_GT(std::count(own.out.begin(), own.out.end(), '\n'), 10 * 4) << own.out;
+
+  const VsiResult unknown = vsi({"query", "--db", line_db, "--study", line, "--structure", "Z"}, "q3");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("'A', 'B', 'C'"), std::string::npos) << unknown.err;
+
+  const VsiResult table = vsi({"query", "--db", line_db, "--study", line, "--line", "--format", "json"}, "q4");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  const json rows = json::parse(table.out);
+  ASSERT_EQ(rows.size(), 3u);
+  std::vector<std::string> names;
+  for (const json& r : rows) names.push_back(r["structure"]);
+  EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "C"}));
+  // B's governing deck acceleration is the largest value of its own study.
+  double largest = -1.0;
+  std::string at;
+  const VsiResult own_json = vsi({"query", "--db", alone_db, "--study", alone, "--format", "json"}, "q5");
+  ASSERT_EQ(own_json.exit_code, 0) << own_json.err;
+  const json own_jobs = json::parse(own_json.out)["jobs"];
+  ASSERT_EQ(own_jobs.size(), 10u);
+  for (const json& j : own_jobs) {
+    const double a = j["envelopes"]["deck_acceleration_mps2"]["all"].get<double>();
+    if (a > largest) largest = a, at = j["train"].get<std::string>();
+  }
+  bool seen = false;
+  for (const json& c : rows[1]["checks"])
+    if (c["id"] == "deck_acceleration") {
+      seen = true;
+      EXPECT_EQ(c["value"].get<double>(), largest);
+      EXPECT_EQ(c["train"], at);
+    }
+  EXPECT_TRUE(seen) << rows.dump();
+
+  const auto html = dir_ / "line.html";
+  ASSERT_EQ(vsi({"report", "--db", line_db, "--study", line, "--no-histories", "--out", html.string()}, "r").exit_code, 0);
+  const std::string text = read_text(html);
+  EXPECT_NE(text.find("Line summary"), std::string::npos);
+  for (const char* name : {"2.1 A", "2.2 B", "2.3 C"}) EXPECT_NE(text.find(name), std::string::npos) << name;
+}
+
+TEST_F(LineStudyFiles, AShardedLineMergesIntoTheAnswersOfAnUnshardedRun) {
+  const auto study = write_json("line.json", line_study());
+  const std::string whole = (dir_ / "whole.sqlite").string(), merged = (dir_ / "merged.sqlite").string();
+  ASSERT_EQ(vsi({"run", study.string(), "--db", whole}, "run").exit_code, 0);
+  const auto out = dir_ / "shards";
+  ASSERT_EQ(vsi({"shard", study.string(), "--shards", "2", "--out", out.string()}, "shard").exit_code, 0);
+  for (int k = 0; k < 2; ++k)
+    ASSERT_EQ(vsi({"work", "--db", (out / ("shard-" + std::to_string(k) + ".sqlite")).string()}, "work").exit_code, 0);
+  ASSERT_EQ(vsi({"merge", (out / "shard-0.sqlite").string(), (out / "shard-1.sqlite").string(), "--into", merged},
+                "merge").exit_code, 0);
+  const std::string id = study_id(whole);
+  for (const char* what : {"--line", "--wide"}) {
+    std::vector<std::string> args{"query", "--db", whole, "--study", id, "--format", "csv", what};
+    const VsiResult a = vsi(args, "a");
+    args[2] = merged;
+    const VsiResult b = vsi(args, "b");
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    EXPECT_NE(a.out.find("\nC,"), std::string::npos) << what << "\n" << a.out;  // every bridge, by name
+    EXPECT_EQ(a.out, b.out) << what;
+  }
+}
+
+TEST_F(LineStudyFiles, AShardsJobsKeepTheirPlannedRungAndModes) {
+  json doc = one_bridge_study(10);
+  doc["analysis"].erase("dt_s");  // the planner's rung and step
+  const auto study = write_json("s.json", doc);
+  const std::string db = (dir_ / "s.sqlite").string();
+  ASSERT_EQ(vsi({"submit", study.string(), "--db", db}, "submit").exit_code, 0);
+  std::map<std::string, std::pair<std::string, std::int64_t>> planned;
+  {
+    scheduler::Database d(db);
+    scheduler::Statement s = d.prepare("SELECT id, rung, planned_modes FROM jobs");
+    while (s.step()) planned[s.text(0)] = {s.text(1), s.is_null(2) ? -1 : s.int64(2)};
+  }
+  ASSERT_EQ(planned.size(), 10u);
+  ASSERT_EQ(planned.begin()->second.first, "moving_forces/modal");
+  ASSERT_GT(planned.begin()->second.second, 0);
+  const auto out = dir_ / "shards";
+  ASSERT_EQ(vsi({"shard", study.string(), "--shards", "2", "--out", out.string()}, "shard").exit_code, 0);
+  std::size_t seen = 0;
+  for (int k = 0; k < 2; ++k) {
+    scheduler::Database d((out / ("shard-" + std::to_string(k) + ".sqlite")).string());
+    scheduler::Statement s = d.prepare("SELECT id, rung, planned_modes FROM jobs");
+    while (s.step()) {
+      ++seen;
+      ASSERT_TRUE(planned.count(s.text(0)));
+      EXPECT_EQ(s.text(1), planned[s.text(0)].first);
+      EXPECT_EQ(s.is_null(2) ? -1 : s.int64(2), planned[s.text(0)].second);
+    }
+  }
+  EXPECT_EQ(seen, planned.size());
+}
+
+}  // namespace
+}  // namespace railvsi::test
