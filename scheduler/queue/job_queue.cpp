@@ -430,12 +430,33 @@ std::int64_t update_jobs_of_study(Database& db, std::string_view sql, const std:
 
 }  // namespace
 
-std::int64_t cancel_study(Database& db, const std::string& study_id) {
-  return update_jobs_of_study(
-      db,
-      "UPDATE jobs SET state = 'cancelled', lease_expires = NULL, finished_at = ?2 "
-      "WHERE state IN ('queued', 'running') AND id IN (SELECT job_id FROM study_jobs WHERE study_id = ?1)",
-      study_id);
+// A job another study still needs: that study has it and has not been
+// cancelled itself (no job of it is 'cancelled'; retry_study clears that).
+// Unfinished jobs of a study that has been cancelled are only those kept
+// for others.
+constexpr std::string_view kNeededElsewhere =
+    "EXISTS (SELECT 1 FROM study_jobs o WHERE o.job_id = jobs.id AND o.study_id != ?1 AND NOT EXISTS "
+    "(SELECT 1 FROM study_jobs oc JOIN jobs c ON c.id = oc.job_id WHERE oc.study_id = o.study_id AND "
+    "c.state = 'cancelled'))";
+
+CancelResult cancel_study(Database& db, const std::string& study_id) {
+  Transaction tx(db);
+  CancelResult r;
+  db.prepare(fmt::format("UPDATE jobs SET state = 'cancelled', lease_expires = NULL, finished_at = ?2 "
+                         "WHERE state IN ('queued', 'running') AND id IN (SELECT job_id FROM study_jobs WHERE "
+                         "study_id = ?1) AND NOT {}",
+                         kNeededElsewhere))
+      .bind(1, study_id)
+      .bind(2, unix_now_s())
+      .run();
+  r.cancelled = db.changes();
+  Statement left = db.prepare(fmt::format("SELECT count(*) FROM jobs WHERE state IN ('queued', 'running') AND id IN "
+                                          "(SELECT job_id FROM study_jobs WHERE study_id = ?1) AND {}",
+                                          kNeededElsewhere));
+  left.bind(1, study_id).step();
+  r.left_for_other_studies = left.int64(0);
+  tx.commit();
+  return r;
 }
 
 std::int64_t retry_study(Database& db, const std::string& study_id) {
