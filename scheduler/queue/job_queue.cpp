@@ -132,11 +132,15 @@ std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, 
     // Modal moving-force jobs of the same structure and dt run in one
     // pass per train; every job of the batch is leased like a single claim.
     if (first->rung == kBatchedRung && max_jobs > 1) {
-      // One statement claims the rest, as claim_row each.
+      // One statement claims the rest, as claim_row each: queued jobs and
+      // those a dead worker held (lease expired, attempts left), so that a
+      // resumed run stores them in batches as a fresh one does, not one
+      // transaction (and its WAL pages) per job.
       const double now = unix_now_s();
       Statement s = db_.prepare(
           "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker = ?, lease_expires = ?, started_at = ? "
-          "WHERE id IN (SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? AND rung = ? "
+          "WHERE id IN (SELECT id FROM jobs WHERE operator_key = ? AND rung = ? AND (state = 'queued' OR "
+          "(state = 'running' AND lease_expires < ?3 AND attempts < max_attempts)) "
           "ORDER BY train, irregularity, speed_kmh LIMIT ?) RETURNING id, operator_key, train, irregularity, speed_kmh, dt_s, "
           "cutoff_hz, attempts, rung, coalesce(planned_modes, -1)");
       s.bind(1, worker_)
