@@ -1,6 +1,7 @@
 #include "model/structure_model.hpp"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -73,13 +74,27 @@ StructureModel::StructureModel(SparseMatrix K, SparseMatrix M, SparseMatrix C,
         throw InputError(fmt::format("{}/x_m/{}", path, i),
                          fmt::format("rail node x must increase strictly ({} after {})",
                                      line.x_m[i], line.x_m[i - 1]));
-    for (std::size_t e = 0; e < line.element_dofs.size(); ++e)
-      for (int d : line.element_dofs[e]) {
+    // Node by node (element e holds nodes e and e + 1): each DOF at its own
+    // entry, and no DOF twice on one line (a node would be tied to another).
+    std::map<int, std::string> seen;  // DOF -> "dof_v/i" or "dof_rot/i"
+    for (std::size_t i = 0; i < line.x_m.size(); ++i) {
+      const std::size_t e = std::min(i, line.element_dofs.size() - 1);
+      const std::size_t first = i == e ? 0 : 2;
+      for (std::size_t k = 0; k < 2; ++k) {
+        const int d = line.element_dofs[e][first + k];
+        const std::string entry = fmt::format("{}/{}", k == 0 ? "dof_v" : "dof_rot", i);
         if (d < -1 || d >= n)
-          throw InputError(fmt::format("{}/dof_v/{}", path, e),
-                           fmt::format("DOF index {} outside the model (0..{})", d, n - 1));
-        if (d >= 0) rail_dofs_.push_back(d);
+          throw InputError(fmt::format("{}/{}", path, entry),
+                           fmt::format("equation {} outside the model (0..{}; -1 for a fixed DOF)", d, n - 1));
+        if (d < 0) continue;
+        if (const auto [it, fresh] = seen.emplace(d, entry); !fresh)
+          throw InputError(fmt::format("{}/{}", path, entry),
+                           fmt::format("equation {} is on this rail line twice (also at {}): each node needs DOFs "
+                                       "of its own",
+                                       d, it->second));
+        rail_dofs_.push_back(d);
       }
+    }
   }
   std::sort(rail_dofs_.begin(), rail_dofs_.end());
   rail_dofs_.erase(std::unique(rail_dofs_.begin(), rail_dofs_.end()), rail_dofs_.end());
