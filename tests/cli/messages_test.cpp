@@ -153,7 +153,7 @@ TEST_F(Messages, InspectOfAnHslmSceneListsItsResonanceSpeeds) {
 }
 
 // Defects (issue 35): the query table said "chosen by pinned" for a rung the
-// study pins, and vsi price "1 threads".
+// study pins, vsi price "1 threads", and vsi run logged the whole study id.
 TEST_F(Messages, APinnedRungAndOneThreadReadAsEnglish) {
   json study = json::parse(R"({"name": "pinned", "trains": [{"name": "one force",
     "moving_forces": [{"offset_m": 0, "load_N": 100000}]}], "speeds_kmh": [100],
@@ -165,6 +165,10 @@ TEST_F(Messages, APinnedRungAndOneThreadReadAsEnglish) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("moving_forces/fe, dt 0.002 s, pinned by the study"), std::string::npos) << run.out;
   EXPECT_EQ(run.out.find("chosen by pinned"), std::string::npos) << run.out;
+  // Defect (issue 35): vsi run's log line carried the 64-digit study id and
+  // wrapped at 80 columns; its ids are 12 digits, as the other lines'.
+  EXPECT_FALSE(std::regex_search(run.err, std::regex("[0-9a-f]{64}"))) << run.err;
+  EXPECT_TRUE(std::regex_search(run.err, std::regex("study [0-9a-f]{12}: 1 jobs, 1 new, in "))) << run.err;
   const VsiRun price = vsi("price '" + write_json("scene.json", small_scene()).string() + "' --threads 1");
   ASSERT_EQ(price.exit_code, 0) << price.err;
   EXPECT_NE(price.out.find(" runs on 1 thread in "), std::string::npos) << price.out;
