@@ -1,6 +1,7 @@
 #include "io/irregularity_loader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <fstream>
 #include <optional>
@@ -63,6 +64,10 @@ ProfileSamples read_profile_csv(const std::filesystem::path& file) {
     std::replace_if(fields.begin(), fields.end(), [](char c) { return c == ',' || c == ';'; }, ' ');
     double x = 0.0, r = 0.0;
     if (parse_fields(fields, x, r)) {
+      // The schema's bound of an inline r_m: a profile is millimetres.
+      if (!(std::abs(r) <= 1.0))
+        throw csv_error(file, number, fmt::format("r_m = {:g} m: a rail profile value must lie in [-1, 1] m "
+                                                  "(is the file in millimetres?)", r));
       s.x_m.push_back(x);
       s.r_m.push_back(r);
       s.line.push_back(number);

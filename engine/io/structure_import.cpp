@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
@@ -18,6 +19,7 @@
 #include "io/matrix_reader.hpp"
 #include "io/matrix_text.hpp"
 #include "io/schema_validator.hpp"
+#include "model/en1991_damping.hpp"
 #include "model/rayleigh.hpp"
 
 namespace railvsi {
@@ -411,11 +413,33 @@ void check_rail_mass(const StructureModel& model, const ImportedMatrices& m, con
     }
 }
 
+// The damping ratio given, or EN 1991-2 Table 6.6's for the bridge type at
+// the longest span (between the map's supports, else the bridge's length),
+// as bridge-2d takes it; with where it came from.
+std::pair<double, std::string> damping_ratio(const json& damping, const StructureInfo& info) {
+  if (damping.contains("en1991") == damping.contains("ratio"))
+    throw InputError("/structure/damping", "give exactly one of ratio (the damping ratio) and en1991 (the lower "
+                                           "bound of EN 1991-2 Table 6.6 for a bridge type)");
+  if (damping.contains("ratio")) return {damping.at("ratio").get<double>(), "given (Rayleigh on the whole imported model)"};
+  const auto name = damping.at("en1991").at("bridge_type").get<std::string>();
+  const auto type = en1991_bridge_type_from_name(name);
+  if (!type) throw InputError("/structure/damping/en1991/bridge_type", fmt::format("unknown bridge type '{}'", name));
+  const std::vector<double>& supports = info.support_x_m;
+  double longest_m = info.bridge_end_m - info.bridge_start_m;
+  if (supports.size() >= 2) {
+    longest_m = 0.0;
+    for (std::size_t i = 1; i < supports.size(); ++i) longest_m = std::max(longest_m, supports[i] - supports[i - 1]);
+  }
+  return {en1991_damping_ratio(*type, longest_m),
+          fmt::format("EN 1991-2 Table 6.6, {}, L = {:g} m (longest span{}; Rayleigh on the whole imported model)",
+                      name, longest_m, supports.size() >= 2 ? " between the map's supports" : ": the bridge")};
+}
+
 // C = a0 M + a1 K with the ratio matched at f1 and f2.
-SparseMatrix rayleigh_damping(const ImportedMatrices& m, const json& damping) {
+SparseMatrix rayleigh_damping(const ImportedMatrices& m, const json& damping, double ratio) {
   const double f1 = damping.at("f1_hz").get<double>(), f2 = damping.at("f2_hz").get<double>();
   if (!(f2 > f1)) throw InputError("/structure/damping/f2_hz", "must be greater than f1_hz");
-  const RayleighCoefficients r = rayleigh_coefficients(damping.at("ratio").get<double>(), f1, f2);
+  const RayleighCoefficients r = rayleigh_coefficients(ratio, f1, f2);
   return SparseMatrix(r.a0_per_s * m.M + r.a1_s * m.K);
 }
 
@@ -448,7 +472,6 @@ std::shared_ptr<const StructureModel> import_structure(const json& s, const json
     m.K *= EI_factor;
     m.notes.push_back(fmt::format("variant: M x {:g}, K x {:g}", mass_factor, EI_factor));
   }
-  if (s.contains("damping")) m.C = rayleigh_damping(m, s.at("damping"));
   const auto map_file = resolve_relative(base_dir, files.at("map").get<std::string>());
   const json map_doc = read_json_file(map_file);
   StructureMap map = parse_validated(map_doc, "structure-map.schema.json", map_file.string(),
@@ -462,8 +485,10 @@ std::shared_ptr<const StructureModel> import_structure(const json& s, const json
   info.track_dofs = static_cast<int>(info.track_dof_list.size());
   info.deck_dofs = static_cast<int>(m.K.rows()) - info.track_dofs;
   if (s.contains("damping")) {
-    info.damping_ratio = s.at("damping").at("ratio").get<double>();
-    info.damping_source = "given (Rayleigh on the whole imported model)";
+    const auto [ratio, source] = damping_ratio(s.at("damping"), info);
+    info.damping_ratio = ratio;
+    info.damping_source = source;
+    m.C = rayleigh_damping(m, s.at("damping"), ratio);
   } else {
     info.damping_source = files.contains("C") ? "imported C matrix" : "none";
     if (!files.contains("C")) info.damping_ratio = 0.0;

@@ -1,6 +1,7 @@
 #include "model/structure_model.hpp"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -73,12 +74,25 @@ StructureModel::StructureModel(SparseMatrix K, SparseMatrix M, SparseMatrix C,
         throw InputError(fmt::format("{}/x_m/{}", path, i),
                          fmt::format("rail node x must increase strictly ({} after {})",
                                      line.x_m[i], line.x_m[i - 1]));
+    // Element e holds nodes e and e + 1 ({v, rot} of each): every DOF is
+    // named at its own entry, and one DOF at two nodes (or as both v and
+    // rot) is refused. A node may have two DOFs of one kind (a hinge: the
+    // two elements' ends differ).
+    std::map<int, std::string> seen;  // DOF -> "dof_v/i" or "dof_rot/i"
     for (std::size_t e = 0; e < line.element_dofs.size(); ++e)
-      for (int d : line.element_dofs[e]) {
+      for (std::size_t k = 0; k < 4; ++k) {
+        const int d = line.element_dofs[e][k];
+        const std::string entry = fmt::format("{}/{}", k % 2 == 0 ? "dof_v" : "dof_rot", e + k / 2);
         if (d < -1 || d >= n)
-          throw InputError(fmt::format("{}/dof_v/{}", path, e),
-                           fmt::format("DOF index {} outside the model (0..{})", d, n - 1));
-        if (d >= 0) rail_dofs_.push_back(d);
+          throw InputError(fmt::format("{}/{}", path, entry),
+                           fmt::format("equation {} outside the model (0..{}; -1 for a fixed DOF)", d, n - 1));
+        if (d < 0) continue;
+        if (const auto [it, fresh] = seen.emplace(d, entry); !fresh && it->second != entry)
+          throw InputError(fmt::format("{}/{}", path, entry),
+                           fmt::format("equation {} is on this rail line twice (also at {}): each node needs DOFs "
+                                       "of its own",
+                                       d, it->second));
+        rail_dofs_.push_back(d);
       }
   }
   std::sort(rail_dofs_.begin(), rail_dofs_.end());

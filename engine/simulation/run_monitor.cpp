@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <limits>
 
+#include "model/undamped_structure.hpp"
+
 namespace railvsi {
 
 RunMonitor::RunMonitor(const Scene& scene, const TrainLayout& layout, const StructureCoordinates& coords,
@@ -50,6 +52,9 @@ std::vector<RunWarning> scene_input_warnings(const Scene& scene) {
                    "moving forces do not feel the track irregularity: it has no effect on this run (use a multibody "
                    "train for its effect)",
                    {}, {}, {}});
+  // On every rung (the modal moving-force runs take these warnings too).
+  if (structure_undamped(scene.structure->info()))
+    out.push_back({"structure_undamped", std::string(kUndampedStructureWarning), {}, {}, {}});
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "core/input_error.hpp"
 #include "generators/deck_3d.hpp"
 #include "io/deck_section_loader.hpp"
@@ -67,6 +68,29 @@ ordered_json multibody_scene(const StructureModel& model, const std::string& sum
             {"contact", {{"law", "hertz"}, {"rail_lines", rail_lines_json(model)}}}}}};
 }
 
+// At most this many DOFs: ten times the paper's size (a larger target
+// searched meshes without end).
+constexpr long kMaxGeneratedDofs = 5'000'000;
+constexpr double kMaxSpanM = 200.0;
+
+// "25,30,25": every field a span length in (0, 200] m; an empty field is an error.
+std::vector<double> parse_spans(const std::string& text) {
+  std::vector<double> spans;
+  std::size_t start = 0;
+  for (std::size_t k = 0;; ++k) {
+    const std::size_t comma = text.find(',', start);
+    const std::string field = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    double v = 0.0;
+    if (!CLI::detail::lexical_cast(field, v) || !std::isfinite(v) || v <= 0.0 || v > kMaxSpanM)
+      throw InputError("--spans", fmt::format("span {} of '{}' is '{}': give span lengths in m in (0, {:g}], "
+                                              "comma-separated",
+                                              k + 1, text, field, kMaxSpanM));
+    spans.push_back(v);
+    if (comma == std::string::npos) return spans;
+    start = comma + 1;
+  }
+}
+
 }  // namespace
 
 GenerateCommand::GenerateCommand(CLI::App& app) {
@@ -79,14 +103,16 @@ GenerateCommand::GenerateCommand(CLI::App& app) {
   deck->add_option("--dofs", args_.dofs,
                    "Total DOFs (deck and rails) the mesh is refined to, within 5 % (the paper's size is 233,292)")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1L, kMaxGeneratedDofs));
   deck->add_option("--out", args_.out_dir, "Directory for the files (created if needed; must be empty unless --force)")
       ->required();
   deck->add_flag("--force", args_.force, "Write into a non-empty --out, replacing the files of the same names");
-  deck->add_option("--spans", args_.spans_m, "Span lengths in m, comma-separated")->delimiter(',')->capture_default_str();
+  // Parsed by parse_spans: CLI11's delimiter dropped an empty field (25,,25 ran two spans).
+  deck->add_option("--spans", args_.spans_text, "Span lengths in m, comma-separated (each in (0, 200]); default 25,25,25");
   deck->add_option("--approach", args_.approach_m, "Track on rigid ground before the bridge in m (holds the train "
-                                                  "at the start)")
-      ->capture_default_str();
+                                                  "at the start), 0 to 2000")
+      ->capture_default_str()
+      ->check(finite_in(0.0, 2000.0));
   deck->add_option("--section", args_.section_file,
                    "Deck section document (schemas/deck-section.schema.json): a solid rectangle or a box girder; "
                    "default the solid 7 m x 1.6 m");
@@ -94,7 +120,9 @@ GenerateCommand::GenerateCommand(CLI::App& app) {
 
 std::optional<int> GenerateCommand::run_parsed() const {
   if (!generate_->parsed()) return std::nullopt;
-  return generate_deck_3d_command(args_);
+  GenerateArgs args = args_;
+  if (!args.spans_text.empty()) args.spans_m = parse_spans(args.spans_text);
+  return generate_deck_3d_command(args);
 }
 
 int generate_deck_3d_command(const GenerateArgs& args) {

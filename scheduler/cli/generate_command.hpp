@@ -14,6 +14,7 @@ struct GenerateArgs {
   bool force = false;  // write into a non-empty --out
   std::string out_dir;
   std::vector<double> spans_m{25.0, 25.0, 25.0};
+  std::string spans_text;  // --spans as given ("25,30"), parsed into spans_m
   double approach_m = 400.0;
   std::string section_file;  // a deck-section document; empty: the solid default
 };

@@ -16,6 +16,7 @@
 #include "core/freed_memory.hpp"
 #include "core/huge_pages.hpp"
 #include "core/terminal_text.hpp"
+#include "store/sqlite.hpp"
 
 namespace railvsi::cli {
 namespace {
@@ -136,6 +137,9 @@ int main(int argc, char** argv) {
     return run(argc, argv);
   } catch (const railvsi::InputError& e) {
     report_input_error(e);
+    return kExitInvalidInput;
+  } catch (const railvsi::scheduler::NoSuchDatabase& e) {  // --db names no store (replay, report, price)
+    std::cerr << "error: " << railvsi::scheduler::terminal_safe(e.what()) << '\n';
     return kExitInvalidInput;
   } catch (const std::bad_alloc&) {
     // Inputs are sized before allocating; this is a last resort, not a path.

@@ -202,7 +202,8 @@ std::string price_table(const PriceReport& p) {
     if (!c1 && !c5) continue;
     o << fmt::format("  {:<34} {} | {}\n", q, name(c1), name(c5));
   }
-  o << fmt::format("{} runs on {} threads in {:.3g} s wall\n", p.rows.size(), p.threads, p.wall_s);
+  o << fmt::format("{} runs on {} thread{} in {:.3g} s wall\n", p.rows.size(), p.threads, p.threads == 1 ? "" : "s",
+                   p.wall_s);
   return o.str();
 }
 

@@ -95,7 +95,17 @@ int change_study(const ServiceArgs& args, std::int64_t (*change)(scheduler::Data
 
 }  // namespace
 
-int cancel_command(const ServiceArgs& args) { return change_study(args, scheduler::cancel_study, "jobs cancelled"); }
+int cancel_command(const ServiceArgs& args) {
+  const auto db = open_store(args.db, scheduler::OpenMode::kExisting);
+  const auto id = find_study(*db, args.study_id);
+  if (!id) return kExitInvalidInput;
+  const scheduler::CancelResult r = scheduler::cancel_study(*db, *id);
+  std::cout << "study " << *id << ": " << r.cancelled << " jobs cancelled";
+  if (r.left_for_other_studies > 0)
+    std::cout << ", " << r.left_for_other_studies << " left queued for other unfinished studies that share them";
+  std::cout << "\n";
+  return kExitOk;
+}
 
 int retry_command(const ServiceArgs& args) { return change_study(args, scheduler::retry_study, "jobs queued again"); }
 

@@ -53,7 +53,13 @@ ReportCommand::ReportCommand(CLI::App& app) {
                 "cases, model, inputs)");
   report_->add_option("--db", args_.db, "Study database (SQLite file)")->capture_default_str();
   report_->add_option("--study", args_.study_id, "Study id (a unique prefix of at least 6 digits)")->required();
-  report_->add_option("--out", args_.out, "Report file (default: report-<study id>.html)");
+  report_->add_option("--out", args_.out, "Report file (default: report-<study id>.html)")
+      ->check(CLI::Validator(
+          [](const std::string& v) {
+            return v.empty() ? std::string("an empty file name; leave --out out for report-<study id>.html")
+                             : std::string();
+          },
+          "FILE"));
   report_->add_flag("!--no-histories", args_.histories, "Do not re-simulate the governing cases");
   report_->add_flag("--fail-on-exceeded", args_.fail_on_exceeded, kFailOnExceededHelp);
   report_->footer(verdict_exit_footer(false));

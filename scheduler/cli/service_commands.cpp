@@ -10,26 +10,13 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/verdict_exit.hpp"
 #include "store/sqlite.hpp"
 #include "workers/worker_pool.hpp"
 
 namespace railvsi::cli {
 namespace {
-
-// A finite number in [lo, hi]. CLI11's PositiveNumber lets nan and inf
-// through (nan <= 0 is false): a NaN lease was stored NULL and never expired.
-CLI::Validator finite_in(double lo, double hi) {
-  return CLI::Validator(
-      [lo, hi](std::string& text) -> std::string {
-        double v = 0.0;
-        if (!CLI::detail::lexical_cast(text, v)) return "'" + text + "' is not a number";
-        if (!std::isfinite(v) || v < lo || v > hi)
-          return fmt::format("{} is out of range: give a finite number from {} to {}", text, lo, hi);
-        return {};
-      },
-      fmt::format("FLOAT in [{} - {}]", lo, hi));
-}
 
 void add_db_option(CLI::App* command, ServiceArgs& a, bool creates) {
   command->add_option("--db", a.db, creates ? "Study database (SQLite file; created if needed)"
@@ -42,7 +29,7 @@ void add_work_options(CLI::App* command, ServiceArgs& a) {
   command->add_option("--lease-s", a.lease_s, "Lease of a claimed job in s; a job whose worker stops renewing it "
                                               "returns to the queue when it expires")
       ->capture_default_str()
-      ->check(finite_in(0.5, 86400.0));
+      ->check(finite_in(kLeaseMinS, kLeaseMaxS));
   command->add_option("--cache-mb", a.cache_mb, "Memory budget of the factorization cache in MB")
       ->capture_default_str()
       ->check(finite_in(1.0, 1.0e7));

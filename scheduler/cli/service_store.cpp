@@ -27,6 +27,14 @@ std::unique_ptr<scheduler::Database> open_store(const std::string& file, schedul
     // had added jobs to a file that status and query refuse).
     scheduler::require_sound(*db);
     scheduler::migrate(*db);
+    // A process killed mid-run (or stopped by a full disk) leaves its WAL
+    // unfolded: fold it in now, as a clean close does, so that this run's
+    // WAL starts over instead of growing past it. PASSIVE waits for no
+    // other process; a failure (disk still full) is left to the first write.
+    try {
+      db->exec("PRAGMA wal_checkpoint(PASSIVE)");
+    } catch (const scheduler::SqliteError&) {
+    }
   }
   return db;
 }

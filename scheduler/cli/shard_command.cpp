@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/service_store.hpp"
 #include "queue/job_queue.hpp"
 #include "shards/cluster_recipes.hpp"
@@ -43,7 +44,7 @@ void add_task_options(CLI::App* c, ClusterArgs& a) {
   c->add_option("--lease-s", a.lease_s,
                 "Lease of a claimed job in s: a resumed task waits this long for the job its killed worker held")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(kLeaseMinS, kLeaseMaxS));  // what vsi work accepts
 }
 
 // The study to shard: expanded from a file into a temporary in-memory
@@ -93,9 +94,16 @@ std::optional<Source> open_source(const ClusterArgs& a) {
   return s;
 }
 
-// Shards written, with a line per shard on stdout.
+// Shards written, with a line per shard on stdout; nullopt (nothing
+// written, the reason on stderr) when there are more shards than jobs.
 std::optional<scheduler::WrittenShards> make_shards(const ClusterArgs& a, Source& source) {
   const fs::path dir = fs::absolute(a.out);
+  if (const std::int64_t jobs = scheduler::state_counts(*source.db, source.study_id).total(); a.shards > jobs) {
+    std::cerr << fmt::format("error: --shards {}: the study has {} jobs; give at most {} shards (an empty shard "
+                             "is a task with nothing to do)\n",
+                             a.shards, jobs, jobs);
+    return std::nullopt;
+  }
   scheduler::WrittenShards w = scheduler::write_shards(*source.db, source.study_id, a.shards, dir);
   const auto& p = w.plan;
   std::cout << fmt::format("study {} ({}): {} shards in {}\n", source.study_id, source.study_name, a.shards,
@@ -167,15 +175,9 @@ ClusterCommands::ClusterCommands(CLI::App& app) {
   add_source_options(slurm_, args_);
   add_task_options(slurm_, args_);
   // Written into #SBATCH lines: one word each.
-  const auto one_word = CLI::Validator(
-      [](const std::string& v) {
-        return std::any_of(v.begin(), v.end(), [](unsigned char c) { return c <= ' ' || c == 0x7f; })
-                   ? std::string("must be one word")
-                   : std::string();
-      },
-      "WORD");
-  slurm_->add_option("--partition", args_.partition, "Slurm partition (default: the cluster's)")->check(one_word);
-  slurm_->add_option("--time", args_.time_limit, "Time limit of a task (Slurm --time, e.g. 4:00:00)")->check(one_word);
+  slurm_->add_option("--partition", args_.partition, "Slurm partition (default: the cluster's)")->check(one_word());
+  slurm_->add_option("--time", args_.time_limit, "Time limit of a task (Slurm --time, e.g. 4:00:00)")
+      ->check(one_word());
   slurm_->add_option("--max-requeues", args_.max_requeues, "Requeues of a task whose worker died")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
@@ -186,9 +188,13 @@ ClusterCommands::ClusterCommands(CLI::App& app) {
                                    "merge Job");
   add_source_options(k8s_, args_);
   add_task_options(k8s_, args_);
-  k8s_->add_option("--image", args_.image, "Worker image (built from docker/)")->required();
-  k8s_->add_option("--claim", args_.claim, "PersistentVolumeClaim holding the shard directory")->capture_default_str();
-  k8s_->add_option("--memory", args_.memory, "Memory of each pod (Kubernetes quantity)")->capture_default_str();
+  k8s_->add_option("--image", args_.image, "Worker image (built from docker/)")->required()->check(one_word());
+  k8s_->add_option("--claim", args_.claim, "PersistentVolumeClaim holding the shard directory")
+      ->capture_default_str()
+      ->check(kubernetes_name());
+  k8s_->add_option("--memory", args_.memory, "Memory of each pod (Kubernetes quantity)")
+      ->capture_default_str()
+      ->check(kubernetes_quantity());
   k8s_->add_option("--backoff-limit-per-index", args_.backoff_limit_per_index,
                    "Pods of one shard that may fail before the shard counts as failed")
       ->capture_default_str()
@@ -210,8 +216,7 @@ std::optional<int> ClusterCommands::run_parsed() const {
 int shard_command(const ClusterArgs& args) {
   auto source = open_source(args);
   if (!source) return kExitInvalidInput;
-  make_shards(args, *source);
-  return kExitOk;
+  return make_shards(args, *source) ? kExitOk : kExitInvalidInput;
 }
 
 int merge_command(const ClusterArgs& args) {
@@ -252,7 +257,7 @@ int slurm_command(const ClusterArgs& args) {
   auto source = open_source(args);
   if (!source) return kExitInvalidInput;
   const fs::path dir = fs::absolute(args.out);
-  const auto shards = make_shards(args, *source);
+  if (!make_shards(args, *source)) return kExitInvalidInput;
   scheduler::SlurmOptions o;
   o.study = cluster_study(args, *source);
   o.dir = dir;
@@ -292,7 +297,7 @@ int k8s_command(const ClusterArgs& args) {
   auto source = open_source(args);
   if (!source) return kExitInvalidInput;
   const fs::path dir = fs::absolute(args.out);
-  make_shards(args, *source);
+  if (!make_shards(args, *source)) return kExitInvalidInput;
   scheduler::K8sOptions o;
   o.study = cluster_study(args, *source);
   o.image = args.image;

@@ -154,7 +154,9 @@ int run_command(const ServiceArgs& args) {
   const Submitted submitted = submit(args);
   const scheduler::SubmitResult& r = submitted.result;
   scheduler::Database& db = *submitted.db;
-  spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id, r.jobs, r.new_jobs, scheduler::terminal_safe(args.db));
+  // 12 digits, as the other log lines: the whole id wrapped the line at 80 columns.
+  spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id.substr(0, 12), r.jobs, r.new_jobs,
+               scheduler::terminal_safe(args.db));
   if (!work_and_refine(args, db, {r.study_id}).error.empty()) return kExitRuntimeFailure;
   const scheduler::StudyInfo info = scheduler::study_info(db, r.study_id);
   const auto jobs = scheduler::study_results(db, {r.study_id, {}, {}, {}, {}, {}});

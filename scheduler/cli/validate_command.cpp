@@ -7,6 +7,7 @@
 #include "io/document_kind.hpp"
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
+#include "model/undamped_structure.hpp"
 #include "simulation/simulation.hpp"
 #include "study/study_plan.hpp"
 
@@ -27,6 +28,9 @@ void warn_about_import(const StructureModel& structure, const std::string& file)
   if (structure.info().source != "import") return;
   for (const std::string& w : structure.info().import_warnings)
     std::cerr << "warning: " << scheduler::terminal_safe(file) << ": /structure/import: " << w << '\n';
+  if (structure_undamped(structure.info()))
+    std::cerr << "warning: " << scheduler::terminal_safe(file) << ": /structure/damping: " << kUndampedStructureWarning
+              << '\n';
   ModalOptions options;
   options.modes = 1;
   const ModalResult modes = modal_analysis(structure, options);

@@ -185,7 +185,10 @@ std::string fidelity_block(const std::vector<JobResult>& jobs) {
     const int modes = f.value("modes", 0);
     std::string line = rung;
     if (modes > 0) line += fmt::format(", {} modes to {:.1f} Hz", modes, f.value("modal_cutoff_hz", 0.0));
-    line += fmt::format(", dt {:.3g} s, chosen by {}", f.value("dt_s", 0.0), f.value("chosen_by", std::string()));
+    // chosen_by is "planner", "pinned" (the study's fidelity) or "analysis" (its dt): said as a phrase.
+    const std::string by = f.value("chosen_by", std::string());
+    line += fmt::format(", dt {:.3g} s, {}", f.value("dt_s", 0.0),
+                        by == "pinned" ? "pinned by the study" : by == "analysis" ? "as given in analysis" : "chosen by " + by);
     if (f.contains("escalation") && f.at("escalation").is_string()) line += ", escalated to unilateral Hertz";
     ++rungs[line];
     std::string& why = ignores[rung];

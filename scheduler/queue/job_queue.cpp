@@ -139,11 +139,15 @@ std::vector<ClaimedJob> JobQueue::claim_batch(const std::string& preferred_key, 
     // Modal moving-force jobs of the same structure and dt run in one
     // pass per train; every job of the batch is leased like a single claim.
     if (first->rung == kBatchedRung && max_jobs > 1) {
-      // One statement claims the rest, as claim_row each.
+      // One statement claims the rest, as claim_row each: queued jobs and
+      // those a dead worker held (lease expired, attempts left), so that a
+      // resumed run stores them in batches as a fresh one does, not one
+      // transaction (and its WAL pages) per job.
       const double now = unix_now_s();
       Statement s = db_.prepare(
           "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker = ?, lease_expires = ?, started_at = ? "
-          "WHERE id IN (SELECT id FROM jobs WHERE state = 'queued' AND operator_key = ? AND rung = ? "
+          "WHERE id IN (SELECT id FROM jobs WHERE operator_key = ? AND rung = ? AND (state = 'queued' OR "
+          "(state = 'running' AND lease_expires < ?3 AND attempts < max_attempts)) "
           "ORDER BY train, irregularity, speed_kmh LIMIT ?) RETURNING id, operator_key, train, irregularity, speed_kmh, dt_s, "
           "cutoff_hz, attempts, rung, coalesce(planned_modes, -1)");
       s.bind(1, worker_)
@@ -437,12 +441,33 @@ std::int64_t update_jobs_of_study(Database& db, std::string_view sql, const std:
 
 }  // namespace
 
-std::int64_t cancel_study(Database& db, const std::string& study_id) {
-  return update_jobs_of_study(
-      db,
-      "UPDATE jobs SET state = 'cancelled', lease_expires = NULL, finished_at = ?2 "
-      "WHERE state IN ('queued', 'running') AND id IN (SELECT job_id FROM study_jobs WHERE study_id = ?1)",
-      study_id);
+// A job another study still needs: that study has it and has not been
+// cancelled itself (no job of it is 'cancelled'; retry_study clears that).
+// Unfinished jobs of a study that has been cancelled are only those kept
+// for others.
+constexpr std::string_view kNeededElsewhere =
+    "EXISTS (SELECT 1 FROM study_jobs o WHERE o.job_id = jobs.id AND o.study_id != ?1 AND NOT EXISTS "
+    "(SELECT 1 FROM study_jobs oc JOIN jobs c ON c.id = oc.job_id WHERE oc.study_id = o.study_id AND "
+    "c.state = 'cancelled'))";
+
+CancelResult cancel_study(Database& db, const std::string& study_id) {
+  Transaction tx(db);
+  CancelResult r;
+  db.prepare(fmt::format("UPDATE jobs SET state = 'cancelled', lease_expires = NULL, finished_at = ?2 "
+                         "WHERE state IN ('queued', 'running') AND id IN (SELECT job_id FROM study_jobs WHERE "
+                         "study_id = ?1) AND NOT {}",
+                         kNeededElsewhere))
+      .bind(1, study_id)
+      .bind(2, unix_now_s())
+      .run();
+  r.cancelled = db.changes();
+  Statement left = db.prepare(fmt::format("SELECT count(*) FROM jobs WHERE state IN ('queued', 'running') AND id IN "
+                                          "(SELECT job_id FROM study_jobs WHERE study_id = ?1) AND {}",
+                                          kNeededElsewhere));
+  left.bind(1, study_id).step();
+  r.left_for_other_studies = left.int64(0);
+  tx.commit();
+  return r;
 }
 
 std::int64_t retry_study(Database& db, const std::string& study_id) {

@@ -138,8 +138,13 @@ class JobQueue {
 StateCounts state_counts(Database& db, const std::string& study_id = {});
 // Study ids known to the database, oldest first.
 std::vector<std::string> study_ids(Database& db);
-// Cancels queued and running jobs of a study; returns how many.
-std::int64_t cancel_study(Database& db, const std::string& study_id);
+struct CancelResult {
+  std::int64_t cancelled = 0;
+  std::int64_t left_for_other_studies = 0;  // queued or running, needed by another unfinished study
+};
+// Cancels the queued and running jobs of a study that no other unfinished
+// study needs.
+CancelResult cancel_study(Database& db, const std::string& study_id);
 // Failed and cancelled jobs of a study go back to the queue with their
 // attempts reset; returns how many.
 std::int64_t retry_study(Database& db, const std::string& study_id);

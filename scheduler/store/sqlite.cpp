@@ -42,6 +42,27 @@ int read_schema(sqlite3* db) {
   return rc;
 }
 
+// A FIFO would block the open forever and a directory or device is no
+// store; an empty file opened as an existing store would silently become
+// one (SQLite treats it as a new database). In-memory names are not files.
+void refuse_what_is_no_store(const std::string& file, OpenMode mode) {
+  if (file.empty() || file == ":memory:") return;
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (ec || status.type() == std::filesystem::file_type::not_found) return;
+  if (status.type() != std::filesystem::file_type::regular)
+    throw NoSuchDatabase(file, fmt::format("is not a regular file ({}); give a vsi study database file",
+                                           status.type() == std::filesystem::file_type::fifo        ? "a FIFO"
+                                           : status.type() == std::filesystem::file_type::directory ? "a directory"
+                                                                                                     : "a special file"));
+  if (mode == OpenMode::kCreate) return;
+  const auto bytes = std::filesystem::file_size(file, ec);
+  // A database whose pages are all still in its -wal has an empty main file.
+  const auto wal_bytes = std::filesystem::file_size(file + "-wal", ec);
+  if (bytes == 0 && (ec || wal_bytes == 0))
+    throw NoSuchDatabase(file, "is empty, not a vsi study database (vsi submit creates one)");
+}
+
 }  // namespace
 
 void Database::open(const std::string& name, int flags) {
@@ -53,6 +74,7 @@ void Database::open(const std::string& name, int flags) {
 
 Database::Database(const std::string& file, OpenMode mode, int busy_timeout_ms) : file_(file) {
   if (mode != OpenMode::kCreate && !std::filesystem::exists(file)) throw NoSuchDatabase(file);
+  refuse_what_is_no_store(file, mode);
   if (const auto folder = std::filesystem::path(file).parent_path();
       mode == OpenMode::kCreate && !folder.empty() && !std::filesystem::is_directory(folder))
     throw NoSuchDatabase(fmt::format("{} (its folder {} does not exist)", file, folder.string()));

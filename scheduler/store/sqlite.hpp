@@ -29,10 +29,13 @@ using SqlValue = std::variant<Null, std::int64_t, double, std::string>;
 
 class Statement;
 
-// The file is not there (and the mode does not create it).
+// The file is not there (and the mode does not create it), or it is no
+// database file at all (a FIFO, a directory, an empty file to open as an
+// existing store): bad input, refused before SQLite reads or writes it.
 class NoSuchDatabase : public std::runtime_error {
  public:
   explicit NoSuchDatabase(const std::string& file) : std::runtime_error("no such database: " + file) {}
+  NoSuchDatabase(const std::string& file, const std::string& why) : std::runtime_error(file + ": " + why) {}
 };
 
 enum class OpenMode {

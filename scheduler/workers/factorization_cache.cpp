@@ -68,9 +68,10 @@ FactorizationCache::Lookup FactorizationCache::lookup(const std::string& key, co
   building_.erase(key);
   ++stats_.factorizations;
   stats_.factorization_s += result.build_s;
-  result.evictions = evict_to_fit(bytes);
-  // A model larger than the whole budget is used but not kept.
+  // A model larger than the whole budget is used but not kept, and evicts
+  // nothing (checked before evicting: it would have emptied the cache).
   if (bytes <= budget_bytes_) {
+    result.evictions = evict_to_fit(bytes);
     lru_.push_front(key);
     entries_[key] = Entry{result.model, bytes, lru_.begin()};
     used_bytes_ += bytes;

@@ -125,11 +125,15 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
   const double idle_wait_s = std::clamp(options.lease_s / 4.0, 0.02, 0.2);
   for (;;) {
     std::vector<ClaimedJob> batch;
+    bool finished = false;
     const std::uint64_t seen = held.generation();  // before the claim: no change is missed
     const auto attempt_started = Clock::now();
     try {
       db.set_busy_timeout(claim_timeout_ms);
       batch = queue.claim_batch(last_key, std::max<std::size_t>(1, options.max_batch_jobs), options.stopping);
+      // Read under the claim's timeout and retry path: a database error
+      // here had ended the thread with the error instead of retrying.
+      finished = batch.empty() && nothing_left(db);
       db.set_busy_timeout(kStoreTimeoutMs);
       backoff.succeeded();
     } catch (const SqliteError& e) {
@@ -143,7 +147,7 @@ void worker_loop(const WorkOptions& options, std::size_t thread, const std::stri
       // could not put back is no longer renewed, so its lease expires and
       // the next claim takes it: the wait ends. A sibling thread that
       // finishes or puts back its batch ends the wait at once.
-      if ((options.stopping != nullptr && options.stopping->load()) || nothing_left(db)) return;
+      if ((options.stopping != nullptr && options.stopping->load()) || finished) return;
       held.wait_for_change(seen, idle_wait_s);
       continue;
     }

@@ -151,6 +151,24 @@ TEST_F(Generate, Deck3dRefusesASizeTheRailsAloneExceedAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(out()));
 }
 
+// Defects (issue 35): --spans 25,,25 dropped the empty span and ran two;
+// --dofs 2000000000 and --approach 1e9 ran without bound. Refused at once,
+// the option named, nothing written.
+TEST_F(Generate, Deck3dRefusesEmptySpansAndUnboundedSizesAtOnce) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"--dofs 8000 --spans 25,,25", "--spans"},   {"--dofs 8000 --spans 25,", "--spans"},
+      {"--dofs 8000 --spans 25,abc", "--spans"},   {"--dofs 8000 --spans 25,-3", "--spans"},
+      {"--dofs 8000 --spans 25,nan", "--spans"},   {"--dofs 2000000000", "--dofs"},
+      {"--dofs 8000 --approach 1e9", "--approach"}, {"--dofs 8000 --approach nan", "--approach"}};
+  for (const auto& [args, option] : cases) {
+    SCOPED_TRACE(args);
+    const VsiRun run = generate(args);  // under vsi()'s 120 s timeout: a run without bound exits 124
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_NE(run.err.find(option), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(out()));
+  }
+}
+
 TEST_F(Generate, Deck3dBuildsTheBoxGirderOfASectionDocument) {
   const json box = {{"$schema", "deck-section.schema.json"}, {"kind", "box"},          {"top_width_m", 7.0},
                     {"top_thickness_m", 0.3},                {"bottom_width_m", 5.0},   {"bottom_thickness_m", 0.25},

@@ -55,6 +55,19 @@ TEST_F(Install, InstalledVsiRunsALibraryTrainExampleFromItsOwnShareDirectory) {
   for (const char* file : {"trains/ICE3.json", "trains/HSLM-A1.json", "schemas/scene.schema.json",
                            "schemas/study.schema.json", "examples/viaduct-ice3.json", "examples/hslm-sweep.json"})
     EXPECT_TRUE(fs::exists(share / file)) << file;
+  // Defect (issue 35): the installed files' "$schema" named ../../schemas,
+  // which exists only in the source tree. Each resolves beside the file.
+  int documents = 0;
+  for (const char* dir : {"trains", "examples"})
+    for (const auto& entry : fs::directory_iterator(share / dir)) {
+      if (entry.path().extension() != ".json") continue;
+      const auto doc = nlohmann::json::parse(read_text(entry.path()));
+      if (!doc.is_object() || !doc.contains("$schema")) continue;
+      ++documents;
+      const fs::path schema = entry.path().parent_path() / doc.at("$schema").get<std::string>();
+      EXPECT_TRUE(fs::is_regular_file(schema)) << entry.path() << ": $schema " << doc.at("$schema");
+    }
+  EXPECT_GT(documents, 10);
 
   // The library the installed binary uses is the installed one: an unknown
   // name lists where it looked.

@@ -141,6 +141,17 @@ TEST_F(InvalidInput, RejectsProfileWhoseXDoesNotIncreaseNamingTheLine) {
   EXPECT_NE(vsi("validate '" + scene.string() + "'").err.find("profile.csv:4:"), std::string::npos);
 }
 
+// Defect (issue 35): a profile value of 1e308 m was accepted, inline or in
+// a file. A rail's vertical profile is millimetres; 1 m is the bound.
+TEST_F(InvalidInput, RefusesAProfileValueAboveAMetreNamingTheSampleOrLine) {
+  expect_rejected(scene_with("/irregularity", json{{"x_m", {0.0, 5.0, 10.0}}, {"r_m", {0.0, 1e308, 0.0}}}),
+                  "/irregularity/r_m/1");
+  write("profile.csv", "x_m,r_m\n0.0,0.0\n1.0,0.001\n2.0,-1e308\n");
+  const auto scene = scene_with("/irregularity", json{{"csv", "profile.csv"}});
+  expect_rejected(scene, "/irregularity/csv");
+  EXPECT_NE(vsi("validate '" + scene.string() + "'").err.find("profile.csv:4:"), std::string::npos);
+}
+
 TEST_F(InvalidInput, RejectsUnknownContactLaw) {
   expect_rejected(scene_with("/analysis/contact", json{{"law", "hertzian"}}), "/analysis/contact/law");
 }
@@ -280,7 +291,9 @@ TEST_F(InvalidInput, RefusesImplausiblePhysicalValuesAtTheirPath) {
       {"/speed_kmh", 1e-6},           {"/speed_kmh", 1e308},
       {"/analysis/dt_s", 1e-9},       {"/analysis/dt_s", 1e308},
       {"/analysis/duration_s", 1e308}, {"/structure/deck/EI_Nm2", 1e-300},
-      {"/structure/deck/mass_kg_per_m", 1e-3}, {"/structure/spans_m/0", 1e6}};
+      {"/structure/deck/mass_kg_per_m", 1e-3}, {"/structure/spans_m/0", 1e6},
+      // Defect (issue 35): accepted before, an axle load of 1e308 N.
+      {"/train/moving_forces/0/load_N", 1e308}};
   for (const auto& [path, value] : cases) {
     SCOPED_TRACE(path);
     expect_rejected(scene_with(path, value), path);

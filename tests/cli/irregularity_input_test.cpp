@@ -98,8 +98,8 @@ TEST_F(IrregularityInput, RejectsTwoBaseProfiles) {
   expect_irregularity_rejected({{"csv", "profile.csv"}, {"spectrum", "fra-2"}, {"seed", 1}}, "/irregularity/spectrum");
 }
 
-TEST_F(IrregularityInput, RejectsNegativeOrZeroDefectDepth) {
-  for (double depth : {-0.002, 0.0}) {
+TEST_F(IrregularityInput, RejectsDefectDepthNotPositiveOrAboveAMetre) {
+  for (double depth : {-0.002, 0.0, 1e308}) {  // 1e308: a defect (issue 35) accepted before
     SCOPED_TRACE(depth);
     expect_irregularity_rejected(
         {{"defects", {{{"type", "dip"}, {"x_m", 4.0}, {"length_m", 1.0}, {"depth_m", depth}}}}},

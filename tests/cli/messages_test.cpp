@@ -152,6 +152,28 @@ TEST_F(Messages, InspectOfAnHslmSceneListsItsResonanceSpeeds) {
     EXPECT_NEAR(s["speed_kmh"].get<double>(), r["f0_hz"].get<double>() * 18.0 / s["i"].get<int>() * 3.6, 1e-9);
 }
 
+// Defects (issue 35): the query table said "chosen by pinned" for a rung the
+// study pins, vsi price "1 threads", and vsi run logged the whole study id.
+TEST_F(Messages, APinnedRungAndOneThreadReadAsEnglish) {
+  json study = json::parse(R"({"name": "pinned", "trains": [{"name": "one force",
+    "moving_forces": [{"offset_m": 0, "load_N": 100000}]}], "speeds_kmh": [100],
+    "fidelity": {"model": "moving_forces", "structure": "fe"}, "analysis": {"dt_s": 0.002}})");
+  study["structure"] = small_scene()["structure"];
+  study["outputs"] = small_scene()["outputs"];
+  const auto file = write_json("study.json", study);
+  const VsiRun run = vsi("run '" + file.string() + "' --db '" + (dir_ / "r.sqlite").string() + "' --threads 1");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("moving_forces/fe, dt 0.002 s, pinned by the study"), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("chosen by pinned"), std::string::npos) << run.out;
+  // Defect (issue 35): vsi run's log line carried the 64-digit study id and
+  // wrapped at 80 columns; its ids are 12 digits, as the other lines'.
+  EXPECT_FALSE(std::regex_search(run.err, std::regex("[0-9a-f]{64}"))) << run.err;
+  EXPECT_TRUE(std::regex_search(run.err, std::regex("study [0-9a-f]{12}: 1 jobs, 1 new, in "))) << run.err;
+  const VsiRun price = vsi("price '" + write_json("scene.json", small_scene()).string() + "' --threads 1");
+  ASSERT_EQ(price.exit_code, 0) << price.err;
+  EXPECT_NE(price.out.find(" runs on 1 thread in "), std::string::npos) << price.out;
+}
+
 TEST_F(Messages, GenerateDeck3dRequiresDofs) {
   const VsiRun run = vsi("generate deck-3d --out '" + (dir_ / "deck").string() + "'");
   EXPECT_EQ(run.exit_code, 2);

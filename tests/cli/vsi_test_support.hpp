@@ -20,10 +20,11 @@ struct VsiRun {
   std::string out, err;
 };
 
-// The study id a `vsi submit` or `vsi run` printed ("study <64 hex>").
+// The study id a `vsi submit` printed ("study <64 hex>"), or the 12-digit
+// prefix `vsi run` logs and tables show (a prefix vsi accepts as --study).
 inline std::string study_id_of(const std::string& output) {
   std::smatch m;
-  const std::regex re("study ([0-9a-f]{64})");
+  const std::regex re("study ([0-9a-f]{12,64})");
   return std::regex_search(output, m, re) ? m[1].str() : std::string();
 }
 

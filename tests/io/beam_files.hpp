@@ -37,6 +37,13 @@ inline const std::filesystem::path& beam_files_dir() {
   return dir;
 }
 
+// Copies the beam files into `dir`, for a test that edits or adds files beside them.
+inline void copy_beam_files(const std::filesystem::path& dir) {
+  ASSERT_FALSE(beam_files_dir().empty()) << "write_beam_files.py failed (python3-scipy?)";
+  for (const auto& entry : std::filesystem::directory_iterator(beam_files_dir()))
+    std::filesystem::copy_file(entry.path(), dir / entry.path().filename());
+}
+
 // The same beam from the generator: 10 elements of 2 m, pinned ends.
 inline std::shared_ptr<const StructureModel> generated_beam() {
   Bridge2dOptions o;

@@ -20,9 +20,7 @@ class ImportErrors : public VsiCliTest {
  protected:
   void SetUp() override {
     VsiCliTest::SetUp();
-    ASSERT_FALSE(beam_files_dir().empty());
-    for (const auto& entry : std::filesystem::directory_iterator(beam_files_dir()))
-      std::filesystem::copy_file(entry.path(), dir_ / entry.path().filename());
+    copy_beam_files(dir_);
   }
   // A scene importing K, M and the map from the test directory.
   std::filesystem::path scene(const std::string& K, const std::string& M, const std::string& map,
@@ -126,6 +124,32 @@ TEST_F(ImportErrors, RailNodeNotInTheMatrix) {
               std::string::npos)
         << run.err;
   }
+}
+
+// Defects (issue 35): the same DOF twice on a rail line was accepted, and
+// an equation outside the model was reported at dof_v/<element> whichever
+// array and node held it.
+TEST_F(ImportErrors, RailLineDofsOutsideTheModelOrRepeatedAreNamedAtTheirEntry) {
+  const json map = json::parse(read_text(dir_ / "map_index.json"));
+  const auto s = scene("beam_K_sym.mtx", "beam_M_sym.mtx", "map.json");
+  auto refused_at = [&](const json& changed, const std::string& json_path, const std::string& message) {
+    write_json("map.json", changed);
+    for (const char* command : {"validate", "simulate"}) {
+      SCOPED_TRACE(command);
+      const VsiRun run = vsi(std::string(command) + " '" + s.string() + "'");
+      expect_input_error(run, dir_ / "map.json", json_path);
+      EXPECT_NE(run.err.find(message), std::string::npos) << run.err;
+    }
+  };
+  json outside = map;
+  outside["rail_lines"][0]["dof_rot"][4] = 100000;
+  refused_at(outside, "/rail_lines/0/dof_rot/4", "equation 100000 outside the model");
+  json repeated = map;
+  repeated["rail_lines"][0]["dof_v"][3] = repeated["rail_lines"][0]["dof_v"][2];
+  refused_at(repeated, "/rail_lines/0/dof_v/3", "also at dof_v/2");
+  json rotation_as_vertical = map;
+  rotation_as_vertical["rail_lines"][0]["dof_rot"][5] = rotation_as_vertical["rail_lines"][0]["dof_v"][6];
+  refused_at(rotation_as_vertical, "/rail_lines/0/dof_v/6", "also at dof_rot/5");
 }
 
 TEST_F(ImportErrors, ZUpRailDofsAreRefused) {

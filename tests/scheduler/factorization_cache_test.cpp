@@ -63,6 +63,27 @@ TEST(FactorizationCache, ConcurrentRequestsForOneKeyBuildOnce) {
   EXPECT_EQ(s.hits, 7);
 }
 
+// Defect (issue 35): a model larger than the whole budget emptied the cache
+// first and was then not kept: every later job refactorized what had been
+// cached. Now it is used without touching the entries.
+TEST(FactorizationCache, AModelOverTheWholeBudgetEvictsNothing) {
+  FactorizationCache cache(2000);  // two 800-byte operators fit
+  int builds = 0;
+  const auto build = [&] {
+    ++builds;
+    return fake(100);
+  };
+  cache.get("A", build);
+  cache.get("B", build);
+  const CacheLookup huge = cache.get("huge", [] { return fake(1000); });  // 8,000 bytes
+  EXPECT_TRUE(huge.factorized);
+  EXPECT_EQ(huge.evictions, 0);
+  EXPECT_FALSE(cache.get("A", build).factorized);
+  EXPECT_FALSE(cache.get("B", build).factorized);
+  EXPECT_EQ(builds, 2);
+  EXPECT_EQ(cache.stats().evictions, 0);
+}
+
 TEST(FactorizationCache, LeastRecentlyUsedIsEvictedFirst) {
   // Each fake operator of 100 DOFs is estimated at 800 bytes: two fit.
   ASSERT_EQ(FactorizationCache::estimated_bytes(FakeOperator(100)), 800u);

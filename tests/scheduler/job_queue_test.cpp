@@ -195,7 +195,7 @@ TEST_F(JobQueueTest, CancelAndRetry) {
   JobQueue w(*db_, "w", 60.0);
   const auto running = w.claim();
   ASSERT_TRUE(running);
-  EXPECT_EQ(cancel_study(*db_, p.id), 10);
+  EXPECT_EQ(cancel_study(*db_, p.id).cancelled, 10);
   EXPECT_FALSE(w.complete(*running, outcome_with(1.0))) << "a cancelled job's result is dropped";
   EXPECT_FALSE(w.claim());
   EXPECT_EQ(state_counts(*db_, p.id).cancelled, 10);
@@ -203,6 +203,28 @@ TEST_F(JobQueueTest, CancelAndRetry) {
   EXPECT_EQ(state_counts(*db_, p.id).queued, 10);
   EXPECT_EQ(resolve_study_id(*db_, p.id.substr(0, 8)), p.id);
   EXPECT_EQ(resolve_study_id(*db_, "00000000"), "");
+}
+
+// Two unfinished studies share the jobs of one train: cancelling one leaves
+// the shared jobs queued for the other and says how many it left; once the
+// other is cancelled too, nothing keeps them.
+TEST_F(JobQueueTest, CancelLeavesJobsAnotherUnfinishedStudyNeeds) {
+  const StudyPlan both = plan(tiny_study());  // 2 trains x 5 speeds
+  json one_doc = tiny_study();
+  one_doc["name"] = "one train";
+  one_doc["trains"] = json::array({one_doc["trains"][0]});
+  const StudyPlan one = plan(one_doc);  // its 5 jobs are 5 of both's 10
+  submit_study(*db_, both);
+  submit_study(*db_, one);
+  const CancelResult first = cancel_study(*db_, both.id);
+  EXPECT_EQ(first.cancelled, 5);
+  EXPECT_EQ(first.left_for_other_studies, 5);
+  EXPECT_EQ(state_counts(*db_, one.id).queued, 5) << "the other study's jobs still run";
+  EXPECT_EQ(state_counts(*db_, both.id).cancelled, 5);
+  const CancelResult second = cancel_study(*db_, one.id);
+  EXPECT_EQ(second.cancelled, 5);
+  EXPECT_EQ(second.left_for_other_studies, 0);
+  EXPECT_EQ(state_counts(*db_).cancelled, 10);
 }
 
 TEST_F(JobQueueTest, ClaimsPreferTheKeyWhoseFactorIsCached) {

@@ -153,6 +153,20 @@ TEST_F(ShardCommands, MergingTwiceAddsNothing) {
   EXPECT_EQ(dump(merged), first) << "a second merge changed the store";
 }
 
+// Defect (issue 35): --shards above the job count wrote empty shards (1,000
+// shards of a small study took over 60 s). Refused, nothing written.
+TEST_F(ShardCommands, MoreShardsThanJobsAreRefusedAndNothingIsWritten) {
+  const auto study = write_json("small.json", small_study());  // 2 trains x 9 speeds: 18 jobs
+  for (const char* command : {"shard", "slurm"}) {
+    const auto out = dir_ / command;
+    const VsiResult r = vsi({command, study.string(), "--shards", "19", "--out", out.string()}, command);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--shards 19: the study has 18 jobs"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "nothing is written when the shard count is refused";
+  }
+  EXPECT_EQ(vsi({"shard", study.string(), "--shards", "18", "--out", (dir_ / "ok").string()}, "ok").exit_code, 0);
+}
+
 TEST_F(ShardCommands, MergeRefusesAShardOfAnotherStudyAndWritesNothing) {
   const auto study_a = write_json("a.json", small_study());
   json other = small_study();

@@ -267,6 +267,39 @@ TEST_F(WorkerProcesses, WheelEscalationRunsAtHalfTheStepAndTheJobRecordSaysSo) {
                    summary["wheels"]["contact_loss_s"].get<double>());
 }
 
+// Defect (issue 35): an escalated job's time-step warnings were judged at
+// its planned step: planned 2e-4 s, run at 1e-4 s, it stored dt_above_policy
+// for 2e-4 s, which vsi simulate of its scene (judged at the step it ran)
+// does not give.
+TEST_F(WorkerProcesses, AnEscalatedJobsStepWarningsAreJudgedAtTheStepItRan) {
+  json doc = dip_study();
+  doc["analysis"]["dt_s"] = 2.0e-4;
+  const std::string db_file = (dir_ / "dip.sqlite").string();
+  const auto study = write_json("dip.json", doc);
+  ASSERT_EQ(vsi({"run", study.string(), "--db", db_file}).exit_code, 0);
+  const std::string id = study_id_of(vsi({"submit", study.string(), "--db", db_file}, "again"));
+  const json jobs = json::parse(vsi({"query", "--db", db_file, "--study", id, "--format", "json"}, "q").out)["jobs"];
+  ASSERT_EQ(jobs.size(), 1u);
+  ASSERT_EQ(jobs[0]["fidelity"]["dt_s"].get<double>(), 1.0e-4) << "escalated at half the step";
+  json scene = {{"structure", doc["structure"]}, {"train", doc["trains"][0]}, {"speed_kmh", 300},
+                {"irregularity", doc["irregularities"][0]}, {"fidelity", "auto"}, {"asks", doc["asks"]},
+                {"analysis", doc["analysis"]}, {"outputs", doc["outputs"]}};
+  const VsiResult simulated = vsi({"simulate", write_json("dip-scene.json", scene).string()}, "sim");
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+  const json summary = json::parse(simulated.out);
+  ASSERT_EQ(summary["run"]["dt_s"].get<double>(), 1.0e-4);
+  const auto step_warnings = [](const json& warnings) {
+    std::set<std::string> messages;
+    for (const json& w : warnings)
+      if (w["code"] == "dt_above_policy" || w["code"] == "filter_above_nyquist")
+        messages.insert(w["message"].get<std::string>());
+    return messages;
+  };
+  const std::set<std::string> from_job = step_warnings(jobs[0]["warnings"]);
+  EXPECT_EQ(from_job, step_warnings(summary["run"]["warnings"]));
+  for (const std::string& m : from_job) EXPECT_EQ(m.find("dt = 0.0002 s"), std::string::npos) << m;
+}
+
 TEST_F(WorkerProcesses, StatusQueryCancelAndRetryFromTheCommandLine) {
   const auto study = write_json("tiny.json", tiny_study());
   const std::string db_file = (dir_ / "t.sqlite").string();
