@@ -46,6 +46,17 @@ struct HybridBasisOptions {
   double max_frequency_hz = 0.0;
   int modes = 0;
   bool all_modes = false;
+  // Interface columns per block of the constraint modes' solve and of the
+  // reduction's products: the dense work arrays are a block wide.
+  int column_block = 128;
+};
+
+// What the reduction cost, by part (CPU seconds of the building thread).
+struct HybridBasisSummary {
+  double constraint_modes_cpu_s = 0.0;  // K_II's factor and Psi
+  double interior_modes_cpu_s = 0.0;    // the modes with the interface held
+  double reduction_cpu_s = 0.0;         // T' K T, T' M T, T' C T
+  int factorizations = 0;               // of the mode solver
 };
 
 class HybridBasis {
@@ -78,6 +89,7 @@ class HybridBasis {
   const double* row(int dof) const;
   bool has_row(int dof) const { return dof >= 0 && row_of_[static_cast<std::size_t>(dof)] >= 0; }
   std::size_t memory_bytes() const;
+  const HybridBasisSummary& summary() const { return summary_; }
   std::string describe() const;
 
  private:
@@ -89,6 +101,7 @@ class HybridBasis {
   std::vector<int> index_;   // model DOF -> coordinate, -1 interior
   std::vector<int> row_of_;  // model DOF -> column of rows_, -1 none
   DenseMatrix rows_;         // one column per kept interior DOF
+  HybridBasisSummary summary_;
 };
 
 }  // namespace railvsi

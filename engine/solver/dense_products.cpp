@@ -1,0 +1,42 @@
+#include "solver/dense_products.hpp"
+
+#include <algorithm>
+
+extern "C" void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
+                       const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
+                       const double* beta, double* c, const int* ldc);
+
+namespace railvsi {
+
+void multiply_transposed(const DenseMatrix& A, const DenseMatrix& B, DenseMatrix& C, double alpha, double beta) {
+  const int m = static_cast<int>(A.cols()), n = static_cast<int>(B.cols()), k = static_cast<int>(A.rows());
+  if (beta == 0.0) C = DenseMatrix::Zero(m, n);
+  if (m == 0 || n == 0) return;
+  if (k == 0) {
+    C *= beta;
+    return;
+  }
+  const int lda = static_cast<int>(A.rows()), ldb = static_cast<int>(B.rows()), ldc = static_cast<int>(C.rows());
+  dgemm_("T", "N", &m, &n, &k, &alpha, A.data(), &lda, B.data(), &ldb, &beta, C.data(), &ldc);
+}
+
+DenseMatrix sparse_times_dense(const SparseMatrix& A, const Eigen::Ref<const DenseMatrix>& X) {
+  // 32 columns of X row by row (a 32-wide multiply-add per nonzero of A,
+  // on memory next to the last one: FE orderings keep A's columns near
+  // its rows).
+  constexpr Eigen::Index kBlock = 32;
+  using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  DenseMatrix Y(A.rows(), X.cols());
+  RowBlock x, y;
+  for (Eigen::Index c0 = 0; c0 < X.cols(); c0 += kBlock) {
+    const Eigen::Index w = std::min(kBlock, X.cols() - c0);
+    x = X.middleCols(c0, w);
+    y = RowBlock::Zero(A.rows(), w);
+    for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) y.row(it.row()) += it.value() * x.row(j);
+    Y.middleCols(c0, w) = y;
+  }
+  return Y;
+}
+
+}  // namespace railvsi

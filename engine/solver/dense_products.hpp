@@ -1,0 +1,20 @@
+#pragma once
+// The dense products of a model reduction at scale (hundreds of thousands
+// of rows times a thousand columns), where Eigen's own kernels, compiled
+// for the baseline x86-64, run at a fraction of the machine: the BLAS's
+// (OpenBLAS picks its kernel for the CPU at run time), and a sparse times
+// dense product that reads the sparse matrix once per block of columns
+// instead of once per column.
+#include "core/types.hpp"
+
+namespace railvsi {
+
+// C = alpha A' B + beta C (BLAS dgemm); C is resized (and zeroed) when beta
+// is 0.
+void multiply_transposed(const DenseMatrix& A, const DenseMatrix& B, DenseMatrix& C, double alpha = 1.0,
+                         double beta = 0.0);
+
+// Y = A X for a sparse A and a tall dense X, column block by column block.
+DenseMatrix sparse_times_dense(const SparseMatrix& A, const Eigen::Ref<const DenseMatrix>& X);
+
+}  // namespace railvsi
