@@ -5,6 +5,7 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <utility>
 
@@ -23,6 +24,7 @@
 #include "query/study_results.hpp"
 #include "query/study_status.hpp"
 #include "queue/job_queue.hpp"
+#include "store/store_schema.hpp"
 
 namespace railvsi::scheduler {
 namespace {
@@ -36,6 +38,15 @@ void send_json(httplib::Response& res, int status, const ordered_json& body) {
 
 void send_error(httplib::Response& res, int status, const std::string& message) {
   send_json(res, status, {{"error", message}});
+}
+
+// A read connection for the status routes. Without open_store's
+// PRAGMA quick_check, which reads the whole file at every request (the
+// server checked the store when it started; vsi check examines it).
+std::unique_ptr<Database> read_store(const std::string& file) {
+  auto db = std::make_unique<Database>(file, OpenMode::kReadOnly);
+  require_current_schema(*db);
+  return db;
 }
 
 // The study a path's ID names (a unique prefix of at least 6 digits is
@@ -143,14 +154,14 @@ void StudyApi::mount(httplib::Server& server) {
   });
 
   server.Get("/api/studies", [this](const httplib::Request&, httplib::Response& res) {
-    const auto db = cli::open_store(options_.service.db);
+    const auto db = read_store(options_.service.db);
     ordered_json list = ordered_json::array();
     for (const std::string& id : study_ids(*db)) list.push_back(study_json(*db, id));
     send_json(res, 200, {{"studies", std::move(list)}});
   });
 
   server.Get(R"(/api/studies/([0-9a-f]+))", [this](const httplib::Request& req, httplib::Response& res) {
-    const auto db = cli::open_store(options_.service.db);
+    const auto db = read_store(options_.service.db);
     const std::string id = study_of(*db, req.matches[1], res);
     if (!id.empty()) send_json(res, 200, study_json(*db, id));
   });
