@@ -23,16 +23,18 @@ namespace railvsi::test {
 
 class ServeProcess {
  public:
-  // Starts VSI_BINARY serve with `args` (besides --port 0), its output in
-  // log_dir/serve-<n>.log; waits (up to 60 s) for the line naming its port.
+  // Starts VSI_BINARY serve --port 0 with `args` (with `whole_command`,
+  // VSI_BINARY with `args` alone), its output in log_dir/serve-<n>.log;
+  // waits (up to 60 s) for the line naming its port.
   ServeProcess(const std::vector<std::string>& args, const std::filesystem::path& log_dir,
-               const std::vector<std::string>& env = {}) {
+               const std::vector<std::string>& env = {}, bool whole_command = false) {
     static int serial = 0;
     log_ = log_dir / ("serve-" + std::to_string(serial++) + ".log");
     pid_ = ::fork();
     if (pid_ < 0) throw std::runtime_error("fork failed");
     if (pid_ == 0) {
-      std::vector<std::string> argv_text = {VSI_BINARY, "serve", "--port", "0"};
+      std::vector<std::string> argv_text = {VSI_BINARY};
+      if (!whole_command) argv_text.insert(argv_text.end(), {"serve", "--port", "0"});
       argv_text.insert(argv_text.end(), args.begin(), args.end());
       std::vector<char*> argv;
       for (std::string& a : argv_text) argv.push_back(a.data());
