@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../service/serve_process.hpp"
+#include "../service/served_studies.hpp"
 
 namespace railvsi::test {
 namespace {
@@ -39,14 +40,7 @@ int run(int clients) {
     std::fprintf(stderr, "vsi serve did not start: %s\n", server.log().c_str());
     return 1;
   }
-  json study = json::parse(R"({
-    "name": "load bench: ICE3 multibody",
-    "structure": {"generator": "bridge-2d", "spans_m": [25], "continuous": false,
-      "deck": {"EI_Nm2": 7.694e10, "mass_kg_per_m": 15000}, "damping": {"ratio": 0.01}, "track": null},
-    "trains": ["ICE3"], "speeds_kmh": {"from": 200, "to": 390, "step": 10},
-    "analysis": {"hht_alpha": -0.05, "contact": {"law": "hertz"}},
-    "outputs": {"points": [{"name": "midspan", "x_m": 12.5}]},
-    "checks": {"deck_acceleration_limit_mps2": 3.5}})");
+  const json study = multibody_study("load bench: ICE3 multibody", 20);
   const auto posted = server.client()->Post("/api/studies", study.dump(), "application/json");
   if (!posted || posted->status != 202) return 1;
   const std::string path = "/api/studies/" + json::parse(posted->body)["id"].get<std::string>();

@@ -9,6 +9,7 @@
 
 #include "../cli/vsi_test_support.hpp"
 #include "serve_process.hpp"
+#include "served_studies.hpp"
 
 namespace railvsi::test {
 namespace {
@@ -21,28 +22,12 @@ std::string chromium() {
   return {};
 }
 
-// Eight quick jobs (two HSLM trains, four speeds) on a 25 m span.
-json small_study() {
-  return json::parse(R"({
-    "name": "dashboard study",
-    "structure": {
-      "generator": "bridge-2d", "spans_m": [25], "continuous": false,
-      "deck": {"EI_Nm2": 7.694e10, "mass_kg_per_m": 15000},
-      "damping": {"ratio": 0.01}, "track": null
-    },
-    "trains": ["HSLM-A1", "HSLM-A2"],
-    "speeds_kmh": [200, 250, 300, 350],
-    "outputs": {"points": [{"name": "midspan", "x_m": 12.5}]},
-    "checks": {"deck_acceleration_limit_mps2": 3.5}
-  })");
-}
-
 class DashboardTest : public VsiCliTest {
  protected:
   // Submits the small study to a server with two workers; waits until done.
   std::string submit_and_finish(const ServeProcess& server) const {
     const auto c = server.client();
-    const auto posted = c->Post("/api/studies", small_study().dump(), "application/json");
+    const auto posted = c->Post("/api/studies", hslm_study("dashboard study", 4).dump(), "application/json");
     EXPECT_TRUE(posted && posted->status == 202);
     const std::string id = posted ? json::parse(posted->body).value("id", "") : "";
     for (int i = 0; i < 600; ++i) {
@@ -102,7 +87,7 @@ TEST_F(DashboardTest, EveryRouteOfTheOpenApiDocumentIsAnswered) {
       if (method == "parameters") continue;
       // POST /api/studies with the study (again: 202, nothing new); the others without a body.
       const auto r = method == "get" ? c->Get(url.c_str())
-                                     : c->Post(url.c_str(), url == "/api/studies" ? small_study().dump() : "",
+                                     : c->Post(url.c_str(), url == "/api/studies" ? hslm_study("dashboard study", 4).dump() : "",
                                                "application/json");
       ASSERT_TRUE(r) << method << " " << url;
       EXPECT_TRUE(operation["responses"].contains(std::to_string(r->status)))

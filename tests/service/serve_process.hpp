@@ -104,4 +104,20 @@ class ServeProcess {
   int exit_code_ = -1;
 };
 
+// GET /api/studies without a token, with `token` altered, and with `token`:
+// the three statuses (-1: no answer). The client keeps the token.
+inline std::vector<int> token_statuses(httplib::Client& c, const std::string& token) {
+  std::vector<int> statuses;
+  const auto status = [&c] {
+    const auto r = c.Get("/api/studies");
+    return r ? r->status : -1;
+  };
+  statuses.push_back(status());
+  c.set_bearer_token_auth(token + "x");
+  statuses.push_back(status());
+  c.set_bearer_token_auth(token);
+  statuses.push_back(status());
+  return statuses;
+}
+
 }  // namespace railvsi::test

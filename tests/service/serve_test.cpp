@@ -10,42 +10,12 @@
 
 #include "../cli/vsi_test_support.hpp"
 #include "serve_process.hpp"
+#include "served_studies.hpp"
 
 namespace railvsi::test {
 namespace {
 
 using nlohmann::json;
-
-// Two HSLM trains over a 25 m span, `speeds` speeds from 200 km/h: quick
-// jobs (tests/cli/report_test.cpp's study; its light deck fails the
-// ballasted-track limit at resonance).
-json study(const std::string& name, int speeds = 5) {
-  json doc = json::parse(R"({
-    "structure": {
-      "generator": "bridge-2d", "spans_m": [25], "continuous": false,
-      "deck": {"EI_Nm2": 7.694e10, "mass_kg_per_m": 15000},
-      "damping": {"ratio": 0.01}, "track": null
-    },
-    "trains": ["HSLM-A1", "HSLM-A2"],
-    "analysis": {"hht_alpha": -0.05},
-    "outputs": {"points": [{"name": "quarter", "x_m": 6.25}, {"name": "midspan", "x_m": 12.5}]},
-    "checks": {"deck_acceleration_limit_mps2": 3.5}
-  })");
-  doc["name"] = name;
-  json list = json::array();
-  for (int i = 0; i < speeds; ++i) list.push_back(200 + 5 * i);
-  doc["speeds_kmh"] = list;
-  return doc;
-}
-
-// The ICE3 as a multibody train with Hertz contact on the same span: about
-// a second a job, so that a server can be stopped in the middle of a study.
-json multibody_study(const std::string& name, int speeds) {
-  json doc = study(name, speeds);
-  doc["trains"] = json::array({"ICE3"});
-  doc["analysis"] = {{"hht_alpha", -0.05}, {"contact", {{"law", "hertz"}}}};
-  return doc;
-}
 
 class ServeTest : public VsiCliTest {
  protected:
@@ -93,12 +63,12 @@ class ServeTest : public VsiCliTest {
 TEST_F(ServeTest, SubmitPollThenEnvelopesReportAndJobEqualTheCommands) {
   const auto server = serve({"--threads", "2"});
   const auto c = server->client();
-  const json submitted = post_study(*c, study("served <HSLM>"));
+  const json submitted = post_study(*c, hslm_study("served <HSLM>"));
   const std::string id = submitted["id"];
   EXPECT_EQ(submitted["jobs"], 10);  // 2 trains x 5 speeds
   EXPECT_EQ(submitted["new_jobs"], 10);
   // The same study again adds nothing.
-  const json again = post_study(*c, study("served <HSLM>"));
+  const json again = post_study(*c, hslm_study("served <HSLM>"));
   EXPECT_EQ(again["id"], id);
   EXPECT_EQ(again["new_jobs"], 0);
 
@@ -153,7 +123,7 @@ TEST_F(ServeTest, SubmitPollThenEnvelopesReportAndJobEqualTheCommands) {
 TEST_F(ServeTest, BadStudyGives400WithValidatePathAndMessage) {
   const auto server = serve({"--threads", "0"});
   const auto c = server->client();
-  json bad = study("bad");
+  json bad = hslm_study("bad");
   bad["speeds_kmh"] = json::array({200, -5});
   const json body = post_study(*c, bad, 400);
   const VsiRun validate = vsi("validate '" + write_json("bad.json", bad).string() + "'");
@@ -185,7 +155,7 @@ TEST_F(ServeTest, UnknownStudyOrJobIs404AndOversizedBodyIs413) {
   ASSERT_TRUE(cancel);
   EXPECT_EQ(cancel->status, 404);
   // 0.01 MB = 10,485 bytes; the study padded with spaces to 20,000.
-  std::string big = study("big").dump();
+  std::string big = hslm_study("big").dump();
   big.append(20000 - big.size(), ' ');
   const auto r = c->Post("/api/studies", big, "application/json");
   ASSERT_TRUE(r);
@@ -203,20 +173,10 @@ TEST_F(ServeTest, TokenIsRequiredOffLoopbackAndCheckedOnEveryApiRequest) {
   // From the environment; every /api request checks it, the page does not need it.
   const auto server = serve({"--threads", "0"}, {"RAILVSI_TOKEN=s3cret-token"});
   const auto c = server->client();
-  const auto none = c->Get("/api/studies");
-  ASSERT_TRUE(none);
-  EXPECT_EQ(none->status, 401);
-  const auto posted = c->Post("/api/studies", study("t").dump(), "application/json");
+  const auto posted = c->Post("/api/studies", hslm_study("t").dump(), "application/json");
   ASSERT_TRUE(posted);
   EXPECT_EQ(posted->status, 401);
-  c->set_bearer_token_auth("s3cret-tokeN");
-  const auto wrong = c->Get("/api/studies");
-  ASSERT_TRUE(wrong);
-  EXPECT_EQ(wrong->status, 401);
-  c->set_bearer_token_auth("s3cret-token");
-  const auto right = c->Get("/api/studies");
-  ASSERT_TRUE(right);
-  EXPECT_EQ(right->status, 200);
+  EXPECT_EQ(token_statuses(*c, "s3cret-token"), (std::vector<int>{401, 401, 200}));
   const auto page = httplib::Client("127.0.0.1", server->port()).Get("/");
   ASSERT_TRUE(page);
   EXPECT_EQ(page->status, 200);
@@ -225,7 +185,7 @@ TEST_F(ServeTest, TokenIsRequiredOffLoopbackAndCheckedOnEveryApiRequest) {
 TEST_F(ServeTest, CancelAndRetryAsTheCommandsThenVsiWorkFinishes) {
   const auto server = serve({"--threads", "0"});  // accept only
   const auto c = server->client();
-  const std::string id = post_study(*c, study("cancelled"))["id"];
+  const std::string id = post_study(*c, hslm_study("cancelled"))["id"];
   const auto cancel = c->Post(("/api/studies/" + id + "/cancel").c_str(), "", "application/json");
   ASSERT_TRUE(cancel);
   EXPECT_EQ(json::parse(cancel->body)["cancelled"], 10);
@@ -244,7 +204,7 @@ TEST_F(ServeTest, TwoClientsSubmittingAtOnceBothGetTheirStudy) {
   const auto server = serve({"--threads", "0"});
   auto submit = [&](const std::string& name) {
     const auto c = server->client();
-    const auto r = c->Post("/api/studies", study(name, 4).dump(), "application/json");
+    const auto r = c->Post("/api/studies", hslm_study(name, 4).dump(), "application/json");
     return r ? std::make_pair(r->status, r->body) : std::make_pair(-1, std::string());
   };
   auto a = std::async(std::launch::async, submit, "client A");
