@@ -57,34 +57,6 @@ std::string study_of(Database& db, const std::string& id, httplib::Response& res
   return full;
 }
 
-// vsi status's figures of one study, and the checks' verdict once no job is
-// left to run.
-ordered_json study_json(Database& db, const std::string& id) {
-  const StudyStatus s = study_status(db, id);
-  const StateCounts& c = s.counts;
-  ordered_json out = {{"id", s.id},
-                      {"name", s.name},
-                      {"jobs",
-                       {{"total", c.total()},
-                        {"queued", c.queued},
-                        {"running", c.running},
-                        {"done", c.done},
-                        {"failed", c.failed},
-                        {"cancelled", c.cancelled},
-                        {"stale_leases", s.stale_leases}}},
-                      {"throughput_jobs_per_s", s.jobs_per_s ? ordered_json(*s.jobs_per_s) : ordered_json(nullptr)},
-                      {"eta_s", s.eta_s && c.unfinished() > 0 ? ordered_json(*s.eta_s) : ordered_json(nullptr)},
-                      {"verdict", nullptr}};
-  if (c.unfinished() == 0 && c.total() > 0) {
-    try {
-      out["verdict"] = verdict_name(cli::judge_jobs(db, id, study_results(db, {id, {}, {}, {}, {}})).overall);
-    } catch (const InputError& e) {  // a stored scene that no longer loads: as vsi query, no verdict
-      out["verdict_error"] = e.describe();
-    }
-  }
-  return out;
-}
-
 // The body of POST /api/studies, kept beside the store under the SHA-256 of
 // its bytes: the same study posted again is the same file. Files a study
 // names (trains, profiles) are found relative to this folder.
@@ -102,6 +74,44 @@ std::filesystem::path keep_upload(const std::string& db_file, const std::string&
 }  // namespace
 
 StudyApi::StudyApi(StudyApiOptions options) : options_(std::move(options)) {}
+
+ordered_json StudyApi::study_json(Database& db, const std::string& id) {
+  const StudyStatus s = study_status(db, id);
+  const StateCounts& c = s.counts;
+  ordered_json out = {{"id", s.id},
+                      {"name", s.name},
+                      {"jobs",
+                       {{"total", c.total()},
+                        {"queued", c.queued},
+                        {"running", c.running},
+                        {"done", c.done},
+                        {"failed", c.failed},
+                        {"cancelled", c.cancelled},
+                        {"stale_leases", s.stale_leases}}},
+                      {"throughput_jobs_per_s", s.jobs_per_s ? ordered_json(*s.jobs_per_s) : ordered_json(nullptr)},
+                      {"eta_s", s.eta_s && c.unfinished() > 0 ? ordered_json(*s.eta_s) : ordered_json(nullptr)},
+                      {"verdict", nullptr}};
+  if (c.unfinished() == 0 && c.total() > 0) {
+    KnownVerdict known;
+    {
+      const std::lock_guard lock(verdicts_mutex_);
+      known = verdicts_[id];
+    }
+    if (known.done != c.done || known.failed != c.failed || known.cancelled != c.cancelled) {
+      known = {c.done, c.failed, c.cancelled, {}, {}};
+      try {
+        known.verdict = verdict_name(cli::judge_jobs(db, id, study_results(db, {id, {}, {}, {}, {}})).overall);
+      } catch (const InputError& e) {  // a stored scene that no longer loads: as vsi query, no verdict
+        known.error = e.describe();
+      }
+      const std::lock_guard lock(verdicts_mutex_);
+      verdicts_[id] = known;
+    }
+    if (!known.verdict.empty()) out["verdict"] = known.verdict;
+    if (!known.error.empty()) out["verdict_error"] = known.error;
+  }
+  return out;
+}
 
 void StudyApi::mount(httplib::Server& server) {
   server.set_payload_max_length(options_.max_body_bytes);
@@ -145,6 +155,7 @@ void StudyApi::mount(httplib::Server& server) {
       const SubmitResult r = cli::submit_study_file(args);
       send_json(res, 202, {{"id", r.study_id}, {"jobs", r.jobs}, {"new_jobs", r.new_jobs}});
     } catch (const InputError& e) {
+      std::filesystem::remove(args.study_file);  // only studies that were queued are kept
       // vsi validate's path and message; the kept file's name is the server's business.
       send_json(res, 400,
                 {{"error", (e.json_path().empty() ? std::string("/") : e.json_path()) + ": " + e.what()},

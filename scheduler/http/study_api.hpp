@@ -4,10 +4,15 @@
 // query, report, cancel, retry (cli/service_commands.hpp); this file only
 // maps requests to their arguments and their results to HTTP.
 #include <cstddef>
+#include <cstdint>
+#include <map>
 #include <mutex>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/service_commands.hpp"
+#include "store/sqlite.hpp"
 
 namespace httplib {
 class Server;
@@ -29,8 +34,21 @@ class StudyApi {
   void mount(httplib::Server& server);
 
  private:
+  // vsi status's figures of one study as JSON, with the checks' verdict
+  // once no job is left to run.
+  nlohmann::ordered_json study_json(Database& db, const std::string& id);
+
   StudyApiOptions options_;
   std::mutex submit_mutex_;  // one submit at a time: each expands a study and writes the store
+  // The verdict of a finished study judges all its jobs: kept per study for
+  // as long as its counts of done, failed and cancelled jobs stay the same
+  // (every dashboard asks for it every 2 s).
+  struct KnownVerdict {
+    std::int64_t done = -1, failed = -1, cancelled = -1;
+    std::string verdict, error;
+  };
+  std::mutex verdicts_mutex_;
+  std::map<std::string, KnownVerdict> verdicts_;
 };
 
 }  // namespace railvsi::scheduler
