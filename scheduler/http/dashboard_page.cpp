@@ -29,7 +29,9 @@ form{display:flex;flex-wrap:wrap;gap:10px;align-items:center}
 #msg{white-space:pre-wrap}.err{color:#b00020}
 @media (max-width:700px){
  thead{display:none} table,tbody,tr,td{display:block;width:auto} tr{border-bottom:2px solid #e3e6ea;padding:6px 0}
- td{border:0;padding:4px 2px} td[data-label]::before{content:attr(data-label) ": ";font-weight:600;color:#5a6372}
+ td{border:0;padding:3px 2px;display:flex;gap:8px;align-items:center}
+ td[data-label]::before{content:attr(data-label);flex:0 0 64px;font-weight:600;color:#5a6372;font-size:13px}
+ td>*{flex:1} td>.verdict{flex:0 0 auto} td[data-label="Study"]::before{content:none} td[data-label="Study"]{font-weight:600}
 }
 </style></head><body>
 <header><h1>railvsi &mdash; studies</h1></header>
