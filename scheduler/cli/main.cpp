@@ -11,6 +11,7 @@
 #include "cli/generate_command.hpp"
 #include "cli/price_command.hpp"
 #include "cli/report_command.hpp"
+#include "cli/serve_command.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/shard_command.hpp"
 #include "core/freed_memory.hpp"
@@ -66,6 +67,7 @@ int run(int argc, char** argv) {
   ReportCommand report(app);
   PriceCommand price(app);
   ClusterCommands cluster(app);
+  ServeCommand serve(app);
 
   // A word that is no command: CLI11 would say "A subcommand is required".
   if (argc > 1 && argv[1][0] != '-') {
@@ -94,6 +96,7 @@ int run(int argc, char** argv) {
   if (const auto code = report.run_parsed()) return *code;
   if (const auto code = price.run_parsed()) return *code;
   if (const auto code = cluster.run_parsed()) return *code;
+  if (const auto code = serve.run_parsed()) return *code;
   return validate_command(validate_file);
 }
 
@@ -112,7 +115,7 @@ bool runs_jobs_side_by_side(int argc, char** argv) {
     const std::string_view a = argv[i];
     if (a.starts_with("-")) continue;
     for (const std::string_view c : {"submit", "work", "run", "status", "query", "cancel", "retry", "check", "shard",
-                                     "price"})
+                                     "price", "serve"})
       if (a == c) return true;
     return false;
   }

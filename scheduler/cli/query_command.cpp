@@ -14,7 +14,9 @@
 
 namespace railvsi::cli {
 
-int query_command(const ServiceArgs& args) {
+int query_command(const ServiceArgs& args) { return write_query(args, std::cout, std::cerr); }
+
+int write_query(const ServiceArgs& args, std::ostream& out_text, std::ostream& err) {
   const auto db = open_store(args.db, scheduler::OpenMode::kReadOnly);
   const auto id = find_study(*db, args.study_id);
   if (!id) return kExitInvalidInput;
@@ -22,11 +24,11 @@ int query_command(const ServiceArgs& args) {
   const scheduler::QueryFilter filter{*id,          args.train,        args.speed_min_kmh,
                                       args.speed_max_kmh, args.irregularity, args.structure};
   if (const auto why = scheduler::filter_error(*db, filter)) {
-    std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';  // it lists the study's names
+    err << "error: " << scheduler::terminal_safe(*why) << '\n';  // it lists the study's names
     return kExitInvalidInput;
   }
   if (args.wide && args.format != "csv") {
-    std::cerr << "error: --wide applies to --format csv\n";
+    err << "error: --wide applies to --format csv\n";
     return kExitInvalidInput;
   }
   const scheduler::StudyInfo info = scheduler::study_info(*db, *id);
@@ -55,11 +57,11 @@ int query_command(const ServiceArgs& args) {
       judged = judge_jobs(*db, *id, jobs);
     } catch (const InputError& e) {  // a stored scene that no longer loads (e.g. its train file removed)
       not_judged = e.describe();
-      std::cerr << "warning: the checks cannot be evaluated: " << scheduler::terminal_safe(not_judged) << '\n';
+      err << "warning: the checks cannot be evaluated: " << scheduler::terminal_safe(not_judged) << '\n';
     }
   }
   if (args.format == "csv") {
-    std::cout << (args.wide ? scheduler::format_wide_csv(jobs) : scheduler::format_csv(jobs));
+    out_text << (args.wide ? scheduler::format_wide_csv(jobs) : scheduler::format_csv(jobs));
   } else if (args.format == "json") {
     nlohmann::ordered_json out = scheduler::format_json(info, jobs);
     out["verdict"] = verdict_name(judged ? judged->overall : Verdict::kNotEvaluated);
@@ -72,10 +74,10 @@ int query_command(const ServiceArgs& args) {
     } catch (const std::exception& e) {
       out["dynamic_increment"] = {{"error", std::string("static response not computed: ") + e.what()}};
     }
-    std::cout << out.dump(2) << '\n';
+    out_text << out.dump(2) << '\n';
   } else {
-    std::cout << scheduler::format_table(info, jobs);
-    if (judged) std::cout << scheduler::format_verdict_lines(judged->checks, judged->overall);
+    out_text << scheduler::format_table(info, jobs);
+    if (judged) out_text << scheduler::format_verdict_lines(judged->checks, judged->overall);
   }
   if (!args.fail_on_exceeded) return kExitOk;
   return verdict_exit_code(judged ? judged->overall : Verdict::kNotEvaluated);

@@ -2,11 +2,17 @@
 // The study service's subcommands of vsi: submit, work, run, status, query,
 // cancel, retry, check. They share one database option, default
 // ./vsi-results.sqlite; only submit and run create it.
+#include <atomic>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "queue/job_queue.hpp"
+#include "store/sqlite.hpp"
+#include "workers/worker_pool.hpp"
 
 namespace railvsi::cli {
 
@@ -51,5 +57,25 @@ int query_command(const ServiceArgs& args);
 int cancel_command(const ServiceArgs& args);
 int retry_command(const ServiceArgs& args);
 int check_command(const ServiceArgs& args);
+
+// The bodies the commands share with vsi serve (one implementation each).
+// vsi submit without its output line: expands and validates args.study_file
+// (InputError when anything is wrong: nothing is enqueued), then queues it.
+scheduler::SubmitResult submit_study_file(const ServiceArgs& args);
+// vsi query: what it prints on stdout to `out`, its errors and warnings to
+// `err`; returns its exit code. args.study_id must name a study.
+int write_query(const ServiceArgs& args, std::ostream& out, std::ostream& err);
+// A caller that takes SIGINT and SIGTERM itself (vsi serve holds one
+// InterruptRelease for its whole life): its workers' name prefix and stop flag.
+struct WorkerIdentity {
+  std::string prefix;
+  const std::atomic<bool>* stopping = nullptr;
+};
+// vsi work's loop: work until the queue is empty, then the studies'
+// refinement passes and verification runs. Without `identity`, the call
+// holds its own InterruptRelease, as vsi work does.
+scheduler::WorkSummary work_and_refine(const ServiceArgs& args, scheduler::Database& db,
+                                       const std::vector<std::string>& studies,
+                                       const WorkerIdentity* identity = nullptr);
 
 }  // namespace railvsi::cli

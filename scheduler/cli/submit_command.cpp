@@ -1,6 +1,7 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <optional>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -52,7 +53,7 @@ Submitted submit(const ServiceArgs& args) {
   return s;
 }
 
-scheduler::WorkSummary work(const ServiceArgs& args) {
+scheduler::WorkSummary work(const ServiceArgs& args, const WorkerIdentity* identity) {
   scheduler::WorkOptions options;
   options.db_file = args.db;
   options.threads = args.threads;
@@ -60,10 +61,12 @@ scheduler::WorkSummary work(const ServiceArgs& args) {
   options.cache_budget_bytes = static_cast<std::size_t>(args.cache_mb * 1024.0 * 1024.0);
   options.db_retry_s = args.db_retry_s;
   options.max_batch_jobs = static_cast<std::size_t>(args.batch);
-  options.worker_prefix = scheduler::worker_name_prefix();
+  options.worker_prefix = identity ? identity->prefix : scheduler::worker_name_prefix();
   ProgressDisplay display(::isatty(STDERR_FILENO) == 1);
-  const InterruptRelease interrupts(args.db, options.worker_prefix);  // before the workers: they inherit its mask
-  options.stopping = interrupts.stopping();
+  // Before the workers: they inherit its mask. A caller with an identity holds its own.
+  std::optional<InterruptRelease> interrupts;
+  if (!identity) interrupts.emplace(args.db, options.worker_prefix);
+  options.stopping = identity ? identity->stopping : interrupts->stopping();
   const scheduler::WorkSummary s = scheduler::run_workers(
       options, [&](const scheduler::StateCounts& c, double elapsed_s, bool final) { display.update(c, elapsed_s, final); });
   spdlog::info("this worker: {} jobs done, {} failed in {}; factorizations {} ({:.2f} s), cache lookups hit {}, evictions {}",
@@ -75,6 +78,8 @@ scheduler::WorkSummary work(const ServiceArgs& args) {
 }
 
 }  // namespace
+
+scheduler::SubmitResult submit_study_file(const ServiceArgs& args) { return submit(args).result; }
 
 int submit_command(const ServiceArgs& args) {
   const scheduler::SubmitResult r = submit(args).result;
@@ -89,7 +94,7 @@ namespace {
 // (again at every call: idempotent, and a run killed before this point is
 // finished by the next vsi work or vsi run).
 void verify(const ServiceArgs& args, scheduler::Database& db, const std::vector<std::string>& studies,
-            scheduler::WorkSummary& total) {
+            scheduler::WorkSummary& total, const WorkerIdentity* identity) {
   std::size_t added = 0;
   for (const std::string& id : studies) {
     const std::size_t n = scheduler::enqueue_verification(db, id, args.max_attempts);
@@ -97,7 +102,7 @@ void verify(const ServiceArgs& args, scheduler::Database& db, const std::vector<
     added += n;
   }
   if (added > 0 || scheduler::state_counts(db).unfinished() > 0) {
-    const scheduler::WorkSummary s = work(args);
+    const scheduler::WorkSummary s = work(args, identity);
     // A verification run that fails is not a failed job of the study: its
     // job keeps no estimate (the report shows none), and the log says why.
     total.jobs_done += s.jobs_done;
@@ -113,16 +118,18 @@ void verify(const ServiceArgs& args, scheduler::Database& db, const std::vector<
   }
 }
 
+}  // namespace
+
 // Work until the queue is empty; then studies that ask for refinement
 // ("refine": true) get their next pass of speeds, which are worked in turn,
 // until every peak is resolved (a bounded number of passes). Failed jobs are
 // counted over all passes; an error of the workers ends the passes.
 scheduler::WorkSummary work_and_refine(const ServiceArgs& args, scheduler::Database& db,
-                                       const std::vector<std::string>& studies) {
+                                       const std::vector<std::string>& studies, const WorkerIdentity* identity) {
   constexpr int kMaxPasses = 12;  // 10 km/h to 1 km/h takes 4; a wide range of peaks a few more
   scheduler::WorkSummary total;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
-    const scheduler::WorkSummary s = work(args);
+    const scheduler::WorkSummary s = work(args, identity);
     total.jobs_done += s.jobs_done;
     total.jobs_failed += s.jobs_failed;
     if (!s.error.empty()) {
@@ -137,11 +144,9 @@ scheduler::WorkSummary work_and_refine(const ServiceArgs& args, scheduler::Datab
     }
     if (added == 0) break;
   }
-  if (total.error.empty()) verify(args, db, studies, total);
+  if (total.error.empty()) verify(args, db, studies, total, identity);
   return total;
 }
-
-}  // namespace
 
 int work_command(const ServiceArgs& args) {
   const auto db = open_store(args.db, scheduler::OpenMode::kExisting);  // migrate before the workers start; never create
