@@ -23,6 +23,7 @@
 #include "core/terminal_text.hpp"
 #include "query/compliance_data.hpp"
 #include "report/compliance_report.hpp"
+#include "report/report_json.hpp"
 #include "store/store_check.hpp"
 
 namespace railvsi::cli {
@@ -54,6 +55,11 @@ ReportCommand::ReportCommand(CLI::App& app) {
   report_->add_option("--study", args_.study_id, "Study id (a unique prefix of at least 6 digits)")->required();
   report_->add_option("--out", args_.out, "Report file (default: report-<study id>.html)");
   report_->add_flag("!--no-histories", args_.histories, "Do not re-simulate the governing cases");
+  report_->add_option("--format", args_.format,
+                      "html (default): the report to read and print; json: its content as data (checks, tables, "
+                      "figures with the stored value and plotted peak of each governing case), on standard output "
+                      "unless --out is given")
+      ->check(CLI::IsMember({"html", "json"}));
   report_->add_flag("--fail-on-exceeded", args_.fail_on_exceeded, kFailOnExceededHelp);
   report_->footer(verdict_exit_footer(false));
 }
@@ -128,14 +134,19 @@ int report_command(const ReportArgs& args) {
   options.date = report_date();
   options.histories = args.histories;
   const ComplianceReport report = scheduler::build_compliance_report(*db, *id, options);
-  const std::string html = render_html(report);
+  const bool json = args.format == "json";
+  const std::string text = json ? report_json(report).dump(2) + "\n" : render_html(report);
+  if (json && args.out.empty()) {
+    std::cout << text;
+    return args.fail_on_exceeded ? verdict_exit_code(report.overall) : kExitOk;
+  }
 
   const std::filesystem::path out = args.out.empty() ? "report-" + id->substr(0, 12) + ".html" : args.out;
   if (const auto why = unusable_out(out)) {  // the default name, or the path changed while the report was built
     std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';
     return kExitInvalidInput;
   }
-  if (const auto why = write_whole(out, html)) {
+  if (const auto why = write_whole(out, text)) {
     std::cerr << "error: cannot write " << out.string() << " (" << *why << "); nothing was written\n";
     return kExitRuntimeFailure;
   }
