@@ -11,8 +11,9 @@
 
 namespace railvsi {
 
-// nullopt without a deck line (an imported model) or when the modes cannot
-// be computed; at most max_modes deck modes, in ascending frequency.
+// The modes up to 1.1 x max_frequency_hz; nullopt without a deck line (an
+// imported model) or when the modes cannot be computed; at most max_modes
+// deck modes, in ascending frequency.
 std::optional<ReportFigure> deck_mode_shapes(std::shared_ptr<const StructureModel> structure, double max_frequency_hz,
                                              int max_modes);
 
