@@ -41,26 +41,7 @@ RunState::RunState(const Scene& scene, const TrainLayout& layout, const StaticSt
   min_P_.assign(static_cast<std::size_t>(nc), std::numeric_limits<double>::infinity());
   no_contact_s_.assign(static_cast<std::size_t>(nc), 0.0);
   monitor_.emplace(scene, layout, coords, start_x_m, s_, vehicles_, f_s_, P_);
-  // The wheels under a body: two couplings away (body, bogie, wheel).
-  constexpr int kBodyToWheel = 2;
-  for (std::size_t v = 0; v < layout.vehicles.size(); ++v) {
-    const VehicleModel& model = *layout.vehicles[v].model;
-    for (int d : model.body_dofs()) {
-      BodyWheels b{v, d, {}};
-      const std::vector<int> near = model.coupled_dofs(d, kBodyToWheel);
-      for (Eigen::Index c = 0; c < nc; ++c) {
-        const ContactSpec& cs = layout.contacts[static_cast<std::size_t>(c)];
-        if (cs.vehicle == static_cast<int>(v) && std::find(near.begin(), near.end(), cs.local_dof) != near.end())
-          b.contacts.push_back(c);
-      }
-      // A body no wheel reaches within two couplings (a model of another
-      // shape) counts with every wheel of its vehicle, as before.
-      if (b.contacts.empty())
-        for (Eigen::Index c = 0; c < nc; ++c)
-          if (layout.contacts[static_cast<std::size_t>(c)].vehicle == static_cast<int>(v)) b.contacts.push_back(c);
-      body_wheels_.push_back(std::move(b));
-    }
-  }
+  body_wheels_ = body_wheels(layout);
 }
 
 bool RunState::in_window(double front_x_m, const ContactSpec& c) const {

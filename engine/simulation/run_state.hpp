@@ -70,15 +70,7 @@ class RunState {
   // Envelopes, updated every step (not only at stored samples).
   std::vector<double> max_abs_u_, max_abs_a_, min_P_, no_contact_s_;
   double max_abs_body_a_ = 0.0;
-  // Per car body (a vehicle and its DOF), the contacts of the wheels under
-  // it: its acceleration counts while one of them is in the window. Per
-  // body, not per vehicle: an articulated rake is one vehicle 170 m long,
-  // whose far bodies ride plain track while its first wheels cross the bridge.
-  struct BodyWheels {
-    std::size_t vehicle = 0;
-    int dof = 0;
-    std::vector<Eigen::Index> contacts;
-  };
+  // The wheels under each car body (train_layout.hpp).
   std::vector<BodyWheels> body_wheels_;
   std::vector<bool> contact_in_window_;
   EvaluationWindow window_;

@@ -43,6 +43,32 @@ std::string wheel_name(const ContactSpec& c) {
   return fmt::format("v{}_w{}", c.vehicle + 1, c.local_wheel + 1);
 }
 
+std::vector<BodyWheels> body_wheels(const TrainLayout& layout) {
+  std::vector<BodyWheels> out;
+  const auto nc = static_cast<Eigen::Index>(layout.contacts.size());
+  // The wheels under a body: two couplings away (body, bogie, wheel).
+  constexpr int kBodyToWheel = 2;
+  for (std::size_t v = 0; v < layout.vehicles.size(); ++v) {
+    const VehicleModel& model = *layout.vehicles[v].model;
+    for (int d : model.body_dofs()) {
+      BodyWheels b{v, d, {}};
+      const std::vector<int> near = model.coupled_dofs(d, kBodyToWheel);
+      for (Eigen::Index c = 0; c < nc; ++c) {
+        const ContactSpec& cs = layout.contacts[static_cast<std::size_t>(c)];
+        if (cs.vehicle == static_cast<int>(v) && std::find(near.begin(), near.end(), cs.local_dof) != near.end())
+          b.contacts.push_back(c);
+      }
+      // A body no wheel reaches within two couplings (a model of another
+      // shape) counts with every wheel of its vehicle.
+      if (b.contacts.empty())
+        for (Eigen::Index c = 0; c < nc; ++c)
+          if (layout.contacts[static_cast<std::size_t>(c)].vehicle == static_cast<int>(v)) b.contacts.push_back(c);
+      out.push_back(std::move(b));
+    }
+  }
+  return out;
+}
+
 DenseMatrix vehicle_effective_matrix(const VehicleModel& v, const HhtCoefficients& h) {
   return h.mass_factor() * v.M() + h.damping_factor() * v.C() + h.stiffness_factor() * v.K();
 }

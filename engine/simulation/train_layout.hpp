@@ -45,6 +45,18 @@ struct TrainLayout {
   static double position_m(double front_x_m, double offset_m) { return front_x_m - offset_m; }
 };
 
+// Per car body (a vehicle and its DOF), the contacts of the wheels under
+// it: its acceleration counts while one of them is in the evaluation window.
+// Per body, not per vehicle: an articulated rake is one vehicle 170 m long,
+// whose far bodies ride plain track while its first wheels cross the bridge.
+// In the order of the histories' body_names.
+struct BodyWheels {
+  std::size_t vehicle = 0;
+  int dof = 0;
+  std::vector<Eigen::Index> contacts;
+};
+std::vector<BodyWheels> body_wheels(const TrainLayout& layout);
+
 // Per vehicle type and time step: the dense factor of K_bar_v and its
 // flexibility at the wheels.
 struct VehicleOperator {

@@ -1,9 +1,13 @@
 #include "report/compliance_report.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <string_view>
 
 #include <fmt/format.h>
+
+#include "report/report_sections.hpp"
 
 namespace railvsi {
 namespace {
@@ -40,12 +44,16 @@ pre { font-size: 8pt; background: #f7f7f7; border: 1px solid #ddd; padding: 4pt;
 
 std::string esc(const std::string& s) { return html_escape(s); }
 
-std::string verdict_span(Verdict v) {
-  std::string cls = verdict_name(v);
-  for (char& c : cls)
-    if (c == ' ') c = '-';
-  return fmt::format("<span class=\"verdict {}\">{}</span>", cls, verdict_name(v));
+// The dynamic load effect against Phi x LM71 says which governs the design
+// (informative), the other checks pass or fail.
+std::string verdict_span(const CheckResult& c) {
+  if (c.id != "dynamic_enhancement" || c.verdict == Verdict::kIncomplete || c.verdict == Verdict::kNotEvaluated)
+    return verdict_html(c.verdict);
+  return c.verdict == Verdict::kFail ? "<span class=\"verdict informative\">DYNAMIC GOVERNS</span>"
+                                     : "<span class=\"verdict informative\">LM71 GOVERNS</span>";
 }
+
+std::string verdict_span_of(Verdict v) { return verdict_html(v); }
 
 std::string value_text(double v) { return fmt::format("{:.4g}", v); }
 
@@ -91,7 +99,7 @@ std::string checks_table(const ComplianceReport& r) {
         "<tr data-check=\"{}\"><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
         "<td>{}</td><td class=\"num\">{}</td><td>{}</td><td class=\"num\">{} ({})</td><td>{}</td></tr>\n",
         esc(c.id), esc(c.title), esc(c.clause), limit, gov, train, speed, profile, c.cases, c.missing,
-        verdict_span(c.verdict));
+        verdict_span(c));
     if (!c.note.empty())
       out += fmt::format("<tr><td></td><td colspan=\"{}\" class=\"small\">{}</td></tr>\n", estimates ? 9 : 8,
                          esc(c.note));
@@ -99,8 +107,13 @@ std::string checks_table(const ComplianceReport& r) {
   return out + "</table>\n";
 }
 
-std::string figure(const ReportFigure& f) {
-  return "<figure>\n" + render_svg(f.plot) + "<figcaption>" + esc(f.caption) + "</figcaption>\n</figure>\n";
+// The study's name for the page footer, as a CSS string.
+std::string css_string(const std::string& text) {
+  std::string out;
+  for (char ch : text)
+    if (std::isalnum(static_cast<unsigned char>(ch)) || std::string_view(" .,:;-_()+=/&").find(ch) != std::string_view::npos)
+      out += ch;
+  return out.size() > 90 ? out.substr(0, 87) + "..." : out;
 }
 
 }  // namespace
@@ -108,33 +121,53 @@ std::string figure(const ReportFigure& f) {
 std::string render_html(const ComplianceReport& r) {
   std::string out = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
   out += "<title>Compliance report: " + esc(r.study_name) + "</title>\n<style>" + std::string(kStyle) +
-         "</style>\n</head>\n<body>\n";
-  out += "<h1>Dynamic analysis of a railway bridge: compliance report</h1>\n";
-  out += fmt::format("<p>Study <b>{}</b> <span class=\"small\">({})</span><br>railvsi {}<br>"
-                     "<span class=\"small\" id=\"date\">Generated {}</span></p>\n",
-                     esc(r.study_name), esc(r.study_id), esc(r.version), esc(r.date));
+         kReportPrintStyle + "@page { @bottom-left { content: \"" + css_string(r.title.project) +
+         "\"; font-size: 8pt; color: #444; } }\n</style>\n</head>\n<body>\n";
+  out += title_block_html(r);
+  std::vector<std::pair<std::string, std::string>> sections = {
+      {"verdicts", "1. Summary of verdicts"},       {"checks", "2. Checks"},
+      {"phi-dyn", "3. Dynamic load effect and phi'dyn"}, {"speed-plots", "4. Other responses against speed"},
+      {"histories", "5. Governing cases"},          {"structure", "6. Structure: frequencies and modes"},
+      {"model", "7. Model and runs"},                {"code-values", "8. Code values not confirmed in the text"},
+      {"inputs", "9. Inputs"}};
+  out += contents_html(sections);
 
-  out += "<h2 id=\"verdicts\">1. Verdicts</h2>\n";
-  out += "<p class=\"overall\">Overall: " + verdict_span(r.overall) + "</p>\n";
+  out += "<h2 id=\"verdicts\">1. Summary of verdicts</h2>\n";
+  out += "<p class=\"overall\">Overall: " + verdict_span_of(r.overall) + "</p>\n";
   out += "<p class=\"small\">A check FAILS as soon as one case exceeds its limit; it is INCOMPLETE when no case "
          "exceeds but some case has no value (cancelled, failed or not run); it PASSES only when every case has a "
-         "value within the limit. Limits marked unverified were not confirmed in the standard's text.</p>\n";
+         "value within the limit. Limits marked unverified are explained in section 8.</p>\n";
   out += checks_table(r);
   for (const std::string& n : r.notes) out += "<p class=\"small\">" + esc(n) + "</p>\n";
 
-  out += "<h2 id=\"speed-plots\">2. Response against speed</h2>\n";
-  if (r.check_figures.empty()) out += "<p>No checked quantity has a value.</p>\n";
-  for (const ReportFigure& f : r.check_figures) out += figure(f);
+  out += "<h2 id=\"checks\">2. Checks</h2>\n";
+  for (const CheckResult& c : r.checks) {
+    if (c.id == "dynamic_enhancement") continue;  // section 3
+    const auto plot = std::find_if(r.check_figures.begin(), r.check_figures.end(),
+                                   [&](const ReportFigure& f) { return f.check == c.id; });
+    out += check_section_html(c, plot == r.check_figures.end() ? nullptr : &*plot);
+  }
 
-  out += "<h2 id=\"histories\">3. Governing cases</h2>\n";
+  out += "<h2 id=\"phi-dyn\">3. Dynamic load effect and phi'dyn</h2>\n" + phi_dyn_html(r);
+
+  out += "<h2 id=\"speed-plots\">4. Other responses against speed</h2>\n";
+  if (r.response_figures.empty()) out += "<p>No other stored quantity has a value.</p>\n";
+  for (const ReportFigure& f : r.response_figures) out += figure_html(f);
+
+  out += "<h2 id=\"histories\">5. Governing cases</h2>\n";
+  out += "<p class=\"small\">Each governing job run again exactly as the worker ran it (its stored scene, rung, time "
+         "step, contact law and escalation); each figure names the value the job stored and the peak of what it "
+         "plots.</p>\n";
   if (r.governing_cases.empty()) out += "<p>No governing case (no check has a value).</p>\n";
   for (const GoverningCase& g : r.governing_cases) {
     out += "<h3>" + esc(g.heading) + "</h3>\n";
     if (g.status != "ok") out += "<p>Re-run status: <b>" + esc(g.status) + "</b></p>\n";
-    for (const ReportFigure& f : g.figures) out += figure(f);
+    for (const ReportFigure& f : g.figures) out += figure_html(f);
   }
 
-  out += "<h2 id=\"model\">4. Model</h2>\n<table class=\"model\">\n";
+  out += "<h2 id=\"structure\">6. Structure: frequencies and modes</h2>\n" + modes_html(r);
+
+  out += "<h2 id=\"model\">7. Model and runs</h2>\n<table class=\"model\">\n";
   for (const ReportRow& row : r.model)
     out += "<tr><th>" + esc(row.key) + "</th><td>" + esc(row.value) + "</td></tr>\n";
   out += "</table>\n<h3>Models and time steps used</h3>\n<table class=\"rungs\"><tr><th>model</th><th>time step and "
@@ -147,20 +180,22 @@ std::string render_html(const ComplianceReport& r) {
   } else {
     out += "<table class=\"issues\"><tr><th>case</th><th>state</th><th>detail</th></tr>\n";
     for (const JobIssue& i : r.issues)
-      out += "<tr><td>" + esc(i.job) + "</td><td>" + esc(i.state) + "</td><td>" + esc(i.detail) + "</td></tr>\n";
+      out += "<tr><td>" + esc(i.job) + "</td><td>" + esc(i.state) + "</td><td>" + esc(without_file_paths(i.detail)) +
+             "</td></tr>\n";
     out += "</table>\n";
   }
-
   out += "<h3 id=\"accuracy-price\">Accuracy price</h3>\n<p class=\"small\">" + esc(r.price_note) + "</p>\n";
   for (const PriceFigure& f : r.price_charts)
     out += "<figure>\n" + render_price_chart(f.chart) + "<figcaption>" + esc(f.caption) + "</figcaption>\n</figure>\n";
 
-  out += "<h2 id=\"inputs\">5. Inputs</h2>\n<h3>Trains</h3>\n<table class=\"trains\"><tr><th>train</th>"
+  out += "<h2 id=\"code-values\">8. Code values not confirmed in the text</h2>\n" + unverified_html(r);
+
+  out += "<h2 id=\"inputs\">9. Inputs</h2>\n<h3>Trains</h3>\n<table class=\"trains\"><tr><th>train</th>"
          "<th>source</th></tr>\n";
   for (const LibraryTrain& t : r.trains)
-    out += "<tr><td>" + esc(t.name) + "</td><td>" + esc(t.source) + "</td></tr>\n";
-  out += "</table>\n<h3>Study document</h3>\n<p class=\"small\">File " + esc(r.study_file) +
-         "; its id is the SHA-256 of this canonical document.</p>\n<pre>" + esc(r.study_document) + "</pre>\n";
+    out += "<tr><td>" + esc(t.name) + "</td><td>" + esc(without_file_paths(t.source)) + "</td></tr>\n";
+  out += "</table>\n<h3>Study document</h3>\n<p class=\"small\">Its id is the SHA-256 of this canonical "
+         "document.</p>\n<pre>" + esc(without_file_paths(r.study_document)) + "</pre>\n";
   out += "</body>\n</html>\n";
   return out;
 }

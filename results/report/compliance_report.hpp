@@ -3,7 +3,9 @@
 // CSS and SVG, no script, nothing from the network, laid out for A4. This
 // file only renders; what goes in (checks, plots, histories, model and
 // inputs) is gathered by the study service from its store.
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compliance/check_verdict.hpp"
@@ -16,10 +18,50 @@ struct ReportRow {
   std::string key, value;
 };
 
+// What a governing-case figure shows of its stored job: the stored value
+// and the peak of the plotted series over the samples the envelope counted
+// (window_s), which must agree (vsi report --format json carries both).
+struct FigureData {
+  std::string quantity;  // envelope quantity, e.g. "deck_acceleration_mps2"
+  std::string location;  // output point, wheel or car body
+  std::string job;
+  std::optional<double> stored_value;
+  double plotted_peak = 0.0;
+  double min = 0.0, max = 0.0;  // of the plotted series inside window_s, in SI units
+  std::pair<double, double> window_s{0.0, 0.0};
+  std::optional<bool> unilateral;  // contact forces: the run's contact law was unilateral
+};
+
 // One figure with a caption.
 struct ReportFigure {
   LinePlot plot;
   std::string caption;
+  std::optional<FigureData> data;  // governing-case figures
+  std::string check;               // the check id of a plot against speed ("" for another quantity)
+};
+
+// The title block: what the report is of and who signs it.
+struct TitleBlock {
+  std::string project;    // the study's "project", else its name
+  std::string structure;  // one line: generator, spans, deck
+  std::string author;     // the study's "author"; empty: a field to fill in
+};
+
+// phi'dyn of one load effect (EN 1991-2 6.4.6.5): the largest dynamic value
+// of a train's jobs against its static value.
+struct PhiDynRow {
+  std::string train, quantity, location, unit;
+  double static_value = 0.0;  // in `unit`
+  std::optional<double> dynamic_value;
+  double speed_kmh = 0.0;
+  std::optional<double> phi_dyn;
+};
+
+// A structure mode of the lowest ones found (deck_frequencies).
+struct ModeRow {
+  int number = 0;
+  double frequency_hz = 0.0;
+  std::string role;  // "f0", "f3", or ""
 };
 
 // The re-simulated histories of one governing case.
@@ -54,6 +96,13 @@ struct PriceFigure {
 
 struct ComplianceReport {
   std::string study_name, study_id, study_file;
+  TitleBlock title;
+  std::vector<PhiDynRow> phi_dyn;
+  std::vector<ModeRow> modes;
+  std::optional<ReportFigure> mode_shapes;  // the deck's, up to the code cut-off
+  std::string modes_note;               // which modes the runs used
+  std::vector<ReportFigure> response_figures;  // stored quantities without a check, against speed
+  std::vector<std::string> unverified;  // one line per code value not confirmed in the standard's text
   std::string version, date;  // vsi version; the date line is the only non-deterministic text
   std::vector<CheckResult> checks;
   double accuracy_tolerance = 0.01;  // the study's accuracy.tolerance: a larger error estimate is flagged

@@ -148,12 +148,17 @@ std::string render_svg(const LinePlot& plot, int width_px, int height_px) {
                      num(height_px - 8), html_escape(plot.x_label));
   svg += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\" class=\"axis\">{}</text>\n",
                      num(top + h / 2), html_escape(plot.y_label));
-  for (double m : plot.x_marks)
-    if (m >= x0 && m <= x1)
-      svg += fmt::format(
-          "<line class=\"mark\" x1=\"{0}\" x2=\"{0}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#999999\" "
-          "stroke-dasharray=\"2 3\"/>\n",
-          num(X(m)), num(top), num(top + h));
+  for (std::size_t i = 0; i < plot.x_marks.size(); ++i) {
+    const double m = plot.x_marks[i];
+    if (m < x0 || m > x1) continue;
+    svg += fmt::format(
+        "<line class=\"mark\" x1=\"{0}\" x2=\"{0}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#999999\" "
+        "stroke-dasharray=\"2 3\"/>\n",
+        num(X(m)), num(top), num(top + h));
+    if (i < plot.x_mark_labels.size())
+      svg += fmt::format("<text class=\"tick mark-label\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
+                         num(X(m)), num(top + 10), html_escape(plot.x_mark_labels[i]));
+  }
   if (plot.limit)
     svg += fmt::format(
         "<line class=\"limit\" x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#CC0000\" stroke-width=\"1.5\" "

@@ -24,6 +24,7 @@ struct LinePlot {
   std::optional<std::pair<double, double>> marked;  // the governing point
   std::string marked_label;
   std::vector<double> x_marks;  // vertical thin lines
+  std::vector<std::string> x_mark_labels;  // one per mark (drawn at its top), or none
   std::string x_marks_label;
   std::optional<std::pair<double, double>> shaded_x;
   std::string shaded_label;

@@ -24,6 +24,7 @@
 #include "query/compliance_data.hpp"
 #include "query/line_table.hpp"
 #include "report/compliance_report.hpp"
+#include "report/report_json.hpp"
 #include "store/store_check.hpp"
 
 namespace railvsi::cli {
@@ -61,6 +62,11 @@ ReportCommand::ReportCommand(CLI::App& app) {
           },
           "FILE"));
   report_->add_flag("!--no-histories", args_.histories, "Do not re-simulate the governing cases");
+  report_->add_option("--format", args_.format,
+                      "html (default): the report to read and print; json: its content as data (checks, tables, "
+                      "figures with the stored value and plotted peak of each governing case), on standard output "
+                      "unless --out is given")
+      ->check(CLI::IsMember({"html", "json"}));
   report_->add_flag("--fail-on-exceeded", args_.fail_on_exceeded, kFailOnExceededHelp);
   report_->footer(verdict_exit_footer(false));
 }
@@ -138,7 +144,6 @@ int report_command(const ReportArgs& args) {
   std::string html;
   if (scheduler::study_structure_names(*db, *id).empty()) {
     report = scheduler::build_compliance_report(*db, *id, options);
-    html = render_html(report);
   } else {
     // A line study: the line summary and a section per bridge, each judged over its own jobs.
     const auto bridges =
@@ -151,13 +156,19 @@ int report_command(const ReportArgs& args) {
     report.overall = overall_verdict(all);
     html = render_line_html(report, bridges);
   }
+  const bool json = args.format == "json";
+  const std::string text = json ? report_json(report).dump(2) + "\n" : html.empty() ? render_html(report) : html;
+  if (json && args.out.empty()) {
+    std::cout << text;
+    return args.fail_on_exceeded ? verdict_exit_code(report.overall) : kExitOk;
+  }
 
   const std::filesystem::path out = args.out.empty() ? "report-" + id->substr(0, 12) + ".html" : args.out;
   if (const auto why = unusable_out(out)) {  // the default name, or the path changed while the report was built
     std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';
     return kExitInvalidInput;
   }
-  if (const auto why = write_whole(out, html)) {
+  if (const auto why = write_whole(out, text)) {
     std::cerr << "error: cannot write " << out.string() << " (" << *why << "); nothing was written\n";
     return kExitRuntimeFailure;
   }

@@ -14,6 +14,7 @@ struct ReportArgs {
   std::string out;          // default: report-<first 12 digits of the id>.html
   bool histories = true;    // re-simulate the governing cases
   bool fail_on_exceeded = false;
+  std::string format = "html";  // or "json": the content as data, on standard output without --out
 };
 
 class ReportCommand {

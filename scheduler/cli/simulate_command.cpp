@@ -58,17 +58,7 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
   // carry, a run too large) are input errors of this scene.
   Result result = [&] {
     try {
-      const scheduler::ScenePlan plan = scheduler::plan_scene(scene, f);
-      scheduler::RungModels models;
-      models.fe_operator = [](const Scene& s, std::shared_ptr<const HybridBasis> reuse) {
-        return make_structure_operator(s, nullptr, std::move(reuse));
-      };
-      models.modal_basis = [&](double modal_cutoff_hz) {
-        ModalBasisOptions o;
-        o.max_frequency_hz = modal_cutoff_hz;
-        return std::make_shared<const ModalBasis>(scene.structure, o);
-      };
-      return scheduler::run_at_rung(scene, plan, models);
+      return scheduler::run_planned(scene, f);
     } catch (const InputError& e) {
       throw e.with_file(file_for_errors);
     }

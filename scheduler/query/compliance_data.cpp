@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <limits>
 #include <set>
 
 #include <fmt/format.h>
@@ -12,7 +13,6 @@
 
 #include "analysis/static_influence.hpp"
 #include "compliance/code_values.hpp"
-#include "envelopes/code_filter.hpp"
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
@@ -20,10 +20,12 @@
 #include "query/price_figures.hpp"
 #include "query/static_effects.hpp"
 #include "query/study_results.hpp"
+#include "report/governing_figures.hpp"
+#include "report/mode_shapes.hpp"
 #include "simulation/deck_twist.hpp"
-#include "simulation/simulation.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "study/deck_frequencies.hpp"
+#include "workers/rung_runner.hpp"
 
 namespace railvsi::scheduler {
 namespace {
@@ -155,84 +157,137 @@ CheckResult deck_twist_check(const StructureModel& structure, const std::vector<
   return c;
 }
 
-// Histories of one governing case, re-simulated from the stored scene.
-GoverningCase governing_case(Database& db, const JobResult& job, const std::string& why) {
+// The unit a quantity is shown in, and the factor from SI.
+std::pair<std::string, double> display_unit(const std::string& quantity) {
+  if (quantity.ends_with("_Nm")) return {"kNm", 1e-3};
+  if (quantity.ends_with("_N")) return {"kN", 1e-3};
+  if (quantity.ends_with("_rad")) return {"mrad", 1e3};
+  if (quantity.ends_with("_m")) return {"mm", 1e3};
+  if (quantity.ends_with("_mps2")) return {"m/s2", 1.0};
+  return {"", 1.0};
+}
+
+// Stored quantities no check judges, against speed: what a designer reads
+// beside the checks (EN 1991-2 6.4.6: displacement, section forces, end
+// rotation), one line per train.
+void add_response_figures(ComplianceReport& report, const std::vector<std::string>& train_order,
+                          std::map<std::string, std::vector<const JobResult*>>& by_train, std::size_t profile_count) {
+  struct Quantity {
+    const char* name;
+    const char* title;
+  };
+  for (const Quantity q : {Quantity{"deck_displacement_m", "Peak deck displacement"},
+                           Quantity{"bending_moment_Nm", "Peak bending moment"},
+                           Quantity{"shear_force_N", "Peak shear force"},
+                           Quantity{"support_rotation_rad", "Peak deck end rotation"}}) {
+    if (std::any_of(report.checks.begin(), report.checks.end(), [&](const CheckResult& c) { return c.quantity == q.name; }))
+      continue;  // drawn with its check
+    const auto [unit, scale] = display_unit(q.name);
+    LinePlot plot;
+    plot.title = q.title;
+    plot.x_label = "speed [km/h]";
+    plot.y_label = std::string(q.title) + " [" + unit + "]";
+    bool any = false;
+    for (const std::string& t : train_order) {
+      PlotSeries s{t, per_speed_maximum(by_train[t], q.name)};
+      for (auto& [v, y] : s.points) {
+        any = any || std::isfinite(y);
+        y *= scale;
+      }
+      plot.series.push_back(std::move(s));
+    }
+    if (!any) continue;
+    report.response_figures.push_back(
+        {plot,
+         std::string(q.title) + " over the output points (supports for the end rotation) against speed, one line per "
+                                "train" +
+             (profile_count > 1 ? ", the largest value over the profiles at each speed." : "."),
+         std::nullopt, ""});
+  }
+}
+
+// The title block from the study document: "project" and "author" when it
+// has them; the structure in one line.
+TitleBlock title_block(const json& study, const std::string& name) {
+  TitleBlock t;
+  t.project = study.contains("project") && study.at("project").is_string() ? study.at("project").get<std::string>() : name;
+  t.author = study.contains("author") && study.at("author").is_string() ? study.at("author").get<std::string>() : "";
+  if (!study.contains("structure") || !study.at("structure").is_object()) return t;
+  const json& st = study.at("structure");
+  if (st.contains("file") || st.contains("import")) {
+    t.structure = "imported structure model";
+    return t;
+  }
+  std::string spans;
+  for (const json& x : st.value("spans_m", json::array()))
+    if (x.is_number()) spans += (spans.empty() ? "" : " + ") + fmt::format("{:g}", x.get<double>());
+  t.structure = st.value("generator", std::string("structure"));
+  if (!spans.empty())
+    t.structure += fmt::format(": spans {} m, {}", spans, st.value("continuous", false) ? "continuous" : "simply supported");
+  if (st.contains("deck") && st.at("deck").is_object()) {
+    const json& d = st.at("deck");
+    if (d.contains("mass_kg_per_m") && d.at("mass_kg_per_m").is_number())
+      t.structure += fmt::format(", deck {:g} kg/m", d.at("mass_kg_per_m").get<double>());
+    if (d.contains("EI_Nm2") && d.at("EI_Nm2").is_number())
+      t.structure += fmt::format(", EI {:.4g} N m2", d.at("EI_Nm2").get<double>());
+  }
+  if (st.contains("track") && !st.at("track").is_null()) t.structure += ", with track";
+  return t;
+}
+
+// One line for each code value the report uses that was not read in the
+// standard's own text (code_values.hpp), saying where it comes from.
+std::vector<std::string> unverified_lines(const std::vector<CheckResult>& checks, bool determinant_length,
+                                          bool phi2) {
+  std::vector<std::string> out;
+  for (const CheckResult& c : checks) {
+    if (c.limit_verified || c.verdict == Verdict::kNotEvaluated) continue;
+    if (c.id == "wheel_unloading")
+      out.push_back("Wheel unloading 0.6: no EN 1990 limit exists; 0.6 is common practice (the quasi-static limit "
+                    "of EN 14363, Chinese and Japanese codes). Give checks.max_unloading_ratio to set the project's.");
+    else if (c.id == "passenger_comfort")
+      out.push_back(fmt::format("Comfort levels {}: the b_v values of EN 1990 Table A2.9 as quoted in the literature on "
+                                "the code, not read in its text.",
+                                [] {
+                                  std::string l;
+                                  for (const ComfortLevel& level : comfort_levels())
+                                    l += (l.empty() ? "" : ", ") + fmt::format("{} {:g} m/s2", level.name, level.b_v_mps2);
+                                  return l;
+                                }()));
+    else
+      out.push_back(fmt::format("{}: limit {:g} {} from {}, as quoted in the literature on the code, not read in its "
+                                "text.",
+                                c.title, c.limit, c.unit, c.clause));
+  }
+  if (determinant_length)
+    out.push_back(std::string("Determinant length L_Phi: ") + kDeterminantLengthClause +
+                  " (L_Phi = span for simply supported girders; k times the mean span of a continuous deck), as "
+                  "quoted in the literature, not read in the table's text.");
+  out.push_back(std::string("phi'' (") + kPhiDoublePrimeClause +
+                ", in the dynamic load effect): the formula as quoted in the literature, not read in the annex's text.");
+  if (phi2) out.push_back("Phi2 (carefully maintained track): its formula as quoted, not read in the text.");
+  return out;
+}
+
+// Histories of one governing case: its stored scene run again as the
+// workers ran it (run_planned: the recorded rung, dt, contact law and
+// escalation), every figure beside the value the job stored.
+GoverningCase governing_case(Database& db, const JobResult& job, const std::string& why, const std::string& quantity) {
   GoverningCase g;
   g.heading = why + ": " + case_label(job);
   Scene scene = load_job_scene(db, job.id);
   scene.analysis.history_stride = 1;
-  const Simulation sim(scene);
-  const Result r = sim.run();
+  const Result r = run_planned(scene);
   g.status = std::string(r.status.name());
-  const Histories& h = r.histories;
-  if (h.t_s.empty()) return g;
-  const auto [bridge_start, bridge_end] = bridge_extent_m(*scene.structure);
-  const double x0 = scene.start_x_m.value_or(default_start_x_m(scene));
-  const double margin = scene.analysis.evaluation_margin_m;
-  // The evaluation window of the wheel envelopes: a wheel counts while it is
-  // within the margin of the bridge; shaded from the first axle entering to
-  // the last axle leaving that zone.
-  const double t_in = (bridge_start - margin - x0) / scene.speed_mps;
-  const double t_out = (bridge_end + margin + scene.train.length_m() - x0) / scene.speed_mps;
-  const std::pair<double, double> window{std::max(0.0, t_in), t_out};
-
-  // The deck point that governs: the largest displacement of this job.
-  std::size_t p = 0;
-  double best = -1.0;
-  for (std::size_t k = 0; k < h.point_names.size(); ++k) {
-    double m = 0.0;
-    for (double v : h.deck_displacement_m[k]) m = std::max(m, std::abs(v));
-    if (m > best) best = m, p = k;
-  }
-  const auto series = [&](const std::string& label, const std::vector<double>& y, double scale) {
-    PlotSeries s{label, {}};
-    for (std::size_t i = 0; i < y.size() && i < h.t_s.size(); ++i) s.points.emplace_back(h.t_s[i], y[i] * scale);
-    return s;
-  };
-  const auto time_plot = [&](std::string title, std::string y_label) {
-    LinePlot plot;
-    plot.title = std::move(title);
-    plot.x_label = "time [s]";
-    plot.y_label = std::move(y_label);
-    plot.shaded_x = window;
-    plot.shaded_label = "evaluation window";
-    return plot;
-  };
-  if (!h.point_names.empty()) {
-    LinePlot w = time_plot("Deck displacement at " + h.point_names[p], "displacement [mm]");
-    w.series.push_back(series(h.point_names[p], h.deck_displacement_m[p], 1e3));
-    g.figures.push_back({w, "Vertical deck displacement (positive up) at the governing point."});
-    LinePlot a = time_plot("Deck acceleration at " + h.point_names[p], "acceleration [m/s2]");
-    a.series.push_back(series("raw", h.deck_acceleration_mps2[p], 1.0));
-    const double dt = scene.analysis.dt_s;
-    if (job.cutoff_hz > 0.0 && job.cutoff_hz < 0.5 / dt)
-      a.series.push_back(series("filtered", code_low_pass(h.deck_acceleration_mps2[p], dt, job.cutoff_hz), 1.0));
-    g.figures.push_back({a, fmt::format("Deck acceleration, raw and after the code low-pass filter ({}).",
-                                        job.cutoff_hz > 0.0 && job.cutoff_hz < 0.5 / dt
-                                            ? code_filter_description(dt, job.cutoff_hz)
-                                            : std::string("not applied: cut-off at or above the Nyquist frequency"))});
-  }
-  if (!h.wheel_names.empty()) {
-    std::size_t w = 0;
-    double lowest = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < h.wheel_names.size(); ++k)
-      for (std::size_t i = 0; i < h.t_s.size(); ++i)
-        if (h.t_s[i] >= window.first && h.t_s[i] <= window.second && h.contact_force_N[k][i] < lowest)
-          lowest = h.contact_force_N[k][i], w = k;
-    LinePlot f = time_plot("Contact force of wheel " + h.wheel_names[w], "force [kN]");
-    f.series.push_back(series(h.wheel_names[w], h.contact_force_N[w], 1e-3));
-    g.figures.push_back({f, "Contact force of the wheel with the lowest force in the evaluation window."});
-  }
-  if (!h.body_names.empty()) {
-    std::size_t b = 0;
-    double largest = -1.0;
-    for (std::size_t k = 0; k < h.body_names.size(); ++k)
-      for (double v : h.carbody_acceleration_mps2[k])
-        if (std::abs(v) > largest) largest = std::abs(v), b = k;
-    LinePlot c = time_plot("Car-body acceleration of " + h.body_names[b], "acceleration [m/s2]");
-    c.series.push_back(series(h.body_names[b], h.carbody_acceleration_mps2[b], 1.0));
-    g.figures.push_back({c, "Vertical car-body acceleration of the car with the largest value."});
-  }
+  GoverningRun run;
+  run.scene = &scene;
+  run.result = &r;
+  run.job = job.id;
+  run.cutoff_hz = job.cutoff_hz;
+  run.check_quantity = quantity;
+  g.figures = governing_figures(run, [&](const std::string& q, const std::string& location) {
+    return job.value(q, location);
+  });
   return g;
 }
 
@@ -256,6 +311,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   report.date = options.date;
   report.study_document = study.dump(2);
   report.accuracy_tolerance = info.tolerance;
+  report.title = title_block(study, info.name);
 
   const std::vector<JobResult> jobs = options.jobs ? *options.jobs : study_results(db, {study_id, {}, {}, {}, {}, {}});
   std::vector<std::string> train_order;
@@ -300,7 +356,9 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   const double Phi = L_phi > 0.0 ? (phi2 ? dynamic_factor_phi2(L_phi) : dynamic_factor_phi3(L_phi)) : 0.0;
   const double alpha = checks.value("lm71_alpha", 1.0);
   double max_speed_kmh = 0.0;
+  double min_speed_kmh = std::numeric_limits<double>::infinity();
   for (const JobResult& j : jobs) max_speed_kmh = std::max(max_speed_kmh, j.speed_kmh);
+  for (const JobResult& j : jobs) min_speed_kmh = std::min(min_speed_kmh, j.speed_kmh);
 
   // Model summary.
   report.model.push_back({"structure", sinfo.source});
@@ -615,21 +673,29 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     report.checks.push_back(r);
   }
   if (!static_note.empty()) report.notes.push_back(static_note);
-  // phi'dyn of the bending moment of a beam deck per train and output point,
-  // beside the deflection's in the check above.
+  // phi'dyn of each load effect per train and location (EN 1991-2
+  // 6.4.6.5), as a table beside the check above.
   try {
     std::vector<std::string> unused;
-    for (const DynamicIncrement& d : dynamic_increments(db, jobs, unused))
-      if (d.quantity == "bending_moment_Nm" && d.phi_dyn())
-        report.notes.push_back(fmt::format("phi'dyn of the bending moment (EN 1991-2 6.4.6.5), {} at {}: static "
-                                           "{:.4g} kNm, dynamic {:.4g} kNm at {:g} km/h, phi'dyn = {:.4g}.",
-                                           d.train, d.location, d.static_value * 1e-3, *d.dynamic_value * 1e-3,
-                                           d.governing_speed_kmh, *d.phi_dyn()));
+    for (const DynamicIncrement& d : dynamic_increments(db, jobs, unused)) {
+      const auto [unit, scale] = display_unit(d.quantity);
+      PhiDynRow row{d.train, d.quantity, d.location, unit, d.static_value * scale, std::nullopt, d.governing_speed_kmh,
+                    d.phi_dyn()};
+      if (d.dynamic_value) row.dynamic_value = *d.dynamic_value * scale;
+      report.phi_dyn.push_back(row);
+    }
   } catch (const std::exception& e) {
-    report.notes.push_back(std::string("phi'dyn of the bending moment not computed: ") + e.what());
+    report.notes.push_back(std::string("phi'dyn not computed: ") + e.what());
   }
   report.checks.push_back(deck_twist_check(structure, first.analysis.contact.rail_lines, study, max_speed_kmh, jobs));
-  report.overall = overall_verdict(report.checks);
+  // Dynamic against Phi x LM71 says which governs the design load effect
+  // (EN 1991-2 6.4.6.5(3)), not whether the bridge passes: not in the overall.
+  {
+    std::vector<CheckResult> verdicts;
+    for (const CheckResult& c : report.checks)
+      if (c.id != "dynamic_enhancement") verdicts.push_back(c);
+    report.overall = overall_verdict(verdicts);
+  }
 
   // Response against speed for each check on stored quantities.
   std::set<std::string> profiles;
@@ -650,19 +716,57 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       plot.marked = std::pair{c.governing->speed_kmh, *c.governing->value};
       plot.marked_label = "governing";
     }
-    // HSLM-A trains carry their coach length D (resonance at v = f0 D / i).
-    for (const std::string& t : train_order) {
-      const double D = scenes.at(t).train.coach_length_m;
-      if (D <= 0.0 || freq.f0_hz <= 0.0) continue;
-      for (int i = 1; i <= 4; ++i) plot.x_marks.push_back(freq.f0_hz * D / i * 3.6);
+    // HSLM-A trains carry their coach length D (resonance at v = f0 D / i):
+    // those of the governing train inside the speed range, labelled.
+    std::string resonance_train;
+    if (c.governing && freq.f0_hz > 0.0 && scenes.count(c.governing->train)) {
+      const double D = scenes.at(c.governing->train).train.coach_length_m;
+      for (int i = 1; D > 0.0 && i <= 4; ++i) {
+        const double v = freq.f0_hz * D / i * 3.6;
+        if (v < min_speed_kmh || v > max_speed_kmh) continue;
+        plot.x_marks.push_back(v);
+        plot.x_mark_labels.push_back(fmt::format("i={}", i));
+        resonance_train = c.governing->train;
+      }
     }
-    std::sort(plot.x_marks.begin(), plot.x_marks.end());
-    plot.x_marks_label = "v = f0 D / i (HSLM)";
+    plot.x_marks_label = "v = f0 D / i";
     report.check_figures.push_back(
-        {plot, c.title + " against speed, one line per train" +
-                   (profile_count > 1 ? ", the largest value over the profiles at each speed" : "") +
-                   "; the dashed red line is the limit and the circle the governing case." +
-                   (plot.x_marks.empty() ? "" : " Dotted lines: resonance speeds v = f0 D / i of the HSLM trains.")});
+        {plot,
+         c.title + " against speed, one line per train" +
+             (profile_count > 1 ? ", the largest value over the profiles at each speed" : "") +
+             "; the dashed red line is the limit and the circle the governing case." +
+             (plot.x_marks.empty() ? ""
+                                   : fmt::format(" Dotted lines: resonance speeds v = f0 D / i of {} (D = {:g} m, "
+                                                 "f0 = {:.4g} Hz) inside the speed range.",
+                                                 resonance_train, scenes.at(resonance_train).train.coach_length_m,
+                                                 freq.f0_hz)),
+         std::nullopt, c.id});
+  }
+  add_response_figures(report, train_order, by_train, profile_count);
+  report.unverified = unverified_lines(report.checks, L_phi > 0.0, phi2);
+  if (structure.num_dofs() <= kMaxDofsForDeckFrequencies && cutoff > 0.0)
+    report.mode_shapes = deck_mode_shapes(first.structure, cutoff, 6);
+  for (std::size_t k = 0; k < freq.lowest_hz.size(); ++k) {
+    const double f = freq.lowest_hz[k];
+    report.modes.push_back({static_cast<int>(k) + 1, f, f == freq.f0_hz ? "f0" : f == freq.f3_hz ? "f3" : ""});
+  }
+  {
+    std::set<std::string> used;
+    for (const JobResult& j : jobs) {
+      if (j.fidelity.empty()) continue;
+      const json f = json::parse(j.fidelity, nullptr, false);
+      if (!f.is_object()) continue;
+      const auto number = [&](const char* key) { return f.contains(key) && f.at(key).is_number() ? f.at(key).get<double>() : 0.0; };
+      const std::string rung = f.contains("rung") && f.at("rung").is_string() && !f.at("rung").get<std::string>().empty()
+                                   ? f.at("rung").get<std::string>()
+                                   : std::string("as given");
+      if (number("modes") > 0)
+        used.insert(fmt::format("{}: the {:g} modes up to {:.4g} Hz", rung, number("modes"), number("modal_cutoff_hz")));
+      else
+        used.insert(fmt::format("{}: the whole structure ({:g} DOFs), integrated directly", rung,
+                                number("structure_dofs")));
+    }
+    for (const std::string& u : used) report.modes_note += (report.modes_note.empty() ? "" : "; ") + u;
   }
 
   // Governing cases, re-simulated.
@@ -679,7 +783,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
           static_cast<int>(done.size()) >= options.max_governing_cases)
         continue;
       done.insert(it->id);
-      report.governing_cases.push_back(governing_case(db, *it, c.title));
+      report.governing_cases.push_back(governing_case(db, *it, c.title, c.quantity));
     }
   }
   return report;

@@ -94,4 +94,21 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
   return on_fe_after_impact(std::move(again), full, escalated(plan.rung));
 }
 
+RungModels standalone_models(const Scene& scene) {
+  RungModels models;
+  models.fe_operator = [](const Scene& s, std::shared_ptr<const HybridBasis> reuse) {
+    return make_structure_operator(s, nullptr, std::move(reuse));
+  };
+  models.modal_basis = [structure = scene.structure](double modal_cutoff_hz) {
+    ModalBasisOptions o;
+    o.max_frequency_hz = modal_cutoff_hz;
+    return std::make_shared<const ModalBasis>(structure, o);
+  };
+  return models;
+}
+
+Result run_planned(const Scene& scene, const DeckFrequencies& frequencies) {
+  return run_at_rung(scene, plan_scene(scene, frequencies), standalone_models(scene));
+}
+
 }  // namespace railvsi::scheduler

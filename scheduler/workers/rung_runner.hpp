@@ -15,6 +15,7 @@
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 #include "solver/structure_operator.hpp"
+#include "study/deck_frequencies.hpp"
 #include "study/scene_plan.hpp"
 
 namespace railvsi::scheduler {
@@ -31,6 +32,16 @@ struct RungModels {
 
 // Throws InputError when the scene cannot run on the rung.
 Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& models);
+
+// The rung's models built for one run (no cache): what `vsi simulate`,
+// `vsi replay` and the report's governing cases run on.
+RungModels standalone_models(const Scene& scene);
+
+// A scene run as a worker runs it: planned by plan_scene (a stored job's
+// scene carries the rung, contact law and escalation pinned at submission,
+// so it needs no frequencies), then run_at_rung on standalone models. The
+// one way a stored job is run again: its envelopes are the stored ones.
+Result run_planned(const Scene& scene, const DeckFrequencies& frequencies = {});
 
 // The fidelity record's rung, choice, reasons and ignores for a run of
 // `scene` on `rung` (the plan's, or its escalation).

@@ -180,7 +180,9 @@ TEST_F(ReportTest, HeadlessChromiumRendersTheReport) {
   EXPECT_EQ(log.find("net::ERR"), std::string::npos) << log;
 
   const auto shot = dir_ / "shot.png";
-  const std::string screenshot = "timeout 120 " + browser + flags + "--hide-scrollbars --window-size=900,1400 " +
+  // 3200 px tall: below the title block and contents, the summary and the
+  // first check's plot.
+  const std::string screenshot = "timeout 120 " + browser + flags + "--hide-scrollbars --window-size=900,3200 " +
                                  "--screenshot='" + shot.string() + "' '" + url + "' >/dev/null 2>>'" +
                                  log_file.string() + "'";
   ASSERT_EQ(std::system(screenshot.c_str()), 0) << read_text(log_file);
