@@ -24,12 +24,24 @@ EffectiveMatrixFactors structure_factors(const HhtCoefficients& h) {
 
 }  // namespace
 
-// Time simulated: until the last axle is past the evaluation window behind
-// the bridge, plus any extra time asked for.
+double free_vibration_s(const AnalysisOptions& analysis) {
+  if (analysis.free_vibration_s) return *analysis.free_vibration_s;
+  const double periods_s =
+      analysis.structure_f0_hz > 0.0 ? analysis.free_vibration_periods / analysis.structure_f0_hz : 0.0;
+  return std::max(analysis.free_vibration_min_s, periods_s);
+}
+
+double track_exit_m(const Scene& scene) {
+  double end_m = bridge_extent_m(*scene.structure).second + scene.analysis.evaluation_margin_m;
+  for (const RailLine& rail : scene.structure->rails()) end_m = std::max(end_m, rail.end_m());
+  return end_m;
+}
+
+// Time simulated: until the last axle has left the modelled track, then the
+// deck's free vibration, plus any extra time asked for.
 double default_duration_s(const Scene& scene, double start_x_m) {
-  const double end_m = bridge_extent_m(*scene.structure).second + scene.analysis.evaluation_margin_m;
-  const double travel_m = end_m - start_x_m + scene.train.length_m();
-  return travel_m / scene.speed_mps + scene.analysis.extra_time_s;
+  const double travel_m = track_exit_m(scene) - start_x_m + scene.train.length_m();
+  return travel_m / scene.speed_mps + free_vibration_s(scene.analysis) + scene.analysis.extra_time_s;
 }
 
 namespace {

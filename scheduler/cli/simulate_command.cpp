@@ -54,6 +54,8 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
   const bool need_frequencies = !cutoff_hz || scene.fidelity.mode != FidelityRequest::Mode::kAsGiven;
   const scheduler::DeckFrequencies f = need_frequencies ? frequencies_of(scene, extra) : scheduler::DeckFrequencies{};
   const double cutoff = cutoff_hz ? *cutoff_hz : code_cutoff_hz(f.f0_hz, f.f3_hz);
+  // The default free vibration lasts at least 3 periods of f0.
+  scene.analysis.structure_f0_hz = f.f0_hz;
   // Setup problems the engine finds (a mechanism, a train its wheels cannot
   // carry, a run too large) are input errors of this scene.
   Result result = [&] {

@@ -15,6 +15,7 @@
 #include "io/scene_loader.hpp"
 #include "simulation/simulation.hpp"
 #include "test_scenes.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -85,7 +86,7 @@ WindowForces window_forces(const Scene& scene, const Result& r, double start_x_m
       if (in) {
         ++w.samples;
         w.min_N = std::min(w.min_N, f[k]);
-        w.max_N = std::max(w.max_N, f[k]);
+        w.max_N = railvsi::testing::worst_of(w.max_N, f[k]);
         if (prev_in && f[k] * f[k - 1] < 0.0) ++w.sign_changes;
       }
       prev_in = in;

@@ -15,6 +15,7 @@
 #include "generators/bridge_2d.hpp"
 #include "model/vehicle_model.hpp"
 #include "simulation/simulation.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -130,13 +131,13 @@ Scene biggs_scene(double kv, double dt, double alpha) {
 
 double max_abs(const std::vector<double>& x) {
   double m = 0.0;
-  for (double v : x) m = std::max(m, std::abs(v));
+  for (double v : x) m = railvsi::testing::worst_of(m, std::abs(v));
   return m;
 }
 
 double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
   double m = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) m = std::max(m, std::abs(a[k] - b[k]));
+  for (std::size_t k = 0; k < a.size(); ++k) m = railvsi::testing::worst_of(m, std::abs(a[k] - b[k]));
   return m;
 }
 

@@ -9,6 +9,7 @@
 #include "generators/deck_3d.hpp"
 #include "generators/vehicle_2d.hpp"
 #include "simulation/scene.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi::testing {
 
@@ -98,8 +99,8 @@ inline double relative_history_difference(const std::vector<std::vector<double>>
   double diff = 0.0, scale = 0.0;
   for (std::size_t i = 0; i < b.size(); ++i)
     for (std::size_t k = 0; k < b[i].size(); ++k) {
-      diff = std::max(diff, std::abs(a[i][k] - b[i][k]));
-      scale = std::max(scale, std::abs(b[i][k]));
+      diff = railvsi::testing::worst_of(diff, std::abs(a[i][k] - b[i][k]));
+      scale = railvsi::testing::worst_of(scale, std::abs(b[i][k]));
     }
   return scale > 0.0 ? diff / scale : diff;
 }
