@@ -279,6 +279,12 @@ Result Simulation::run() const {
     // As the step applies it: not on the rigid path (condensed_step_solver).
     sum.fidelity.static_correction = op_->rail_residual_flexibility() != nullptr && !layout.contacts.empty() &&
                                      !layout.contacts.front().law->is_constraint();
+    // The backend's name says what the operator holds; the record says what
+    // the run applied (rigid contact, moving forces: no static correction).
+    const std::string held = ", static correction";
+    if (const auto at = sum.fidelity.structure_backend.find(held);
+        !sum.fidelity.static_correction && at != std::string::npos)
+      sum.fidelity.structure_backend.replace(at, held.size(), ", no static correction");
   }
   sum.fidelity.vehicle_dofs = layout.num_vehicle_dofs;
   sum.fidelity.contacts = static_cast<int>(layout.contacts.size());

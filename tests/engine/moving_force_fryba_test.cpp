@@ -51,7 +51,7 @@ struct FrybaCase {
 
 class MovingForceOnSimplySupportedBeam : public ::testing::TestWithParam<FrybaCase> {};
 
-TEST_P(MovingForceOnSimplySupportedBeam, MidspanPeakMatchesFrybaSeriesWithinHalfPercent) {
+TEST_P(MovingForceOnSimplySupportedBeam, MidspanPeakMatchesFrybaSeries) {
   const FrybaCase c = GetParam();
   const Beam b{25.0, 7.0e10, 15000.0};
   const double P = 170e3;
@@ -113,12 +113,12 @@ TEST_P(MovingForceOnSimplySupportedBeam, MidspanPeakMatchesFrybaSeriesWithinHalf
               "max history diff/peak=%.3e\n",
               c.speed_parameter, c.damping_ratio, steps, peak_engine, peak_series,
               peak_engine / peak_series - 1.0, max_diff / peak_series);
-  // Tolerance 0.5 % on the peak during the crossing .
-  EXPECT_NEAR(peak_engine / peak_series, 1.0, 5e-3);
-  // The whole history, not only its peak: within 0.1 % of the peak (observed
-  // <= 1e-4: the mesh and dt above leave room to spare; a wrong load or
-  // HHT term shows up as percents).
-  EXPECT_LT(max_diff, 1e-3 * peak_series);
+  // The peak during the crossing: measured at most 3.91e-5 over the eight
+  // cases (2026-11-27); tolerance 1.1e-4.
+  EXPECT_NEAR(peak_engine / peak_series, 1.0, 1.1e-4);
+  // The whole history, not only its peak: measured at most 7.73e-5 of the
+  // peak; tolerance 2.2e-4 (a wrong load or HHT term shows up as percents).
+  EXPECT_LT(max_diff, 2.2e-4 * peak_series);
 }
 
 INSTANTIATE_TEST_SUITE_P(

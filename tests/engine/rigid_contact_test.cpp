@@ -244,3 +244,43 @@ TEST(RigidContact, SeveralRailLinesAreRefused) {
 
 }  // namespace
 }  // namespace railvsi
+
+namespace railvsi {
+namespace {
+
+// The modal structure with rigid contact: the rigid path does not apply the
+// residual flexibility, and the run's record says so in both places (the
+// backend's name said "static correction" while static_correction was false).
+TEST(RigidContact, ModalRecordSaysNoStaticCorrectionOnTheRigidPath) {
+  Bridge2dOptions b;
+  b.spans_m = {15.0, 15.0};
+  b.deck_EI_Nm2 = 1.2e10;
+  b.deck_mass_kg_per_m = 15000.0;
+  b.damping_ratio = 0.02;
+  b.element_length_m = 0.6;
+  Scene scene;
+  scene.structure = make_bridge_2d(b);
+  scene.train.name = "one coach";
+  scene.train.vehicles.push_back({make_car_2d(testing::ice3_coach()), 0.0});
+  scene.speed_mps = 300.0 / 3.6;
+  scene.analysis.dt_s = 5e-4;
+  scene.analysis.hht = HhtParameters::from_alpha(-0.1);
+  scene.analysis.contact.law = "rigid";
+  scene.analysis.structure_backend = StructureBackend::kModal;
+  scene.analysis.modal_cutoff_hz = 60.0;
+  scene.analysis.free_vibration_s = 0.1;  // the record is the point, not the response
+  const Result r = Simulation(scene).run();
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  EXPECT_FALSE(r.summary.fidelity.static_correction);
+  EXPECT_NE(r.summary.fidelity.structure_backend.find("no static correction"), std::string::npos)
+      << r.summary.fidelity.structure_backend;
+  scene.analysis.contact.law = "hertz";
+  const Result h = Simulation(scene).run();
+  ASSERT_TRUE(h.status.ok()) << h.status.message();
+  EXPECT_TRUE(h.summary.fidelity.static_correction);
+  EXPECT_EQ(h.summary.fidelity.structure_backend.find("no static correction"), std::string::npos)
+      << h.summary.fidelity.structure_backend;
+}
+
+}  // namespace
+}  // namespace railvsi
