@@ -298,7 +298,8 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache, ImportedStr
     out.factorized = lookup.factorized;
     out.factorization_s = lookup.factorization_s;
     out.evictions = lookup.evictions;
-    for (RunWarning& w : time_step_warnings(scene, job.cutoff_hz)) result.summary.warnings.push_back(std::move(w));
+    for (RunWarning& w : time_step_warnings(scene_as_run(scene, result.summary), job.cutoff_hz))
+      result.summary.warnings.push_back(std::move(w));
     const RunSummary& s = result.summary;
     out.setup_s = s.setup_s + lookup.factorization_s;
     out.loop_s = s.wall_s - s.setup_s;
