@@ -252,16 +252,9 @@ namespace {
 // residual flexibility, and the run's record says so in both places (the
 // backend's name said "static correction" while static_correction was false).
 TEST(RigidContact, ModalRecordSaysNoStaticCorrectionOnTheRigidPath) {
-  Bridge2dOptions b;
-  b.spans_m = {15.0, 15.0};
-  b.deck_EI_Nm2 = 1.2e10;
-  b.deck_mass_kg_per_m = 15000.0;
-  b.damping_ratio = 0.02;
-  b.element_length_m = 0.6;
   Scene scene;
-  scene.structure = make_bridge_2d(b);
-  scene.train.name = "one coach";
-  scene.train.vehicles.push_back({make_car_2d(testing::ice3_coach()), 0.0});
+  scene.structure = make_bridge_2d(testing::two_fifteen_metre_spans());
+  scene.train = testing::one_ice3_coach();
   scene.speed_mps = 300.0 / 3.6;
   scene.analysis.dt_s = 5e-4;
   scene.analysis.hht = HhtParameters::from_alpha(-0.1);

@@ -63,22 +63,10 @@ TEST(TrackFeature, AFlatOrLinearProfileHasNone) {
 }
 
 std::shared_ptr<const StructureModel> two_spans() {
-  Bridge2dOptions b;
-  b.spans_m = {15.0, 15.0};
-  b.deck_EI_Nm2 = 1.2e10;
-  b.deck_mass_kg_per_m = 15000.0;
-  b.damping_ratio = 0.02;
-  b.element_length_m = 0.6;
-  b.track = TrackOptions{};
-  return make_bridge_2d(b);
+  return make_bridge_2d(testing::two_fifteen_metre_spans(TrackOptions{}));
 }
 
-Train one_coach() {
-  Train t;
-  t.name = "ICE3 coach";
-  t.vehicles.push_back({make_car_2d(testing::ice3_coach()), 0.0});
-  return t;
-}
+Train one_coach() { return testing::one_ice3_coach(); }
 
 TEST(TimeStepPolicyTrack, ADipBindsAtItsCrossingTime) {
   // 30 mm x 0.5 m at 400 km/h lifts the wheel (v^2 r'' = 111.1^2 x 0.015 x
