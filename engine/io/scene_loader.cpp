@@ -71,7 +71,7 @@ TrackRange wheel_range(const Scene& scene) {
   const AnalysisOptions& a = scene.analysis;
   const double free_s = a.free_vibration_s.value_or(std::max(a.free_vibration_min_s, a.free_vibration_periods / 1.0));
   const double free_m = scene.speed_mps * (free_s + a.extra_time_s);
-  return {start_m, std::max(rail.end_m(), track_exit_m(scene)) + reach_m + a.evaluation_margin_m + free_m};
+  return {start_m, std::max(rail.end_m() + a.evaluation_margin_m, track_exit_m(scene)) + reach_m + free_m};
 }
 
 // After the structure and the train: a spectrum is sampled over their wheel_range.

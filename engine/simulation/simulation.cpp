@@ -26,9 +26,11 @@ EffectiveMatrixFactors structure_factors(const HhtCoefficients& h) {
 
 double free_vibration_s(const AnalysisOptions& analysis) {
   if (analysis.free_vibration_s) return *analysis.free_vibration_s;
+  // At most 10 s (f0 = 0.3 Hz): a mechanism's f0 of nearly 0 would ask for
+  // days, and be refused for its length before its mechanism is named.
   const double periods_s =
       analysis.structure_f0_hz > 0.0 ? analysis.free_vibration_periods / analysis.structure_f0_hz : 0.0;
-  return std::max(analysis.free_vibration_min_s, periods_s);
+  return std::max(analysis.free_vibration_min_s, std::min(periods_s, kMaxDefaultFreeVibrationS));
 }
 
 double track_exit_m(const Scene& scene) {

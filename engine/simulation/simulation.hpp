@@ -26,7 +26,9 @@ std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& sc
 // vibration (free_vibration_s below), plus the extra time asked for.
 double default_duration_s(const Scene& scene, double start_x_m);
 // Free vibration after the last axle has left, s: analysis.free_vibration_s
-// when given, else max(min_s, periods / f0) (min_s while f0 is unknown).
+// when given, else max(min_s, min(periods / f0, 10 s)) (min_s while f0 is
+// unknown).
+inline constexpr double kMaxDefaultFreeVibrationS = 10.0;
 double free_vibration_s(const AnalysisOptions& analysis);
 // x the last axle must pass to have left the modelled track: the furthest
 // rail end, and at least the evaluation margin past the bridge.

@@ -146,7 +146,7 @@ std::map<std::string, std::optional<std::size_t>> cheapest_within(const std::vec
     const std::string q(qv);
     std::optional<std::size_t>& pick = out[q];
     for (std::size_t i : by_cost(rows, q))
-      if (std::abs(*rows[i].errors.at(q)) <= tolerance) {
+      if (!lucky(rows, i, q) && std::abs(*rows[i].errors.at(q)) <= tolerance) {
         pick = i;
         break;
       }

@@ -75,7 +75,8 @@ PriceReference price_errors(std::vector<PriceRow>& rows);
 // the front.
 std::map<std::string, std::vector<std::size_t>> pareto_fronts(const std::vector<PriceRow>& rows);
 
-// Per quantity, the cheapest row (cpu_s) with |error| <= tolerance.
+// Per quantity, the cheapest row (cpu_s) with |error| <= tolerance, lucky
+// steps (see pareto_fronts) left out.
 std::map<std::string, std::optional<std::size_t>> cheapest_within(const std::vector<PriceRow>& rows,
                                                                    double tolerance);
 
