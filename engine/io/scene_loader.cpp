@@ -9,6 +9,7 @@
 #include "io/schema_validator.hpp"
 #include "io/structure_loader.hpp"
 #include "io/train_loader.hpp"
+#include "simulation/simulation.hpp"
 #include "solver/hybrid_basis.hpp"
 
 namespace railvsi {
@@ -65,7 +66,12 @@ TrackRange wheel_range(const Scene& scene) {
   const RailLine& rail = scene.structure->rails().front();
   const double reach_m = scene.train.length_m() + 10.0;
   const double start_m = std::min(rail.start_m(), scene.start_x_m.value_or(rail.start_m())) - reach_m;
-  return {start_m, rail.end_m() + reach_m + scene.analysis.evaluation_margin_m};
+  // And the free vibration's travel: the given time, or the default rule for
+  // any f0 >= 1 Hz (f0 is not known here).
+  const AnalysisOptions& a = scene.analysis;
+  const double free_s = a.free_vibration_s.value_or(std::max(a.free_vibration_min_s, a.free_vibration_periods / 1.0));
+  const double free_m = scene.speed_mps * (free_s + a.extra_time_s);
+  return {start_m, std::max(rail.end_m() + a.evaluation_margin_m, track_exit_m(scene)) + reach_m + free_m};
 }
 
 // After the structure and the train: a spectrum is sampled over their wheel_range.
@@ -157,6 +163,7 @@ AnalysisOptions parse_analysis(const json& a) {
   o.max_newton_iterations = a.value("max_newton_iterations", o.max_newton_iterations);
   o.newton_tolerance = a.value("newton_tolerance", o.newton_tolerance);
   if (a.contains("duration_s")) o.duration_s = a.at("duration_s").get<double>();
+  if (a.contains("free_vibration_s")) o.free_vibration_s = a.at("free_vibration_s").get<double>();
   o.evaluation_margin_m = a.value("evaluation_margin_m", o.evaluation_margin_m);
   o.extra_time_s = a.value("extra_time_s", o.extra_time_s);
   o.history_stride = a.value("history_stride", o.history_stride);

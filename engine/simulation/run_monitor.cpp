@@ -194,6 +194,17 @@ Status RunMonitor::after_step(const HhtCoefficients& h, double t_new, const Kine
   for (Eigen::Index c = 0; c < P_new.size(); ++c) {
     const double q0 = std::max(std::abs(Q0_[c]), 1.0);
     const double dP = P_new[c] - P_old[c];
+    // A wheel past the exit rail end runs on the rigid path: it no longer
+    // loads the structure, and its landing there (rigid contact at
+    // alpha = -1/3 chatters) is no result. The free vibration after the
+    // train has left runs every wheel off the rail end.
+    const ContactSpec& spec = layout_.contacts[static_cast<std::size_t>(c)];
+    if (TrainLayout::position_m(front_x_m, spec.offset_m) >
+        scene_.structure->rails()[static_cast<std::size_t>(spec.rail_line)].end_m()) {
+      alternations_[static_cast<std::size_t>(c)] = 0;
+      dP_prev_[c] = dP;
+      continue;
+    }
     const double big = limits_.chatter_fraction * q0;
     auto& alt = alternations_[static_cast<std::size_t>(c)];
     alt = (std::abs(dP) > big && std::abs(dP_prev_[c]) > big && dP * dP_prev_[c] < 0.0) ? alt + 1 : 0;

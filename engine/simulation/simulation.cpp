@@ -24,12 +24,26 @@ EffectiveMatrixFactors structure_factors(const HhtCoefficients& h) {
 
 }  // namespace
 
-// Time simulated: until the last axle is past the evaluation window behind
-// the bridge, plus any extra time asked for.
+double free_vibration_s(const AnalysisOptions& analysis) {
+  if (analysis.free_vibration_s) return *analysis.free_vibration_s;
+  // At most 10 s (f0 = 0.3 Hz): a mechanism's f0 of nearly 0 would ask for
+  // days, and be refused for its length before its mechanism is named.
+  const double periods_s =
+      analysis.structure_f0_hz > 0.0 ? analysis.free_vibration_periods / analysis.structure_f0_hz : 0.0;
+  return std::max(analysis.free_vibration_min_s, std::min(periods_s, kMaxDefaultFreeVibrationS));
+}
+
+double track_exit_m(const Scene& scene) {
+  double end_m = bridge_extent_m(*scene.structure).second + scene.analysis.evaluation_margin_m;
+  for (const RailLine& rail : scene.structure->rails()) end_m = std::max(end_m, rail.end_m());
+  return end_m;
+}
+
+// Time simulated: until the last axle has left the modelled track, then the
+// deck's free vibration, plus any extra time asked for.
 double default_duration_s(const Scene& scene, double start_x_m) {
-  const double end_m = bridge_extent_m(*scene.structure).second + scene.analysis.evaluation_margin_m;
-  const double travel_m = end_m - start_x_m + scene.train.length_m();
-  return travel_m / scene.speed_mps + scene.analysis.extra_time_s;
+  const double travel_m = track_exit_m(scene) - start_x_m + scene.train.length_m();
+  return travel_m / scene.speed_mps + free_vibration_s(scene.analysis) + scene.analysis.extra_time_s;
 }
 
 namespace {
@@ -267,6 +281,12 @@ Result Simulation::run() const {
     // As the step applies it: not on the rigid path (condensed_step_solver).
     sum.fidelity.static_correction = op_->rail_residual_flexibility() != nullptr && !layout.contacts.empty() &&
                                      !layout.contacts.front().law->is_constraint();
+    // The backend's name says what the operator holds; the record says what
+    // the run applied (rigid contact, moving forces: no static correction).
+    const std::string held = ", static correction";
+    if (const auto at = sum.fidelity.structure_backend.find(held);
+        !sum.fidelity.static_correction && at != std::string::npos)
+      sum.fidelity.structure_backend.replace(at, held.size(), ", no static correction");
   }
   sum.fidelity.vehicle_dofs = layout.num_vehicle_dofs;
   sum.fidelity.contacts = static_cast<int>(layout.contacts.size());

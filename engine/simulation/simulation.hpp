@@ -21,9 +21,18 @@ std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& sc
                                                                  std::shared_ptr<const ModalBasis> modal_basis = nullptr,
                                                                  std::shared_ptr<const HybridBasis> hybrid_basis = nullptr);
 
-// Time simulated by default: until the last axle is the evaluation margin
-// past the bridge, plus the extra time asked for.
+// Time simulated by default: until the last axle has left the modelled track
+// (every rail end, and the evaluation margin past the bridge), then the free
+// vibration (free_vibration_s below), plus the extra time asked for.
 double default_duration_s(const Scene& scene, double start_x_m);
+// Free vibration after the last axle has left, s: analysis.free_vibration_s
+// when given, else max(min_s, min(periods / f0, 10 s)) (min_s while f0 is
+// unknown).
+inline constexpr double kMaxDefaultFreeVibrationS = 10.0;
+double free_vibration_s(const AnalysisOptions& analysis);
+// x the last axle must pass to have left the modelled track: the furthest
+// rail end, and at least the evaluation margin past the bridge.
+double track_exit_m(const Scene& scene);
 // Time steps a run of the scene takes (its duration over dt, as run()
 // counts them); 0 when the scene has no duration. Cost estimates use it.
 long planned_steps(const Scene& scene);

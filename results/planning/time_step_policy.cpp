@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "envelopes/code_filter.hpp"
+#include "planning/track_feature.hpp"
 #include "simulation/static_equilibrium.hpp"
 
 namespace railvsi {
@@ -65,11 +66,12 @@ double highest_contact_frequency_hz(const Train& train, const ContactOptions& co
 
 TimeStepChoice choose_time_step(const StructureModel& structure, const Train& train, double speed_mps,
                                 const ContactOptions& contact, double f0_hz, double f3_hz,
-                                const TimeStepPolicy& policy) {
+                                const TimeStepPolicy& policy, const Irregularity* profile) {
   require(finite_non_negative(speed_mps), "speed_mps must be finite and >= 0");
   require(finite_non_negative(f0_hz) && finite_non_negative(f3_hz), "f0_hz and f3_hz must be finite and >= 0");
   require(policy.dt_max_s > 0.0 && policy.max_period_error > 0.0 && policy.max_travel_fraction_of_element > 0.0 &&
-              policy.contact_steps_per_period > 0.0,
+              policy.contact_steps_per_period > 0.0 && policy.track_steps_per_feature > 0.0 &&
+              policy.impact_steps_per_feature > 0.0,
           "policy values must be > 0");
 
   TimeStepChoice c;
@@ -91,18 +93,36 @@ TimeStepChoice choose_time_step(const StructureModel& structure, const Train& tr
                         fmt::format("Hertz contact f_H = {:.1f} Hz at {:g} steps/period", f_H,
                                     policy.contact_steps_per_period)});
 
+  if (profile && !train.is_moving_forces() && speed_mps > 0.0) {
+    const TrackFeature feature = shortest_track_feature(*profile);
+    if (feature.wavelength_m > 0.0) {
+      const double demand_mps2 = speed_mps * speed_mps * feature.max_curvature_per_m;
+      const bool impact = demand_mps2 > policy.impact_acceleration_mps2;
+      const double steps = impact ? policy.impact_steps_per_feature : policy.track_steps_per_feature;
+      c.bounds.push_back({"track profile", feature.wavelength_m / (steps * speed_mps),
+                          fmt::format("track profile: {} (v^2 r'' = {:.3g} m/s^2{}) crossed in {:g} steps at "
+                                      "{:.1f} m/s",
+                                      feature.describe(), demand_mps2, impact ? ": the wheel lifts and lands" : "",
+                                      steps, speed_mps)});
+    }
+  }
+
   const auto binding = std::min_element(c.bounds.begin(), c.bounds.end(),
                                         [](const TimeStepBound& a, const TimeStepBound& b) { return a.dt_s < b.dt_s; });
   c.required_dt_s = binding->dt_s;
   c.binding = binding->name;
   // Largest rung not above the requirement; a requirement that equals a
   // rung up to round-off takes that rung.
-  while (std::ldexp(policy.dt_max_s, -c.ladder_k) > c.required_dt_s * (1.0 + 1e-12) && c.ladder_k < 60) ++c.ladder_k;
+  while (std::ldexp(policy.dt_max_s, -c.ladder_k) > c.required_dt_s * (1.0 + 1e-12) &&
+         std::ldexp(policy.dt_max_s, -c.ladder_k - 1) >= policy.dt_min_s * (1.0 - 1e-12) && c.ladder_k < 60)
+    ++c.ladder_k;
   c.dt_s = std::ldexp(policy.dt_max_s, -c.ladder_k);
 
   for (const TimeStepBound& b : c.bounds) c.reason += fmt::format("{} needs {:.2e} s; ", b.detail, b.dt_s);
   c.reason += fmt::format("binding: {}; ladder {:.1e} s / 2^{} = {:.3e} s", c.binding, policy.dt_max_s, c.ladder_k,
                           c.dt_s);
+  if (c.dt_s > c.required_dt_s * (1.0 + 1e-12))
+    c.reason += fmt::format(" (the ladder's floor: {:.3g} x the requirement, the run warns)", c.dt_s / c.required_dt_s);
   return c;
 }
 

@@ -39,6 +39,20 @@
 //     alpha = -0.05). The rail mass on the Hertz spring (P1, several hundred
 //     Hz with a track) is not resolved: HHT's dissipation damps it. A rigid
 //     contact has no frequency of its own: no bound.
+//  4. track profile (multibody trains on an irregular track): a wheel
+//     crosses the profile's shortest feature (a defect's length, the rise
+//     of a step, the shortest wavelength of a spectrum as sampled) in at
+//     least track_steps_per_feature steps. A short dip or a step makes the
+//     wheel leave the rail and land again: the impact's time scale is the
+//     feature's crossing time, not the structure's or the wheel's frequency.
+//     Measured (one ICE3 coach over 2 x 15 m, Hertz, against dt = 15.6 us,
+//     2026-11-27): a 30 mm x 1 m dip at 350 km/h needs 62.5 us (filtered
+//     deck acceleration +0.07 %, contact-loss time +0.56 %; at 0.25 ms
+//     +10.3 % and +6.0 %), a 30 mm x 0.5 m dip at 400 km/h 31.25 us (-0.24 %,
+//     0.0 %; at 62.5 us -0.90 %, +1.05 %): about 150 steps per crossing of a
+//     feature that lifts the wheel (v^2 r'' of 5,600 and 29,000 m/s^2).
+//     Gentler features (a 5 mm x 2 m bump, v^2 r'' = 170 m/s^2 at 300 km/h;
+//     the spectra) converged to 0.2 % at 0.25 ms: 40 steps.
 #include <string>
 #include <vector>
 
@@ -53,22 +67,34 @@ struct TimeStepPolicy {
   // at 20 steps per period needs 1.67 ms) and its halvings are round
   // numbers: 1, 0.5, 0.25, 0.125 ms.
   double dt_max_s = 2.0e-3;
+  // Bottom of the ladder (dt_max / 2^7): a requirement below it (a step in
+  // the profile, whose rise is one sample interval) takes this step, and the
+  // run warns dt_above_policy with the factor and the feature
+  // (time_step_warnings) instead of running millions of steps.
+  double dt_min_s = 2.0e-3 / 128.0;
   // At the code frequency f_cut: the HHT period elongation of the scene's
   // scheme stays below this (see bound 1).
   double max_period_error = 0.0025;
   HhtParameters hht = HhtParameters::from_alpha(-0.05);
   double max_travel_fraction_of_element = 0.25;  // of the shortest rail element, per step
   double contact_steps_per_period = 10.0;        // at the Hertz contact frequency f_H
+  // Multibody trains on a profile: steps while a wheel crosses the profile's
+  // shortest feature (planning/track_feature.hpp; bound 4), more for a
+  // feature that throws the wheel off the rail (its profile acceleration
+  // v^2 r'' above impact_acceleration_mps2: loss of contact and re-impact).
+  double track_steps_per_feature = 40.0;
+  double impact_steps_per_feature = 150.0;
+  double impact_acceleration_mps2 = 500.0;
 };
 
 struct TimeStepBound {
-  std::string name;   // "code frequency", "wheel travel", "contact frequency"
+  std::string name;   // "code frequency", "wheel travel", "contact frequency", "track profile"
   double dt_s = 0.0;  // largest admissible step
   std::string detail;  // "f_cut = max(30, 1.5 f0 = 7.5, f3 = 45.0) = 45.0 Hz at 20 steps/period"
 };
 
 struct TimeStepChoice {
-  double dt_s = 0.0;          // dt_max / 2^ladder_k
+  double dt_s = 0.0;          // dt_max / 2^ladder_k, at least dt_min
   int ladder_k = 0;
   double required_dt_s = 0.0;  // the smallest bound
   std::string binding;         // name of that bound
@@ -86,9 +112,10 @@ struct TimeStepChoice {
 // std::invalid_argument for negative or non-finite arguments or a policy
 // value <= 0 (they are computed, not user input: the study is validated
 // before planning).
+// profile: the scene's track irregularity (null: a perfect track).
 TimeStepChoice choose_time_step(const StructureModel& structure, const Train& train, double speed_mps,
                                 const ContactOptions& contact, double f0_hz, double f3_hz,
-                                const TimeStepPolicy& policy = {});
+                                const TimeStepPolicy& policy = {}, const Irregularity* profile = nullptr);
 
 // Largest omega*dt at which the HHT period elongation is <= max_period_error.
 double max_omega_dt(const HhtParameters& hht, double max_period_error);

@@ -28,7 +28,7 @@ std::vector<RunWarning> time_step_warnings(const Scene& scene, double cutoff_hz)
   policy.hht = scene.analysis.hht;
   // f0 = 0, f3 = cutoff: the policy's code frequency is then cutoff_hz.
   const TimeStepChoice c = choose_time_step(*scene.structure, scene.train, scene.speed_mps, scene.analysis.contact,
-                                            0.0, cutoff_hz, policy);
+                                            0.0, cutoff_hz, policy, scene.irregularity.get());
   // The policy's requirement, not its ladder rung: a dt between the two is
   // within every bound.
   if (dt > c.required_dt_s * (1.0 + 1e-9)) {

@@ -112,7 +112,8 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
   const Scene most_complete = rung_scene(ladder[rungs.back()], scene, scene.analysis.dt_s);
   const TimeStepChoice policy =
       choose_time_step(*most_complete.structure, most_complete.train, most_complete.speed_mps,
-                       most_complete.analysis.contact, options.f0_hz, options.f3_hz, options.policy);
+                       most_complete.analysis.contact, options.f0_hz, options.f3_hz, options.policy,
+                       most_complete.irregularity.get());
   report.policy_dt_s = policy.dt_s;
   report.policy_reason = policy.reason;
 

@@ -70,10 +70,13 @@ PriceReference price_errors(std::vector<PriceRow>& rows);
 
 // Per quantity, the rows on the Pareto front of |error| against cpu_s: no
 // other row is at most as costly and at most as wrong, one of them
-// strictly. In increasing cpu_s.
+// strictly. In increasing cpu_s. A row with a smaller |error| than a finer
+// dt of its own rung (error not monotone in dt: a lucky step) is never on
+// the front.
 std::map<std::string, std::vector<std::size_t>> pareto_fronts(const std::vector<PriceRow>& rows);
 
-// Per quantity, the cheapest row (cpu_s) with |error| <= tolerance.
+// Per quantity, the cheapest row (cpu_s) with |error| <= tolerance, lucky
+// steps (see pareto_fronts) left out.
 std::map<std::string, std::optional<std::size_t>> cheapest_within(const std::vector<PriceRow>& rows,
                                                                    double tolerance);
 

@@ -54,6 +54,8 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
   const bool need_frequencies = !cutoff_hz || scene.fidelity.mode != FidelityRequest::Mode::kAsGiven;
   const scheduler::DeckFrequencies f = need_frequencies ? frequencies_of(scene, extra) : scheduler::DeckFrequencies{};
   const double cutoff = cutoff_hz ? *cutoff_hz : code_cutoff_hz(f.f0_hz, f.f3_hz);
+  // The default free vibration lasts at least 3 periods of f0.
+  scene.analysis.structure_f0_hz = f.f0_hz;
   // Setup problems the engine finds (a mechanism, a train its wheels cannot
   // carry, a run too large) are input errors of this scene.
   Result result = [&] {
@@ -65,10 +67,12 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
   }();
   // An escalation for wheel quantities ran at a finer dt: its histories and filter are at that dt.
   if (result.summary.dt_s > 0.0) scene.analysis.dt_s = result.summary.dt_s;
+  // The time-step checks judge the contact law that ran (the planner's for "auto").
+  const Scene ran = scheduler::scene_as_run(scene, result.summary);
   // The FE rungs' policy bounds HHT's period error; the modal rung's step
   // only samples the load and the output: its own rule, as in a study.
-  for (RunWarning& w : result.summary.fidelity.solver_path != "modal-exact" ? time_step_warnings(scene, cutoff)
-                                                                             : modal_time_step_warnings(scene, cutoff))
+  for (RunWarning& w : result.summary.fidelity.solver_path != "modal-exact" ? time_step_warnings(ran, cutoff)
+                                                                             : modal_time_step_warnings(ran, cutoff))
     extra.push_back(std::move(w));
   for (RunWarning& w : extra) result.summary.warnings.push_back(std::move(w));
   const RunFrame frame = run_frame(scene, cutoff);

@@ -200,7 +200,7 @@ JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequenci
   TimeStepPolicy policy;
   policy.hht = scene.analysis.hht;
   const TimeStepChoice c = choose_time_step(*scene.structure, scene.train, scene.speed_mps, scene.analysis.contact,
-                                            f.f0_hz, f.f3_hz, policy);
+                                            f.f0_hz, f.f3_hz, policy, scene.irregularity.get());
   return {c.dt_s, c.reason};
 }
 
@@ -337,6 +337,7 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
     auto [it, fresh] = frequencies_of_structure.try_emplace(f.structure_hash);
     if (fresh) it->second = deck_frequencies(*f.structure);
     f.frequencies = it->second;
+    f.first_scene.analysis.structure_f0_hz = f.frequencies.f0_hz;
     f.cutoff_hz = code_cutoff_hz(f.frequencies.f0_hz, f.frequencies.f3_hz);
     if (auto_fidelity) {
       const double modal_cutoff_hz = kModalCutoffMargin * f.cutoff_hz;
@@ -411,10 +412,16 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
       throw in_study(e.with_file(file), file, train_path, profiles.front().path, structure);
     }
   }
+  // Each profile's irregularity, for the time-step policy's track bound
+  // (its shortest feature does not depend on the range sampled).
+  std::vector<std::shared_ptr<const Irregularity>> profile_irregularity(profiles.size());
+  if (!facts.empty()) profile_irregularity[0] = facts.front().first_scene.irregularity;
   for (std::size_t j = 1; j < profiles.size(); ++j)
-    parse(scene_doc(structures.front(), variants.front(), trains[0], first_speed_kmh, profiles[j].value,
-                    placeholder_dt_s),
-          train_paths[0], profiles[j].path, structures.front());
+    profile_irregularity[j] =
+        parse(scene_doc(structures.front(), variants.front(), trains[0], first_speed_kmh, profiles[j].value,
+                        placeholder_dt_s),
+              train_paths[0], profiles[j].path, structures.front())
+            .irregularity;
 
   std::vector<std::string> train_labels;
   for (const json& t : trains) train_labels.push_back(study_train_label(t));
@@ -438,29 +445,34 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
     std::vector<std::optional<CanonicalNumberSlot>> slots(profiles.size());
     std::vector<double> slot_dt_s(profiles.size(), 0.0);
     for (double speed_kmh : f.speeds_kmh) {
-      Scene at_speed = f.first_scene;
-      at_speed.speed_mps = speed_kmh / 3.6;
-      const JobTimeStep dt = job_time_step(dt_given, at_speed, f.frequencies, f.plan);
-      at_speed.analysis.dt_s = dt.dt_s;
-      const bool modal = f.plan.rung.structure == "modal" || f.plan.rung.structure == "hybrid";
-      ScenePlan on_rung;
-      on_rung.rung = f.plan.rung;
-      on_rung.modal_cutoff_hz = f.plan.modal_cutoff_hz;
-      apply_rung_structure(on_rung, at_speed.analysis);
-      // The modal key hashes the rail lines and outputs: computed once per
-      // train and dt (one dt for all its speeds on the exact modal rung).
-      if (f.plan.rung.exact_modal() && !(modal_key_dt_s == dt.dt_s && !modal_key.empty())) {
-        modal_key = modal_operator_key(f.structure_hash, *f.structure, f.plan.modal_cutoff_hz, dt.dt_s);
-        modal_key_dt_s = dt.dt_s;
-      }
-      const std::string key = f.plan.rung.exact_modal()
-                                  ? modal_key
-                                  : operator_key(f.structure_hash, at_speed.analysis, f.rail_flexibility);
       for (std::size_t k = 0; k < profiles.size(); ++k) {
+        Scene at_speed = f.first_scene;
+        at_speed.speed_mps = speed_kmh / 3.6;
+        at_speed.irregularity = profile_irregularity[k];
+        const JobTimeStep dt = job_time_step(dt_given, at_speed, f.frequencies, f.plan);
+        at_speed.analysis.dt_s = dt.dt_s;
+        const bool modal = f.plan.rung.structure == "modal" || f.plan.rung.structure == "hybrid";
+        ScenePlan on_rung;
+        on_rung.rung = f.plan.rung;
+        on_rung.modal_cutoff_hz = f.plan.modal_cutoff_hz;
+        apply_rung_structure(on_rung, at_speed.analysis);
+        // The modal key hashes the rail lines and outputs: computed once per
+        // train and dt (one dt for all its speeds on the exact modal rung).
+        if (f.plan.rung.exact_modal() && !(modal_key_dt_s == dt.dt_s && !modal_key.empty())) {
+          modal_key = modal_operator_key(f.structure_hash, *f.structure, f.plan.modal_cutoff_hz, dt.dt_s);
+          modal_key_dt_s = dt.dt_s;
+        }
+        const std::string key = f.plan.rung.exact_modal()
+                                    ? modal_key
+                                    : operator_key(f.structure_hash, at_speed.analysis, f.rail_flexibility);
         const Profile& p = profiles[k];
         JobSpec job;
         const auto scene_at = [&](double at_speed_kmh) {
           json scene = scene_doc(structure, variant, trains[i], at_speed_kmh, p.value, dt.dt_s);
+          // The job runs without the frequencies: the free vibration they
+          // give (max(1 s, 3 periods of f0)) is written into its scene.
+          if (!scene["analysis"].contains("free_vibration_s"))
+            scene["analysis"]["free_vibration_s"] = free_vibration_s(f.first_scene.analysis);
           if (auto_fidelity) scene["fidelity"] = f.fidelity;
           else if (modal && !scene["fidelity"].contains("modal_cutoff_hz"))
             scene["fidelity"]["modal_cutoff_hz"] = f.plan.modal_cutoff_hz;  // the job runs without the frequencies

@@ -298,11 +298,8 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache, ImportedStr
     out.factorized = lookup.factorized;
     out.factorization_s = lookup.factorization_s;
     out.evictions = lookup.evictions;
-    // Judged at the step the answer ran at (an escalation for wheel
-    // quantities runs at a finer one), as vsi simulate judges it.
-    Scene as_run = scene;
-    if (result.summary.dt_s > 0.0) as_run.analysis.dt_s = result.summary.dt_s;
-    for (RunWarning& w : time_step_warnings(as_run, job.cutoff_hz)) result.summary.warnings.push_back(std::move(w));
+    for (RunWarning& w : time_step_warnings(scene_as_run(scene, result.summary), job.cutoff_hz))
+      result.summary.warnings.push_back(std::move(w));
     const RunSummary& s = result.summary;
     out.setup_s = s.setup_s + lookup.factorization_s;
     out.loop_s = s.wall_s - s.setup_s;

@@ -38,6 +38,17 @@ std::optional<std::string> impact_reason(const RunSummary& summary) {
 
 }  // namespace
 
+Scene scene_as_run(const Scene& scene, const RunSummary& summary) {
+  Scene ran = scene;
+  const FidelityRecord& f = summary.fidelity;
+  if (!scene.train.is_moving_forces() && !f.contact_law.empty() && f.contact_law != "none") {
+    ran.analysis.contact.law = f.contact_law;
+    ran.analysis.contact.unilateral = f.unilateral;
+  }
+  if (summary.dt_s > 0.0) ran.analysis.dt_s = summary.dt_s;
+  return ran;
+}
+
 Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& models) {
   if (plan.rung.exact_modal()) {
     const std::shared_ptr<const ModalBasis> basis = models.modal_basis(plan.modal_cutoff_hz);

@@ -43,6 +43,12 @@ RungModels standalone_models(const Scene& scene);
 // one way a stored job is run again: its envelopes are the stored ones.
 Result run_planned(const Scene& scene, const DeckFrequencies& frequencies = {});
 
+// The scene as its run ran: the contact law and unilaterality the run's
+// fidelity names (the planner's for "auto", Hertz after an escalation) and
+// the dt it ran at. The time-step checks judge this one: judged against the
+// law the scene names, "auto" understated the step 1.8x.
+Scene scene_as_run(const Scene& scene, const RunSummary& summary);
+
 // The fidelity record's rung, choice, reasons and ignores for a run of
 // `scene` on `rung` (the plan's, or its escalation).
 void record_rung(const Scene& scene, const ScenePlan& plan, const Rung& rung, RunSummary& summary);

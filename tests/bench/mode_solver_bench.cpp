@@ -37,6 +37,7 @@
 
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsShiftSolver.h>
+#include "../support/worst_of.hpp"
 
 #ifdef RAILVSI_HAVE_ARPACK
 // ARPACK-NG's C binding (arpack/arpack.h declares the complex routines with
@@ -196,7 +197,7 @@ double worst_difference(const std::vector<double>& a, const std::vector<double>&
   if (a.size() != b.size()) return NAN;
   double worst = 0.0;
   for (std::size_t k = 0; k < a.size(); ++k)
-    if (b[k] > 0.0) worst = std::max(worst, std::abs(a[k] - b[k]) / b[k]);
+    if (b[k] > 0.0) worst = railvsi::testing::worst_of(worst, std::abs(a[k] - b[k]) / b[k]);
   return worst;
 }
 

@@ -34,6 +34,7 @@
 #include "simulation/simulation.hpp"
 #include "study/deck_frequencies.hpp"
 #include "study/scene_plan.hpp"
+#include "../support/worst_of.hpp"
 
 namespace {
 
@@ -105,8 +106,8 @@ void compare(const Case& c) {
       s.speed_mps = v;
       const ModalSweepRun run = sweep.run(modal_run_start_x_m(s), s.speed_mps, modal_run_steps(s), ws);
       for (std::size_t i = 0; i < np; ++i) {
-        p.acc = std::max(p.acc, filter.max_abs_filtered(ws.acceleration[0][i], fws));
-        p.disp = std::max(p.disp, run.max_abs_displacement_m[i]);
+        p.acc = railvsi::testing::worst_of(p.acc, filter.max_abs_filtered(ws.acceleration[0][i], fws));
+        p.disp = railvsi::testing::worst_of(p.disp, run.max_abs_displacement_m[i]);
       }
     }
     planner_s += cpu_s() - t0;
@@ -120,13 +121,13 @@ void compare(const Case& c) {
       dt_full = s.analysis.dt_s;
       const Result r = Simulation(s).run();
       const JobEnvelopes e = compute_envelopes(r, s.analysis.dt_s, 1, code_hz);
-      full.acc = std::max(full.acc, e.max_abs_acceleration_mps2.value_or(NAN));
-      full.disp = std::max(full.disp, e.max_abs_displacement_m.value_or(NAN));
+      full.acc = railvsi::testing::worst_of(full.acc, e.max_abs_acceleration_mps2.value_or(NAN));
+      full.disp = railvsi::testing::worst_of(full.disp, e.max_abs_displacement_m.value_or(NAN));
     }
     full_s += cpu_s() - t1;
     const double ea = p.acc / full.acc - 1.0, ed = p.disp / full.disp - 1.0;
-    worst_acc = std::max(worst_acc, std::abs(ea));
-    worst_disp = std::max(worst_disp, std::abs(ed));
+    worst_acc = railvsi::testing::worst_of(worst_acc, std::abs(ea));
+    worst_disp = railvsi::testing::worst_of(worst_disp, std::abs(ed));
     governing_p = {std::max(governing_p.acc, p.acc), std::max(governing_p.disp, p.disp)};
     governing_f = {std::max(governing_f.acc, full.acc), std::max(governing_f.disp, full.disp)};
     std::printf("  HSLM-A%-2d acc %.4f vs %.4f m/s2 (%+.3f %%), disp %.4e vs %.4e m (%+.3f %%)\n", a, p.acc, full.acc,

@@ -46,6 +46,7 @@
 #include "simulation/simulation.hpp"
 #include "solve_floor.hpp"
 #include "solver/cholmod_operator.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -188,7 +189,7 @@ double max_filtered_acceleration(const Histories& h, double dt_s, double cutoff_
   const CodeFilter filter(dt_s, cutoff_hz);
   std::vector<double> workspace;
   double peak = 0.0;
-  for (const auto& a : h.deck_acceleration_mps2) peak = std::max(peak, filter.max_abs_filtered(a, workspace));
+  for (const auto& a : h.deck_acceleration_mps2) peak = railvsi::testing::worst_of(peak, filter.max_abs_filtered(a, workspace));
   return peak;
 }
 
@@ -198,8 +199,8 @@ double displacement_history_error(const Histories& h, const Histories& ref) {
   double diff = 0.0, peak = 0.0;
   for (std::size_t p = 0; p < ref.deck_displacement_m.size() && p < h.deck_displacement_m.size(); ++p)
     for (std::size_t k = 0; k < ref.deck_displacement_m[p].size() && k < h.deck_displacement_m[p].size(); ++k) {
-      diff = std::max(diff, std::abs(h.deck_displacement_m[p][k] - ref.deck_displacement_m[p][k]));
-      peak = std::max(peak, std::abs(ref.deck_displacement_m[p][k]));
+      diff = railvsi::testing::worst_of(diff, std::abs(h.deck_displacement_m[p][k] - ref.deck_displacement_m[p][k]));
+      peak = railvsi::testing::worst_of(peak, std::abs(ref.deck_displacement_m[p][k]));
     }
   return diff / peak;
 }

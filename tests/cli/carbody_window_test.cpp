@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "vsi_test_support.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi::test {
 namespace {
@@ -53,7 +54,7 @@ class CarBodyWindow : public VsiCliTest {
       std::string cell;
       std::getline(cells, cell, ',');
       while (std::getline(cells, cell, ','))
-        if (!cell.empty()) run.any_body_mps2 = std::max(run.any_body_mps2, std::abs(std::stod(cell)));
+        if (!cell.empty()) run.any_body_mps2 = railvsi::testing::worst_of(run.any_body_mps2, std::abs(std::stod(cell)));
     }
     return run;
   }

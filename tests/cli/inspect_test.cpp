@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "vsi_test_support.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi::test {
 namespace {
@@ -93,7 +94,7 @@ TEST_F(Inspect, MultibodyTrainAxleLoadsAddUpToItsWeight) {
   double sum_N = 0.0, last_m = 0.0;
   for (const json& a : t["axle_list"]) {
     sum_N += a["static_load_N"].get<double>();
-    last_m = std::max(last_m, a["offset_m"].get<double>());
+    last_m = railvsi::testing::worst_of(last_m, a["offset_m"].get<double>());
   }
   // Static equilibrium on a rigid track: the wheels carry the weight.
   EXPECT_NEAR(sum_N / (t["total_mass_kg"].get<double>() * 9.81), 1.0, 1e-9);

@@ -12,6 +12,7 @@
 #include "generators/bridge_2d.hpp"
 #include "integration/hht.hpp"
 #include "simulation/simulation.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -165,7 +166,7 @@ TEST(HhtTwoDof, AlphaZeroConservesEnergyOverTenThousandSteps) {
   const double E0 = energy(s);
   double worst = 0.0;
   hht.run(s, 10000, [&](long, const KinematicState& st) {
-    worst = std::max(worst, std::abs(energy(st) - E0) / E0);
+    worst = railvsi::testing::worst_of(worst, std::abs(energy(st) - E0) / E0);
   });
   std::printf("[hht energy] max |E - E0| / E0 over 10000 steps: %.3e\n", worst);
   // The trapezoidal rule conserves this energy exactly; 1e-10 leaves room
@@ -213,7 +214,7 @@ TEST(HhtParameters, ConsistentParametersAreAccepted) {
     // Accepted without a scan (the 1977 proof); the scan agrees: the
     // spectral radius never exceeds 1 over omega*dt = 1e-3 ... 1e7.
     double rho = 0.0;
-    for (double lg = -3.0; lg <= 7.0; lg += 0.01) rho = std::max(rho, hht_spectral_radius(p, std::pow(10.0, lg)));
+    for (double lg = -3.0; lg <= 7.0; lg += 0.01) rho = railvsi::testing::worst_of(rho, hht_spectral_radius(p, std::pow(10.0, lg)));
     EXPECT_LE(rho, 1.0 + 1e-9) << "alpha " << alpha;
   }
   // A pair a rounding away from the consistent one is scanned (and passes).
@@ -239,8 +240,8 @@ TEST(HhtParameters, PapersPrintedBetaGammaAreRejectedEitherWayRound) {
   // Both amplify: spectral radius above 1 somewhere.
   double rho_printed = 0.0, rho_swapped = 0.0;
   for (double lg = -2.0; lg <= 4.0; lg += 0.1) {
-    rho_printed = std::max(rho_printed, hht_spectral_radius(printed, std::pow(10.0, lg)));
-    rho_swapped = std::max(rho_swapped, hht_spectral_radius(swapped, std::pow(10.0, lg)));
+    rho_printed = railvsi::testing::worst_of(rho_printed, hht_spectral_radius(printed, std::pow(10.0, lg)));
+    rho_swapped = railvsi::testing::worst_of(rho_swapped, hht_spectral_radius(swapped, std::pow(10.0, lg)));
   }
   EXPECT_GT(rho_printed, 1.0 + 1e-6);
   EXPECT_GT(rho_swapped, 1.0 + 1e-6);
@@ -316,8 +317,8 @@ TEST(HhtSimulation, StationaryForceAtMidspanKeepsTheStaticDeflectionExactly) {
   const double expected = -P * L * L * L / (48.0 * EI);
   double worst_u = 0.0, worst_a = 0.0;
   for (std::size_t k = 0; k < r.histories.t_s.size(); ++k) {
-    worst_u = std::max(worst_u, std::abs(r.histories.deck_displacement_m[0][k] / expected - 1.0));
-    worst_a = std::max(worst_a, std::abs(r.histories.deck_acceleration_mps2[0][k]));
+    worst_u = railvsi::testing::worst_of(worst_u, std::abs(r.histories.deck_displacement_m[0][k] / expected - 1.0));
+    worst_a = railvsi::testing::worst_of(worst_a, std::abs(r.histories.deck_acceleration_mps2[0][k]));
   }
   EXPECT_EQ(r.histories.t_s.size(), 1001u);
   // Static deflection exact to round-off (1e-9 relative; cubic Hermite

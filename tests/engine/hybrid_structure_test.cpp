@@ -16,6 +16,7 @@
 #include "solver/hybrid_operator.hpp"
 #include "solver/structure_backend.hpp"
 #include "test_scenes.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -49,7 +50,7 @@ double history_difference(const Result& a, const Result& b) {
       if (x[i].size() != y[i].size()) return std::numeric_limits<double>::infinity();
     const double d = testing::relative_history_difference(x, y);
     if (!std::isfinite(d)) return std::numeric_limits<double>::infinity();
-    worst = std::max(worst, d);
+    worst = railvsi::testing::worst_of(worst, d);
   }
   return worst;
 }
@@ -85,9 +86,11 @@ TEST(HybridStructure, WithEveryBridgeModeKeptEqualsTheFiniteElementRun) {
   const Result hy = run(s, hybrid_operator(s, HybridBasisOptions{0.0, 0, true}));
   EXPECT_NE(hy.summary.fidelity.structure_backend.find("hybrid"), std::string::npos);
   // The same model in other coordinates (300 track DOFs, 67 interface DOFs,
-  // 133 modes): measured 2.0e-10 of the largest value (2026-11-27), the
-  // contact Newton's tolerance and the modes' round-off.
-  EXPECT_LT(history_difference(hy, fe), 6e-10);
+  // 133 modes): measured 1.63e-9 of the largest value over the run with its
+  // default free vibration (2.0e-10 when the run stopped 10 m after the last
+  // axle; 2026-11-27), the contact Newton's tolerance and the modes'
+  // round-off; tolerance 4.5e-9.
+  EXPECT_LT(history_difference(hy, fe), 4.5e-9);
 }
 
 TEST(HybridStructure, WithEveryBridgeModeKeptGivesTheFiniteElementSectionForces) {

@@ -14,6 +14,7 @@
 #include "io/scene_loader.hpp"
 #include "simulation/simulation.hpp"
 #include "test_scenes.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -147,7 +148,7 @@ double worst_against(const RunSummary& modal, const RunSummary& fe, const char* 
   for (std::size_t p = 0; p < 2; ++p)
     for (std::size_t s = 0; s < 2; ++s) {
       const Quantities e = relative_error(of(modal, p, s), of(fe, p, s));
-      w = std::max(w, worst(e));
+      w = railvsi::testing::worst_of(w, worst(e));
       std::printf("[modal sections] %s, %d modes vs FE, %s/%s: M %+.2e V %+.2e R %+.2e theta %+.2e\n", what,
                   modal.fidelity.modes, fe.points[p].name.c_str(), fe.supports[s].name.c_str(), e.moment, e.shear,
                   e.reaction, e.rotation);
@@ -245,13 +246,13 @@ TEST(ModalInteractionSections, ViaductShearAndReactionConvergeSlowerThanMoment) 
     double mt = 0.0, vr = 0.0;
     for (std::size_t p = 0; p < 3; ++p) {
       const Quantities e = relative_error(of(m.summary, p, p), of(fe.summary, p, p));
-      mt = std::max(mt, std::abs(e.moment));
-      vr = std::max(vr, std::abs(e.shear));
+      mt = railvsi::testing::worst_of(mt, std::abs(e.moment));
+      vr = railvsi::testing::worst_of(vr, std::abs(e.shear));
     }
     for (std::size_t i = 0; i < 4; ++i) {
       const Quantities e = relative_error(of(m.summary, 0, i), of(fe.summary, 0, i));
-      mt = std::max(mt, std::abs(e.rotation));
-      vr = std::max(vr, std::abs(e.reaction));
+      mt = railvsi::testing::worst_of(mt, std::abs(e.rotation));
+      vr = railvsi::testing::worst_of(vr, std::abs(e.reaction));
     }
     std::printf("[modal sections] viaduct, ICE3 300 km/h, %g Hz (%d modes): M, theta %.2e; V, R %.2e\n",
                 rung.cutoff_hz, m.summary.fidelity.modes, mt, vr);

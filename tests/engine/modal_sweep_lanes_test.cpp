@@ -14,6 +14,7 @@
 #include "generators/deck_3d.hpp"
 #include "model/rail_line.hpp"
 #include "simulation/modal_section_forces.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -170,8 +171,8 @@ TEST(ModalSweepLanes, TabulatedTrainLoadIsTheSumOverTheAxles) {
   for (double x : xs) {
     const ModalSweepRun run = sweep.run(x, 0.0, 0, ws);
     const double expected = independent(x);
-    worst = std::max(worst, std::abs(run.max_abs_displacement_m[0] - expected));
-    peak = std::max(peak, expected);
+    worst = railvsi::testing::worst_of(worst, std::abs(run.max_abs_displacement_m[0] - expected));
+    peak = railvsi::testing::worst_of(peak, expected);
   }
   std::printf("[sweep] tabulated train load vs the axles one by one: %.2e of the peak %.3e m (%zu positions)\n",
               worst / peak, peak, xs.size());
@@ -219,9 +220,9 @@ TEST(ModalSweepLanes, StaticCorrectionGivesTheClosedFormStaticDeflectionWithOneM
   for (int i = 0; i < 300; ++i) {
     const double x = along(rng);
     const double exact = closed_form(x);
-    worst = std::max(worst, std::abs(corrected.run(x, 0.0, 0, ws).max_abs_displacement_m[0] - exact));
-    worst_modes = std::max(worst_modes, std::abs(modes_only.run(x, 0.0, 0, ws).max_abs_displacement_m[0] - exact));
-    peak = std::max(peak, exact);
+    worst = railvsi::testing::worst_of(worst, std::abs(corrected.run(x, 0.0, 0, ws).max_abs_displacement_m[0] - exact));
+    worst_modes = railvsi::testing::worst_of(worst_modes, std::abs(modes_only.run(x, 0.0, 0, ws).max_abs_displacement_m[0] - exact));
+    peak = railvsi::testing::worst_of(peak, exact);
   }
   std::printf("[sweep] static midspan deflection with one mode vs the closed form, of the peak %.3e m: corrected "
               "%.2e, modes alone %.2e\n",

@@ -13,6 +13,7 @@
 #include "fryba_series.hpp"
 #include "generators/bridge_2d.hpp"
 #include "simulation/simulation.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -50,7 +51,7 @@ struct FrybaCase {
 
 class MovingForceOnSimplySupportedBeam : public ::testing::TestWithParam<FrybaCase> {};
 
-TEST_P(MovingForceOnSimplySupportedBeam, MidspanPeakMatchesFrybaSeriesWithinHalfPercent) {
+TEST_P(MovingForceOnSimplySupportedBeam, MidspanPeakMatchesFrybaSeries) {
   const FrybaCase c = GetParam();
   const Beam b{25.0, 7.0e10, 15000.0};
   const double P = 170e3;
@@ -104,20 +105,20 @@ TEST_P(MovingForceOnSimplySupportedBeam, MidspanPeakMatchesFrybaSeriesWithinHalf
   for (std::size_t k = 0; k < t.size(); ++k) {
     // 60 modes: the neglected tail is < 1e-5 of the first mode's term.
     const double ref = -fryba_deflection(b, P, v, b.L / 2, t[k], 60, zeta);  // positive up
-    peak_engine = std::max(peak_engine, std::abs(u[k]));
-    peak_series = std::max(peak_series, std::abs(ref));
-    max_diff = std::max(max_diff, std::abs(u[k] - ref));
+    peak_engine = railvsi::testing::worst_of(peak_engine, std::abs(u[k]));
+    peak_series = railvsi::testing::worst_of(peak_series, std::abs(ref));
+    max_diff = railvsi::testing::worst_of(max_diff, std::abs(u[k] - ref));
   }
   std::printf("[fryba] alpha=%.2f zeta=%.3f steps=%d peak engine=%.6e series=%.6e rel=%.3e "
               "max history diff/peak=%.3e\n",
               c.speed_parameter, c.damping_ratio, steps, peak_engine, peak_series,
               peak_engine / peak_series - 1.0, max_diff / peak_series);
-  // Tolerance 0.5 % on the peak during the crossing .
-  EXPECT_NEAR(peak_engine / peak_series, 1.0, 5e-3);
-  // The whole history, not only its peak: within 0.1 % of the peak (observed
-  // <= 1e-4: the mesh and dt above leave room to spare; a wrong load or
-  // HHT term shows up as percents).
-  EXPECT_LT(max_diff, 1e-3 * peak_series);
+  // The peak during the crossing: measured at most 3.91e-5 over the eight
+  // cases (2026-11-27); tolerance 1.1e-4.
+  EXPECT_NEAR(peak_engine / peak_series, 1.0, 1.1e-4);
+  // The whole history, not only its peak: measured at most 7.73e-5 of the
+  // peak; tolerance 2.2e-4 (a wrong load or HHT term shows up as percents).
+  EXPECT_LT(max_diff, 2.2e-4 * peak_series);
 }
 
 INSTANTIATE_TEST_SUITE_P(

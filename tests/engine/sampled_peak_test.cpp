@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/sampled_peak.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -32,11 +33,11 @@ TEST(SampledPeak, RefinedPeakOfAHarmonicIsLowByAtMostTheClosedFormBound) {
       const std::vector<double> s = harmonic(-2.5, n, 0.5 * k / 200.0);  // negative: |s| is what counts
       const double refined = refined_max_abs(s.data(), s.size());
       double sampled = 0.0;
-      for (double v : s) sampled = std::max(sampled, std::abs(v));
+      for (double v : s) sampled = railvsi::testing::worst_of(sampled, std::abs(v));
       EXPECT_LE(refined, 2.5 * (1.0 + 1e-14)) << "never above the true peak, n = " << n;
       EXPECT_GE(refined, sampled) << "never below the samples";
-      worst = std::max(worst, 1.0 - refined / 2.5);
-      worst_sampled = std::max(worst_sampled, 1.0 - sampled / 2.5);
+      worst = railvsi::testing::worst_of(worst, 1.0 - refined / 2.5);
+      worst_sampled = railvsi::testing::worst_of(worst_sampled, 1.0 - sampled / 2.5);
     }
     // The bound is reached half a step from a sample (k = 200), within rounding.
     EXPECT_NEAR(worst, refined_peak_error(n), 1e-12) << n;
@@ -77,7 +78,7 @@ TEST(SampledPeak, ReversedOrStridedSamplesGiveTheSameBits) {
   EXPECT_EQ(refined_max_abs(s.data(), s.size()), refined_max_abs(strided.data(), s.size(), 3));
   // And the refinement did something here (the largest sample alone is lower).
   double sampled = 0.0;
-  for (double v : s) sampled = std::max(sampled, std::abs(v));
+  for (double v : s) sampled = railvsi::testing::worst_of(sampled, std::abs(v));
   EXPECT_GT(refined_max_abs(s.data(), s.size()), sampled);
 }
 
@@ -85,11 +86,11 @@ TEST(SampledPeak, ReversedOrStridedSamplesGiveTheSameBits) {
 // largest sample: what refined_max_abs must equal.
 double every_vertex(const std::vector<double>& s) {
   double m = 0.0;
-  for (double v : s) m = std::max(m, std::abs(v));
+  for (double v : s) m = railvsi::testing::worst_of(m, std::abs(v));
   for (std::size_t i = 1; i + 1 < s.size(); ++i) {
     const double y0 = std::abs(s[i - 1]), y1 = std::abs(s[i]), y2 = std::abs(s[i + 1]);
     const double a = 0.5 * (y0 + y2) - y1, b = 0.5 * (y2 - y0);
-    if (y1 >= y0 && y1 >= y2 && a < 0.0) m = std::max(m, y1 - b * b / (4.0 * a));
+    if (y1 >= y0 && y1 >= y2 && a < 0.0) m = railvsi::testing::worst_of(m, y1 - b * b / (4.0 * a));
   }
   return m;
 }

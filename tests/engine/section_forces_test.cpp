@@ -13,6 +13,7 @@
 #include "analysis/static_influence.hpp"
 #include "generators/bridge_2d.hpp"
 #include "simulation/simulation.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -56,7 +57,7 @@ TEST(SectionForms, StaticInfluenceLinesAreTheBeamFormulas) {
     }
     err_r = std::max({err_r, std::abs(inf.unit_form_value(f.supports[0].reaction, a) - (1 - a / kL)),
                       std::abs(inf.unit_form_value(f.supports[1].reaction, a) - a / kL)});
-    err_t = std::max(err_t, std::abs(inf.unit_form_value(f.supports[0].rotations.at(0), a) - left_rotation(a)));
+    err_t = railvsi::testing::worst_of(err_t, std::abs(inf.unit_form_value(f.supports[0].rotations.at(0), a) - left_rotation(a)));
   }
   std::printf("[sections] influence line errors: M %.2e m, V %.2e, R %.2e, theta %.2e rad (unit load)\n", err_m,
               err_v, err_r, err_t);
@@ -242,8 +243,8 @@ TEST(SectionForces, ModalSweepStaticPartIsTheExactInfluenceLine) {
       const double m = std::max(std::abs(sections->statics().unit_form_value(f.points[p].moment_left, x)),
                                 std::abs(sections->statics().unit_form_value(f.points[p].moment_right, x)));
       const double mm = moment(x, s->outputs()[p].x_m);
-      worst_fit = std::max(worst_fit, std::abs(*sum.points[p].max_abs_bending_moment_Nm - m));
-      worst = std::max(worst, std::abs(m - mm));
+      worst_fit = railvsi::testing::worst_of(worst_fit, std::abs(*sum.points[p].max_abs_bending_moment_Nm - m));
+      worst = railvsi::testing::worst_of(worst, std::abs(m - mm));
     }
   }
   std::printf("[sections] sweep's cubic vs exact influence line: %.1e m; exact vs closed form: %.1e m\n", worst_fit,
@@ -274,8 +275,8 @@ TEST(SectionForces, TrackOnTheDeckKeepsTheSectionInEquilibrium) {
   double worst = 0.0, peak = 0.0;
   for (double a = -5.0; a <= kL + 5.0; a += 0.37) {
     const double ml = inf.unit_form_value(f.points[0].moment_left, a), mr = inf.unit_form_value(f.points[0].moment_right, a);
-    worst = std::max(worst, std::abs(ml - mr));
-    peak = std::max(peak, std::abs(ml));
+    worst = railvsi::testing::worst_of(worst, std::abs(ml - mr));
+    peak = railvsi::testing::worst_of(peak, std::abs(ml));
   }
   std::printf("[sections] track on deck: |M_left - M_right| <= %.2e of the peak %.3g m\n", worst / peak, peak);
   EXPECT_LT(worst, 1e-9 * peak);

@@ -15,6 +15,7 @@
 #include "generators/bridge_2d.hpp"
 #include "model/vehicle_model.hpp"
 #include "simulation/simulation.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -130,13 +131,13 @@ Scene biggs_scene(double kv, double dt, double alpha) {
 
 double max_abs(const std::vector<double>& x) {
   double m = 0.0;
-  for (double v : x) m = std::max(m, std::abs(v));
+  for (double v : x) m = railvsi::testing::worst_of(m, std::abs(v));
   return m;
 }
 
 double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
   double m = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) m = std::max(m, std::abs(a[k] - b[k]));
+  for (std::size_t k = 0; k < a.size(); ++k) m = railvsi::testing::worst_of(m, std::abs(a[k] - b[k]));
   return m;
 }
 
@@ -186,11 +187,13 @@ TEST_P(BiggsSprungMass, MidspanDeflectionAndBodyAccelerationMatchModalIntegratio
   std::printf("[biggs] hht alpha=%.2f: max |w_mid| ref=%.6e engine=%.6e, rel diff %.3e; "
               "max |body acc| ref=%.6e engine=%.6e, rel diff %.3e; contact force rel diff %.3e\n",
               alpha, max_abs(ref.midspan_m), max_abs(u), du, max_abs(ref.body_acc_mps2), max_abs(a), da, dP);
-  // Tolerances: max abs difference over the
-  // crossing within 1 % of the reference's max abs value, per quantity.
-  EXPECT_LT(du, 1e-2);
-  EXPECT_LT(da, 1e-2);
-  EXPECT_LT(dP, 1e-2);
+  // Max abs difference over the crossing relative to the reference's max
+  // abs value. Measured over the four cases (FE and modal, alpha 0 and
+  // -0.05; 2026-11-27): deflection 3.45e-5, body acceleration 2.52e-4,
+  // contact force 2.87e-6; tolerances about 3x: 1e-4, 7.5e-4, 8.5e-6.
+  EXPECT_LT(du, 1e-4);
+  EXPECT_LT(da, 7.5e-4);
+  EXPECT_LT(dP, 8.5e-6);
   // Interaction on the modes says that its error is not known in general;
   // on the FE structure there is no such warning.
   const bool modal = GetParam().backend == StructureBackend::kModal;
@@ -244,9 +247,10 @@ TEST(BiggsSprungMassLimit, VerySoftSuspensionTendsToMovingForceOfTheVehicleWeigh
   std::printf("[biggs soft] max |w_mid| series=%.6e engine=%.6e (rel %.3e), history diff/peak %.3e, "
               "max |P - Mv g|/(Mv g) %.3e\n",
               max_abs(ref), max_abs(u), peak, diff, force);
-  // 1 % of the reference's max abs value over the crossing.
-  EXPECT_LT(diff, 1e-2);
-  EXPECT_LT(force, 1e-2);
+  // Measured 9.05e-5 (history) and 6.62e-5 (force) of the reference's max
+  // abs value over the crossing (2026-11-27); tolerances 2.7e-4 and 1.9e-4.
+  EXPECT_LT(diff, 2.7e-4);
+  EXPECT_LT(force, 1.9e-4);
 }
 
 }  // namespace

@@ -81,10 +81,14 @@ TEST(PriceErrors, AgainstTheFinestRunOfTheMostCompleteRung) {
   // (2 %), 2.0 s (0 %); every row improves on all cheaper ones.
   EXPECT_EQ(pareto_fronts(rows).at("deck_displacement_m"), (std::vector<std::size_t>{0, 1, 2, 3}));
   rows[1].errors["deck_displacement_m"] = 0.2;  // now worse than the cheaper row 0: off the front
-  EXPECT_EQ(pareto_fronts(rows).at("deck_displacement_m"), (std::vector<std::size_t>{0, 2, 3}));
+  // But row 0 (1 ms, 10 %) is then better than its own rung's 0.5 ms (20 %):
+  // its error is not monotone in dt, a lucky step, so it is off the front
+  // and row 1, the cheapest honest row, is on it.
+  EXPECT_EQ(pareto_fronts(rows).at("deck_displacement_m"), (std::vector<std::size_t>{1, 2, 3}));
   EXPECT_EQ(cheapest_within(rows, 0.05).at("deck_displacement_m"), std::optional<std::size_t>(2));
   EXPECT_EQ(cheapest_within(rows, 0.01).at("deck_displacement_m"), std::optional<std::size_t>(3));
-  EXPECT_EQ(cheapest_within(rows, 0.5).at("deck_displacement_m"), std::optional<std::size_t>(0));
+  // Not the lucky row 0 either: row 1 is the cheapest honest row within 50 %.
+  EXPECT_EQ(cheapest_within(rows, 0.5).at("deck_displacement_m"), std::optional<std::size_t>(1));
 }
 
 TEST(PriceErrors, ZeroReferenceGivesZeroOnlyForZero) {

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -208,8 +209,8 @@ TEST(TimeStepPolicy, FilteredDeckAccelerationOfTheHslmSweepCaseIsWithinHalfAPerc
     const double err_old = std::abs(filtered_deck_acceleration(v, 1e-3) / a_ref - 1.0);
     std::cout << fmt::format("{} km/h: dt {:.3g} s, a_filt {:.4f} m/s2, error {:.3f} % (1 ms: {:.3f} %)\n", v,
                              c.dt_s, a_ref, 100 * err, 100 * err_old);
-    worst = std::max(worst, err);
-    worst_old = std::max(worst_old, err_old);
+    worst = railvsi::testing::worst_of(worst, err);
+    worst_old = railvsi::testing::worst_of(worst_old, err_old);
   }
   EXPECT_LE(worst, 0.005);
   std::cout << fmt::format("worst: {:.3f} % at the policy dt, {:.3f} % at 1 ms\n", 100 * worst, 100 * worst_old);

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "scheduler_test_support.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi::test {
 namespace {
@@ -94,7 +95,7 @@ double lm71_moment_by_hand(double L, double a) {
     double m = 0.0;
     for (int j = 0; j < 4; ++j) m += P * eta(g + j * s);
     m += q * (area_to(L) - (area_to(g + 3 * s + gap) - area_to(g - gap)));
-    best = std::max(best, m);
+    best = railvsi::testing::worst_of(best, m);
   }
   return best;
 }
@@ -152,9 +153,9 @@ TEST_F(DynamicIncrement, DynamicEnhancementCheckTakesTheBendingMoment) {
       double m_dyn = 0.0;
       for (const json& j : jobs)
         if (j.at("train") == t.name)
-          m_dyn = std::max(m_dyn, j.at("envelopes").at("bending_moment_Nm").at(point).get<double>());
+          m_dyn = railvsi::testing::worst_of(m_dyn, j.at("envelopes").at("bending_moment_Nm").at(point).get<double>());
       const double ratio = (m_dyn + 0.5 * phi2nd * m_stat) / (Phi3 * lm71_moment_by_hand(L, x));
-      best = std::max(best, ratio);
+      best = railvsi::testing::worst_of(best, ratio);
     }
   // Measured: 0.186370597 against 0.186370343 by hand, 1.4e-6 (the hand
   // f0 is the continuous beam's, the check's the mesh's; the brute force

@@ -6,6 +6,7 @@
 
 #include "../engine/test_scenes.hpp"
 #include "simulation/simulation.hpp"
+#include "planning/time_step_warnings.hpp"
 #include "workers/rung_runner.hpp"
 
 namespace railvsi::scheduler {
@@ -120,6 +121,34 @@ TEST(RungRunner, SmallUnloadingStaysOnLinearHertzAndSaysWhatItIgnores) {
   EXPECT_NE(f.ignores.back().what.find("Hertz"), std::string::npos);
   EXPECT_EQ(f.chosen_by, "planner");
   EXPECT_EQ(f.dt_s, 1.0e-4);
+}
+
+// The time-step checks judge the law that ran: a scene naming rigid contact
+// (no contact frequency: no bound) whose run used nonlinear Hertz (the
+// planner's choice, or the escalation) is checked against Hertz's contact
+// frequency.
+TEST(RungRunner, SceneAsRunCarriesTheContactLawAndStepThatRan) {
+  Scene named = dip_scene(0.0);
+  named.analysis.contact.law = "rigid";
+  named.analysis.contact.unilateral = false;
+  named.analysis.dt_s = 1.0e-3;
+  RunSummary ran_summary;
+  ran_summary.fidelity.contact_law = "hertz";
+  ran_summary.fidelity.unilateral = true;
+  ran_summary.dt_s = 1.0e-3;
+  const Scene ran = scene_as_run(named, ran_summary);
+  EXPECT_EQ(ran.analysis.contact.law, "hertz");
+  EXPECT_EQ(ran.analysis.contact.unilateral, std::optional<bool>(true));
+  EXPECT_DOUBLE_EQ(ran.analysis.dt_s, 1.0e-3);
+  const auto mentions_contact = [](const std::vector<RunWarning>& ws) {
+    for (const RunWarning& w : ws)
+      if (w.code == "dt_above_policy" && w.message.find("contact frequency") != std::string::npos) return true;
+    return false;
+  };
+  // The Hertz wheel of the small viaduct's coach bounces near 200 Hz: 10
+  // steps a period need about 0.5 ms, so 1 ms is above it for Hertz only.
+  EXPECT_FALSE(mentions_contact(time_step_warnings(named, 30.0)));
+  EXPECT_TRUE(mentions_contact(time_step_warnings(ran, 30.0)));
 }
 
 }  // namespace

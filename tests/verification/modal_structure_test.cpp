@@ -18,6 +18,7 @@
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
 #include "simulation/simulation.hpp"
+#include "../support/worst_of.hpp"
 
 namespace railvsi {
 namespace {
@@ -45,7 +46,7 @@ double rel(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 
 Errors compare(const JobEnvelopes& m, const JobEnvelopes& fe) {
   Errors e;
   for (std::size_t p = 0; p < fe.points.size(); ++p) {
-    e.displacement = std::max(e.displacement, rel(*m.points[p].max_abs_displacement_m, *fe.points[p].max_abs_displacement_m));
+    e.displacement = railvsi::testing::worst_of(e.displacement, rel(*m.points[p].max_abs_displacement_m, *fe.points[p].max_abs_displacement_m));
     e.acceleration =
         std::max(e.acceleration, rel(*m.points[p].max_abs_acceleration_mps2, *fe.points[p].max_abs_acceleration_mps2));
   }
