@@ -100,7 +100,7 @@ ordered_json StudyApi::study_json(Database& db, const std::string& id) {
     if (known.done != c.done || known.failed != c.failed || known.cancelled != c.cancelled) {
       known = {c.done, c.failed, c.cancelled, {}, {}};
       try {
-        known.verdict = verdict_name(cli::judge_jobs(db, id, study_results(db, {id, {}, {}, {}, {}})).overall);
+        known.verdict = verdict_name(cli::judge_jobs(db, id, study_results(db, {id, {}, {}, {}, {}, {}})).overall);
       } catch (const InputError& e) {  // a stored scene that no longer loads: as vsi query, no verdict
         known.error = e.describe();
       }
@@ -196,10 +196,7 @@ void StudyApi::mount(httplib::Server& server) {
       return send_error(res, 400, "speed_min, speed_max: give numbers in km/h");
     }
     args.wide = req.has_param("wide") && req.get_param_value("wide") == "true";
-    // Hook for vsi query --structure (issue 36): once ServiceArgs carries
-    // the structure filter, set it here from `structure=`; until then the
-    // parameter is refused rather than ignored.
-    if (req.has_param("structure")) return send_error(res, 400, "structure: this vsi's query has no structure filter");
+    if (req.has_param("structure")) args.structure = req.get_param_value("structure");  // a bridge of a line study
     std::ostringstream out, err;
     if (cli::write_query(args, out, err) != cli::kExitOk) return send_error(res, 400, err.str());
     const char* type = args.format == "json" ? "application/json" : args.format == "csv" ? "text/csv" : "text/plain";
@@ -227,15 +224,18 @@ void StudyApi::mount(httplib::Server& server) {
     res.set_content(html.str(), "text/html; charset=utf-8");
   });
 
-  const auto change = [this](std::int64_t (*what)(Database&, const std::string&), const char* key) {
-    return [this, what, key](const httplib::Request& req, httplib::Response& res) {
-      const auto db = cli::open_store(options_.service.db, OpenMode::kExisting);
-      const std::string id = study_of(*db, req.matches[1], res);
-      if (!id.empty()) send_json(res, 200, {{"id", id}, {key, what(*db, id)}});
-    };
-  };
-  server.Post(R"(/api/studies/([0-9a-f]+)/cancel)", change(cancel_study, "cancelled"));
-  server.Post(R"(/api/studies/([0-9a-f]+)/retry)", change(retry_study, "queued"));
+  server.Post(R"(/api/studies/([0-9a-f]+)/cancel)", [this](const httplib::Request& req, httplib::Response& res) {
+    const auto db = cli::open_store(options_.service.db, OpenMode::kExisting);
+    const std::string id = study_of(*db, req.matches[1], res);
+    if (id.empty()) return;
+    const CancelResult c = cancel_study(*db, id);  // as vsi cancel: jobs another unfinished study needs stay
+    send_json(res, 200, {{"id", id}, {"cancelled", c.cancelled}, {"left_for_other_studies", c.left_for_other_studies}});
+  });
+  server.Post(R"(/api/studies/([0-9a-f]+)/retry)", [this](const httplib::Request& req, httplib::Response& res) {
+    const auto db = cli::open_store(options_.service.db, OpenMode::kExisting);
+    const std::string id = study_of(*db, req.matches[1], res);
+    if (!id.empty()) send_json(res, 200, {{"id", id}, {"queued", retry_study(*db, id)}});
+  });
 
   server.Get(R"(/api/jobs/([0-9a-f]+))", [this](const httplib::Request& req, httplib::Response& res) {
     const std::string prefix = req.matches[1];
@@ -248,7 +248,7 @@ void StudyApi::mount(httplib::Server& server) {
     if (!s.step()) return send_error(res, 404, "no job " + prefix + " in this store");
     const std::string job_id = s.text(0), study_id = s.text(1);
     if (s.step() && s.text(0) != job_id) return send_error(res, 400, "job id prefix " + prefix + " is ambiguous");
-    for (const JobResult& job : study_results(*db, {study_id, {}, {}, {}, {}}))
+    for (const JobResult& job : study_results(*db, {study_id, {}, {}, {}, {}, {}}))
       if (job.id == job_id) {
         ordered_json out = format_json(study_info(*db, study_id), {job}).at("jobs").at(0);
         out["study"] = study_id;

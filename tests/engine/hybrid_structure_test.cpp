@@ -121,7 +121,8 @@ TEST(HybridStructure, AReductionInBlocksOfFewInterfaceColumnsEqualsTheFiniteElem
   HybridBasisOptions o{0.0, 0, true};
   o.column_block = 8;
   const Result hy = run(s, hybrid_operator(s, o));
-  EXPECT_LT(history_difference(hy, fe), 3.9e-10);  // measured 1.3e-10 (2026-11-27)
+  // Measured 8.4e-10 over the run with its free vibration (2026-11-27).
+  EXPECT_LT(history_difference(hy, fe), 2.5e-9);
   // And its reduced matrices are those of one block, to round-off:
   // measured 0 (K), 1.8e-16 (M), 7.5e-23 (C) of the largest entry.
   const HybridBasis one(s.structure, HybridBasisOptions{0.0, 0, true});

@@ -189,6 +189,7 @@ TEST_F(ServeTest, CancelAndRetryAsTheCommandsThenVsiWorkFinishes) {
   const auto cancel = c->Post(("/api/studies/" + id + "/cancel").c_str(), "", "application/json");
   ASSERT_TRUE(cancel);
   EXPECT_EQ(json::parse(cancel->body)["cancelled"], 10);
+  EXPECT_EQ(json::parse(cancel->body)["left_for_other_studies"], 0);
   EXPECT_EQ(get_json(*c, "/api/studies/" + id)["jobs"]["cancelled"], 10);
   const auto retry = c->Post(("/api/studies/" + id + "/retry").c_str(), "", "application/json");
   ASSERT_TRUE(retry);
