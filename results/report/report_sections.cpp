@@ -13,7 +13,8 @@ namespace railvsi {
 const char* const kReportPrintStyle = R"css(
 @page { size: A4; margin: 18mm 15mm 20mm 15mm;
   @bottom-right { content: "page " counter(page) " of " counter(pages); font-size: 8pt; color: #444; } }
-.title-block { border: 1.5px solid #333; padding: 6pt 8pt; margin-bottom: 10pt; box-sizing: border-box; }
+.title-block { border: 1.5px solid #333; padding: 6pt 8pt; margin-bottom: 10pt; box-sizing: border-box;
+  margin-right: 2px; }  /* at the content's very edge Chromium's print left the right border out */
 .title-block table { margin: 4pt 0 0 0; }
 .title-block th { width: 28%; }
 .sign td { height: 22pt; }
