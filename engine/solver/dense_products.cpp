@@ -10,10 +10,11 @@ namespace railvsi {
 
 void multiply_transposed(const DenseMatrix& A, const DenseMatrix& B, DenseMatrix& C, double alpha, double beta) {
   const int m = static_cast<int>(A.cols()), n = static_cast<int>(B.cols()), k = static_cast<int>(A.rows());
-  if (beta == 0.0) C = DenseMatrix::Zero(m, n);
+  if (beta == 0.0) C.resize(m, n);  // dgemm does not read C when beta is 0
   if (m == 0 || n == 0) return;
-  if (k == 0) {
-    C *= beta;
+  if (k == 0) {  // an empty sum: C = beta C
+    if (beta == 0.0) C.setZero();
+    else C *= beta;
     return;
   }
   const int lda = static_cast<int>(A.rows()), ldb = static_cast<int>(B.rows()), ldc = static_cast<int>(C.rows());

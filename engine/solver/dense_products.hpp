@@ -9,8 +9,7 @@
 
 namespace railvsi {
 
-// C = alpha A' B + beta C (BLAS dgemm); C is resized (and zeroed) when beta
-// is 0.
+// C = alpha A' B + beta C (BLAS dgemm); C is resized when beta is 0.
 void multiply_transposed(const DenseMatrix& A, const DenseMatrix& B, DenseMatrix& C, double alpha = 1.0,
                          double beta = 0.0);
 

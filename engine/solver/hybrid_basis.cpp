@@ -221,7 +221,8 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
         t.emplace_back(ri, rj, it.value());
       }
     DenseMatrix GG = b.GG + DenseMatrix(b.IG.transpose() * Psi);
-    DenseMatrix Gq(n_interface_, m), W, PsiW, WPhi;
+    DenseMatrix Gq, W, PsiW, WPhi;
+    if (!stiffness) Gq.resize(n_interface_, m);
     for (int c0 = 0; !stiffness && c0 < n_interface_; c0 += block) {
       const int w = std::min(block, n_interface_ - c0);
       W = sparse_times_dense(b.II, Psi.middleCols(c0, w));

@@ -30,6 +30,15 @@ TEST(DenseProducts, TransposedProductEqualsEigensWithAndWithoutAccumulation) {
   DenseMatrix D = C0;
   multiply_transposed(A, B, D, 2.0, 1.0);
   EXPECT_LT(relative_difference(D, C0 + 2.0 * ref), 5.5e-15);  // measured 1.9e-15
+  // An empty sum (A and B without rows) is zero, and beta C when accumulated.
+  DenseMatrix E;
+  multiply_transposed(DenseMatrix(0, 37), DenseMatrix(0, 53), E);
+  ASSERT_EQ(E.rows(), 37);
+  ASSERT_EQ(E.cols(), 53);
+  EXPECT_TRUE((E.array() == 0.0).all());
+  DenseMatrix F = C0;
+  multiply_transposed(DenseMatrix(0, 37), DenseMatrix(0, 53), F, 1.0, 0.5);
+  EXPECT_TRUE(F == 0.5 * C0);
 }
 
 TEST(DenseProducts, SparseTimesDenseEqualsEigensOverSeveralColumnBlocks) {
