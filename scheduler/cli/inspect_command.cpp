@@ -18,7 +18,7 @@
 #include "io/train_sets.hpp"
 #include "core/terminal_text.hpp"
 #include "core/types.hpp"
-#include "study/deck_frequencies.hpp"
+#include "planning/deck_frequencies.hpp"
 #include "study/speed_list.hpp"
 
 namespace railvsi::cli {
@@ -30,7 +30,7 @@ using nlohmann::ordered_json;
 // not bound them: the HSLM range of EN 1991-2 practice, at most 1.2 x 350 km/h.
 constexpr double kResonanceMinKmh = 40.0, kResonanceMaxKmh = 420.0;
 
-double fundamental_hz(const StructureModel& structure) { return scheduler::deck_frequencies(structure).f0_hz; }
+double fundamental_hz(const StructureModel& structure) { return deck_frequencies(structure).f0_hz; }
 
 // A study: its structure (with the first train on it), the lowest modes,
 // every train in short, the speeds, and the HSLM resonance speeds within

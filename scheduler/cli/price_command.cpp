@@ -13,10 +13,10 @@
 #include "core/terminal_text.hpp"
 #include "io/scene_loader.hpp"
 #include "planning/cost_model.hpp"
-#include "price/accuracy_price.hpp"
+#include "planning/accuracy_price.hpp"
 #include "query/price_rows.hpp"
 #include "query/price_sample.hpp"
-#include "study/deck_frequencies.hpp"
+#include "planning/deck_frequencies.hpp"
 #include "workers/worker_pool.hpp"
 
 namespace railvsi::cli {
@@ -240,8 +240,8 @@ std::string price_csv(const PriceReport& p, const std::string& job) {
 PriceOptions options_for(const Scene& scene, int threads) {
   PriceOptions o;
   o.threads = threads;
-  if (scene.structure->num_dofs() <= scheduler::kMaxDofsForDeckFrequencies) {  // as vsi simulate
-    const scheduler::DeckFrequencies f = scheduler::deck_frequencies(*scene.structure);
+  if (scene.structure->num_dofs() <= kMaxDofsForDeckFrequencies) {  // as vsi simulate
+    const DeckFrequencies f = deck_frequencies(*scene.structure);
     o.f0_hz = f.f0_hz;
     o.f3_hz = f.f3_hz;
   }

@@ -1,6 +1,6 @@
 #pragma once
 // `vsi price`: what accuracy costs in time, for a scene or for a sample of
-// a study's jobs (results/price/accuracy_price.hpp does the work).
+// a study's jobs (results/planning/accuracy_price.hpp does the work).
 #include <optional>
 #include <string>
 

@@ -7,7 +7,7 @@
 #include "summary/summary_json.hpp"
 #include "envelopes/code_filter.hpp"
 #include "simulation/simulation.hpp"
-#include "study/deck_frequencies.hpp"
+#include "planning/deck_frequencies.hpp"
 
 namespace railvsi::cli {
 namespace {
@@ -47,7 +47,7 @@ RunFrame run_frame(const Scene& scene, std::optional<double> cutoff_hz) {
   if (cutoff_hz) {
     f.cutoff_hz = *cutoff_hz;
   } else {
-    const scheduler::DeckFrequencies d = scheduler::deck_frequencies(*scene.structure);
+    const DeckFrequencies d = deck_frequencies(*scene.structure);
     f.cutoff_hz = code_cutoff_hz(d.f0_hz, d.f3_hz);
   }
   return f;

@@ -14,21 +14,21 @@
 #include "io/scene_loader.hpp"
 #include "planning/time_step_warnings.hpp"
 #include "simulation/simulation.hpp"
-#include "study/deck_frequencies.hpp"
-#include "study/scene_plan.hpp"
-#include "workers/rung_runner.hpp"
+#include "planning/deck_frequencies.hpp"
+#include "planning/scene_plan.hpp"
+#include "planning/rung_runner.hpp"
 
 namespace railvsi::cli {
 namespace {
 
 // The deck frequencies, for the code frequency and the planner; zero (not
 // known) for a structure too large for a quick modal analysis.
-scheduler::DeckFrequencies frequencies_of(const Scene& scene, std::vector<RunWarning>& warnings) {
+DeckFrequencies frequencies_of(const Scene& scene, std::vector<RunWarning>& warnings) {
   // Larger structures take the code frequency's floor of 30 Hz: a dt check
   // more lenient and a filter cut-off that may be below the code's.
   const int dofs = scene.structure->num_dofs();
-  if (dofs <= scheduler::kMaxDofsForDeckFrequencies) {
-    scheduler::DeckFrequencies f = scheduler::deck_frequencies(*scene.structure);
+  if (dofs <= kMaxDofsForDeckFrequencies) {
+    DeckFrequencies f = deck_frequencies(*scene.structure);
     if (f.status.ok()) return f;
     warnings.push_back({"cutoff_not_computed",
                         fmt::format("the modal analysis for the deck frequencies failed ({}): the time-step checks "
@@ -52,7 +52,7 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
   scene.analysis.allow_large_run = allow_large;
   std::vector<RunWarning> extra;
   const bool need_frequencies = !cutoff_hz || scene.fidelity.mode != FidelityRequest::Mode::kAsGiven;
-  const scheduler::DeckFrequencies f = need_frequencies ? frequencies_of(scene, extra) : scheduler::DeckFrequencies{};
+  const DeckFrequencies f = need_frequencies ? frequencies_of(scene, extra) : DeckFrequencies{};
   const double cutoff = cutoff_hz ? *cutoff_hz : code_cutoff_hz(f.f0_hz, f.f3_hz);
   // The default free vibration lasts at least 3 periods of f0.
   scene.analysis.structure_f0_hz = f.f0_hz;
@@ -60,7 +60,7 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
   // carry, a run too large) are input errors of this scene.
   Result result = [&] {
     try {
-      return scheduler::run_planned(scene, f);
+      return run_planned(scene, f);
     } catch (const InputError& e) {
       throw e.with_file(file_for_errors);
     }
@@ -68,7 +68,7 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
   // An escalation for wheel quantities ran at a finer dt: its histories and filter are at that dt.
   if (result.summary.dt_s > 0.0) scene.analysis.dt_s = result.summary.dt_s;
   // The time-step checks judge the contact law that ran (the planner's for "auto").
-  const Scene ran = scheduler::scene_as_run(scene, result.summary);
+  const Scene ran = scene_as_run(scene, result.summary);
   // The FE rungs' policy bounds HHT's period error; the modal rung's step
   // only samples the load and the output: its own rule, as in a study.
   for (RunWarning& w : result.summary.fidelity.solver_path != "modal-exact" ? time_step_warnings(ran, cutoff)

@@ -16,7 +16,7 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
-#include "query/check_limits.hpp"
+#include "compliance/check_limits.hpp"
 #include "query/price_figures.hpp"
 #include "query/static_effects.hpp"
 #include "query/study_results.hpp"
@@ -24,8 +24,8 @@
 #include "report/mode_shapes.hpp"
 #include "simulation/deck_twist.hpp"
 #include "simulation/static_equilibrium.hpp"
-#include "study/deck_frequencies.hpp"
-#include "workers/rung_runner.hpp"
+#include "planning/deck_frequencies.hpp"
+#include "planning/rung_runner.hpp"
 
 namespace railvsi::scheduler {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "price/accuracy_price.hpp"
+#include "planning/accuracy_price.hpp"
 #include "store/sqlite.hpp"
 
 namespace railvsi::scheduler {

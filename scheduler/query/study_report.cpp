@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/terminal_text.hpp"
-#include "query/check_limits.hpp"
+#include "compliance/check_limits.hpp"
 
 namespace railvsi::scheduler {
 namespace {

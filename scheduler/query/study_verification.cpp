@@ -16,7 +16,7 @@
 #include "query/price_sample.hpp"
 #include "queue/job_queue.hpp"
 #include "study/canonical_json.hpp"
-#include "study/scene_plan.hpp"
+#include "planning/scene_plan.hpp"
 #include "study/structure_key.hpp"
 
 namespace railvsi::scheduler {

@@ -9,7 +9,7 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "planning/cost_model.hpp"
-#include "study/scene_plan.hpp"
+#include "planning/scene_plan.hpp"
 
 namespace railvsi::scheduler {
 

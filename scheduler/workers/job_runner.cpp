@@ -19,7 +19,7 @@
 #include "envelopes/job_envelopes.hpp"
 #include "planning/time_step_warnings.hpp"
 #include "summary/summary_json.hpp"
-#include "workers/rung_runner.hpp"
+#include "planning/rung_runner.hpp"
 
 namespace railvsi::scheduler {
 namespace {

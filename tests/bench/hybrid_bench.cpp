@@ -34,7 +34,7 @@
 #include "simulation/simulation.hpp"
 #include "solver/hybrid_operator.hpp"
 #include "solver/structure_backend.hpp"
-#include "study/deck_frequencies.hpp"
+#include "planning/deck_frequencies.hpp"
 
 namespace railvsi {
 namespace {
@@ -155,7 +155,7 @@ Values fe_values(const Scene& s, double code_hz, const std::string& cache_dir, c
 
 void compare(int dofs, bool dip, const std::vector<double>& cutoffs, const std::string& cache_dir, double duration_s) {
   Scene s = deck_scene(dofs, dip, duration_s);
-  const auto f = scheduler::deck_frequencies(*s.structure);
+  const auto f = deck_frequencies(*s.structure);
   const double code_hz = code_cutoff_hz(f.f0_hz, f.f3_hz);
   std::printf("\n## 3D deck, %d DOFs, ICE3 300 km/h, German low seed 1%s%s; f0 %.3f Hz, f3 %.3f Hz, filter %.3g Hz\n",
               s.structure->num_dofs(), dip ? " + 20 mm x 1 m dip at 37 m" : "",

@@ -32,8 +32,8 @@
 #include "planning/effects_planner.hpp"
 #include "planning/time_step_policy.hpp"
 #include "simulation/simulation.hpp"
-#include "study/deck_frequencies.hpp"
-#include "study/scene_plan.hpp"
+#include "planning/deck_frequencies.hpp"
+#include "planning/scene_plan.hpp"
 #include "../support/worst_of.hpp"
 
 namespace {
@@ -65,12 +65,12 @@ struct Peaks {
 void compare(const Case& c) {
   const auto& structure = c.structure;
   const double t_plan = cpu_s();
-  const scheduler::DeckFrequencies f = scheduler::deck_frequencies(*structure);
+  const DeckFrequencies f = deck_frequencies(*structure);
   const double code_hz = code_cutoff_hz(f.f0_hz, f.f3_hz);
   PlannerInput in;
   in.f0_hz = f.f0_hz;
   in.f3_hz = f.f3_hz;
-  in.modes_below_cutoff = scheduler::count_modes(structure, kModalCutoffMargin * code_hz, f.lowest_hz);
+  in.modes_below_cutoff = count_modes(structure, kModalCutoffMargin * code_hz, f.lowest_hz);
   const EffectsPlan plan = plan_effects(in);
   if (!plan.rung.exact_modal()) {
     std::printf("%s, %d DOFs: the planner chose %s, not the modal rung\n", c.name.c_str(), structure->num_dofs(),

@@ -9,8 +9,8 @@
 
 #include "engine/fryba_series.hpp"
 #include "generators/bridge_2d.hpp"
-#include "price/accuracy_price.hpp"
-#include "price/fidelity_ladder.hpp"
+#include "planning/accuracy_price.hpp"
+#include "planning/fidelity_ladder.hpp"
 #include "price/price_analysis.hpp"
 
 namespace railvsi {

@@ -9,7 +9,7 @@
 #include "core/input_error.hpp"
 #include "io/scene_loader.hpp"
 #include "scheduler_test_support.hpp"
-#include "study/deck_frequencies.hpp"
+#include "planning/deck_frequencies.hpp"
 #include "study/study_plan.hpp"
 
 namespace railvsi::test {
@@ -64,12 +64,12 @@ TEST(StructureVariants, ExpandIntoOneStructurePerCombinationWithTheNominalJobsUn
       scenes.emplace(j.variant, parse_scene(scene, std::filesystem::temp_directory_path(), "scene"));
     }
   const StructureModel& nominal = *scenes.at("nominal").structure;
-  const double f0 = scheduler::deck_frequencies(nominal).f0_hz;
+  const double f0 = deck_frequencies(nominal).f0_hz;
   for (const auto& [label, factor] : {std::pair{"mass x0.9", 0.9}, std::pair{"mass x1.1", 1.1}}) {
     const StructureModel& s = *scenes.at(label).structure;
     EXPECT_LT((SparseMatrix(s.M() - factor * nominal.M())).norm(), 1e-12 * nominal.M().norm()) << label;
     EXPECT_LT((SparseMatrix(s.K() - nominal.K())).norm(), 1e-12 * nominal.K().norm()) << label;
-    EXPECT_NEAR(scheduler::deck_frequencies(s).f0_hz / f0, 1.0 / std::sqrt(factor), 1e-9) << label;
+    EXPECT_NEAR(deck_frequencies(s).f0_hz / f0, 1.0 / std::sqrt(factor), 1e-9) << label;
   }
 }
 

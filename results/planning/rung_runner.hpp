@@ -15,10 +15,10 @@
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
 #include "solver/structure_operator.hpp"
-#include "study/deck_frequencies.hpp"
-#include "study/scene_plan.hpp"
+#include "planning/deck_frequencies.hpp"
+#include "planning/scene_plan.hpp"
 
-namespace railvsi::scheduler {
+namespace railvsi {
 
 // Where the rung's structure comes from (a cache, or built for this run).
 struct RungModels {
@@ -53,4 +53,4 @@ Scene scene_as_run(const Scene& scene, const RunSummary& summary);
 // `scene` on `rung` (the plan's, or its escalation).
 void record_rung(const Scene& scene, const ScenePlan& plan, const Rung& rung, RunSummary& summary);
 
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

@@ -1,11 +1,11 @@
-#include "study/deck_frequencies.hpp"
+#include "planning/deck_frequencies.hpp"
 
 #include <algorithm>
 
 #include "solver/modal_analysis.hpp"
 #include "analysis/mode_classification.hpp"
 
-namespace railvsi::scheduler {
+namespace railvsi {
 namespace {
 
 // A few spans' first, second and third bending modes, with track modes in
@@ -67,4 +67,4 @@ DeckFrequencies deck_frequencies(const StructureModel& structure) {
   }
 }
 
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

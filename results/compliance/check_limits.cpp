@@ -1,10 +1,10 @@
-#include "query/check_limits.hpp"
+#include "compliance/check_limits.hpp"
 
 #include <string>
 
 #include "compliance/code_values.hpp"
 
-namespace railvsi::scheduler {
+namespace railvsi {
 
 std::optional<double> check_limit(const nlohmann::json& checks, std::string_view quantity) {
   const auto given = [&](const char* key) -> std::optional<double> {
@@ -30,4 +30,4 @@ std::optional<double> check_limit(const nlohmann::json& checks, std::string_view
   return std::nullopt;
 }
 
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

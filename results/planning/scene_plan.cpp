@@ -1,4 +1,4 @@
-#include "study/scene_plan.hpp"
+#include "planning/scene_plan.hpp"
 
 #include <algorithm>
 
@@ -7,7 +7,7 @@
 #include "solver/modal_basis.hpp"
 #include "envelopes/code_filter.hpp"
 
-namespace railvsi::scheduler {
+namespace railvsi {
 
 StudyAsks scene_asks(const Scene& scene) {
   StudyAsks a;
@@ -145,4 +145,4 @@ nlohmann::json pinned_fidelity_json(const EffectsPlan& plan) {
   return j;
 }
 
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

@@ -12,9 +12,9 @@
 
 #include "planning/effects_planner.hpp"
 #include "simulation/scene.hpp"
-#include "study/deck_frequencies.hpp"
+#include "planning/deck_frequencies.hpp"
 
-namespace railvsi::scheduler {
+namespace railvsi {
 
 struct ScenePlan {
   Rung rung;
@@ -56,4 +56,4 @@ ScenePlan plan_scene(const Scene& scene, const DeckFrequencies& f);
 // The pinned rung object of a job scene for a plan (schemas fidelity_rung).
 nlohmann::json pinned_fidelity_json(const EffectsPlan& plan);
 
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

@@ -1,4 +1,4 @@
-#include "workers/rung_runner.hpp"
+#include "planning/rung_runner.hpp"
 
 #include <optional>
 
@@ -9,7 +9,7 @@
 #include "simulation/simulation.hpp"
 #include "solver/hybrid_operator.hpp"
 
-namespace railvsi::scheduler {
+namespace railvsi {
 
 void record_rung(const Scene& scene, const ScenePlan& plan, const Rung& rung, RunSummary& summary) {
   FidelityRecord& f = summary.fidelity;
@@ -122,4 +122,4 @@ Result run_planned(const Scene& scene, const DeckFrequencies& frequencies) {
   return run_at_rung(scene, plan_scene(scene, frequencies), standalone_models(scene));
 }
 
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

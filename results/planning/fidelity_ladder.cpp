@@ -1,4 +1,4 @@
-#include "price/fidelity_ladder.hpp"
+#include "planning/fidelity_ladder.hpp"
 
 #include "analysis/modal_moving_forces.hpp"
 #include "simulation/simulation.hpp"

@@ -1,4 +1,4 @@
-#include "price/accuracy_price.hpp"
+#include "planning/accuracy_price.hpp"
 
 #include <time.h>
 
@@ -19,7 +19,7 @@
 #include "envelopes/code_filter.hpp"
 #include "envelopes/job_envelopes.hpp"
 #include "planning/cost_model.hpp"
-#include "price/fidelity_ladder.hpp"
+#include "planning/fidelity_ladder.hpp"
 #include "simulation/simulation.hpp"
 
 namespace railvsi {

@@ -9,9 +9,9 @@
 #include "generators/deck_3d.hpp"
 #include "../engine/test_scenes.hpp"
 #include "analysis/span_supports.hpp"
-#include "study/deck_frequencies.hpp"
+#include "planning/deck_frequencies.hpp"
 
-namespace railvsi::scheduler {
+namespace railvsi {
 namespace {
 
 double simply_supported_hz(int n, double L_m, double EI_Nm2, double m_kg_per_m) {
@@ -167,4 +167,4 @@ TEST(DeckFrequencies, LongViaductsFindTheirSpansThirdModes) {
 }
 
 }  // namespace
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

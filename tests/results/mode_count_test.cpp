@@ -9,10 +9,10 @@
 
 #include "generators/bridge_2d.hpp"
 #include "solver/modal_basis.hpp"
-#include "study/deck_frequencies.hpp"
-#include "study/scene_plan.hpp"
+#include "planning/deck_frequencies.hpp"
+#include "planning/scene_plan.hpp"
 
-namespace railvsi::scheduler {
+namespace railvsi {
 namespace {
 
 constexpr double kSpan_m = 25.0, kEI_Nm2 = 7.694e10, kMass_kg_per_m = 15000.0;
@@ -71,4 +71,4 @@ TEST(ModeCount, ABasisHoldsExactlyTheModesCountedBelowItsCutoff) {
 }
 
 }  // namespace
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

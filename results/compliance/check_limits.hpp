@@ -9,10 +9,10 @@
 
 #include <nlohmann/json.hpp>
 
-namespace railvsi::scheduler {
+namespace railvsi {
 
 // nullopt: the quantity has no limit in these checks (deck displacement
 // without deck_displacement_limit_m, or a quantity no check reads).
 std::optional<double> check_limit(const nlohmann::json& checks, std::string_view quantity);
 
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

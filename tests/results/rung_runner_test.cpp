@@ -7,9 +7,9 @@
 #include "../engine/test_scenes.hpp"
 #include "simulation/simulation.hpp"
 #include "planning/time_step_warnings.hpp"
-#include "workers/rung_runner.hpp"
+#include "planning/rung_runner.hpp"
 
-namespace railvsi::scheduler {
+namespace railvsi {
 namespace {
 
 ScenePlan linear_hertz_plan() {
@@ -152,4 +152,4 @@ TEST(RungRunner, SceneAsRunCarriesTheContactLawAndStepThatRan) {
 }
 
 }  // namespace
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

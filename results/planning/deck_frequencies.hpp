@@ -13,7 +13,7 @@
 #include "core/status.hpp"
 #include "model/structure_model.hpp"
 
-namespace railvsi::scheduler {
+namespace railvsi {
 
 struct DeckFrequencies {
   double f0_hz = 0.0;  // 0 when not found (the code frequency is then at least 30 Hz)
@@ -37,4 +37,4 @@ DeckFrequencies deck_frequencies(const StructureModel& structure);
 // reason.
 inline constexpr int kMaxDofsForDeckFrequencies = 300000;
 
-}  // namespace railvsi::scheduler
+}  // namespace railvsi

@@ -1,0 +1,3 @@
+#pragma once
+// Fixture: the service including the command line above it.
+#include "cli/a_command.hpp"

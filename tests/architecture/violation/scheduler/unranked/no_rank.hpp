@@ -1,0 +1,2 @@
+#pragma once
+// Fixture: a folder the include check gives no rank.
