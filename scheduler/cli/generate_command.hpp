@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/command_group.hpp"
+
 namespace railvsi::cli {
 
 struct GenerateArgs {
@@ -19,12 +21,12 @@ struct GenerateArgs {
   std::string section_file;  // a deck-section document; empty: the solid default
 };
 
-class GenerateCommand {
+class GenerateCommand final : public CommandGroup {
  public:
   // Adds "generate" (with its subcommand "deck-3d") to app.
   explicit GenerateCommand(CLI::App& app);
   // After app.parse(): the exit code when "generate" was parsed, else nullopt.
-  std::optional<int> run_parsed() const;
+  std::optional<int> run_parsed() const override;
 
  private:
   GenerateArgs args_;

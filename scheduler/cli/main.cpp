@@ -1,16 +1,21 @@
 // vsi: the railvsi command line. Exit codes: 0 success, 1 runtime failure,
 // 2 invalid input or usage; whatever happens, main reports it and returns.
 #include <exception>
+#include <memory>
+#include <optional>
+#include <vector>
 #include <new>
 #include <iostream>
 #include <string_view>
 
 #include <CLI/CLI.hpp>
 
+#include "cli/command_group.hpp"
 #include "cli/commands.hpp"
 #include "cli/generate_command.hpp"
 #include "cli/price_command.hpp"
 #include "cli/report_command.hpp"
+#include "cli/scene_commands.hpp"
 #include "cli/serve_command.hpp"
 #include "cli/service_commands.hpp"
 #include "cli/shard_command.hpp"
@@ -27,47 +32,15 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", "vsi " RAILVSI_VERSION);
   app.require_subcommand(1);
 
-  SimulateArgs simulate_args;
-  CLI::App* simulate = app.add_subcommand("simulate", "Run one scene and print its summary JSON on stdout");
-  simulate->add_option("scene", simulate_args.scene_file, "Scene file (JSON, schemas/scene.schema.json); - reads stdin")
-      ->required();
-  simulate->add_option("--histories", simulate_args.histories_dir,
-                       "Directory for the time histories: deck.csv (with the first axle's x, the evaluation window "
-                       "and the filtered deck acceleration), and for multibody trains contact_forces.csv and "
-                       "carbody.csv (created if needed)");
-  simulate->add_flag("--allow-large", simulate_args.allow_large,
-                     "Run even when the estimated step count, history memory or work exceeds the limits");
-
-  ReplayArgs replay_args;
-  CLI::App* replay = app.add_subcommand(
-      "replay", "Run a job of a study database again from its stored scene; print its summary JSON and write its "
-                "histories, to reconcile with the envelopes vsi query shows");
-  replay->add_option("job", replay_args.job_id, "Job id, or a prefix of at least 6 hex digits")->required();
-  replay->add_option("--db", replay_args.db, "Study database (SQLite file)")->capture_default_str();
-  replay->add_option("--histories", replay_args.histories_dir, "Directory for the time histories, as vsi simulate");
-
-  std::string validate_file;
-  CLI::App* validate = app.add_subcommand(
-      "validate", "Check a scene, train or irregularity profile: schema, then every semantic check of a run");
-  validate->add_option("file", validate_file, "Document (JSON)")->required();
-
-  InspectArgs inspect_args;
-  CLI::App* inspect = app.add_subcommand(
-      "inspect", "Report what a scene, study, train or irregularity profile holds: structure DOFs, damping, the "
-                 "lowest natural frequencies with their mode types, axles and static loads, profile statistics, the "
-                 "HSLM resonance speeds");
-  inspect->add_option("file", inspect_args.file, "Document (JSON)")->required();
-  inspect->add_option("--modes", inspect_args.modes, "Number of natural frequencies to compute (default 6)")
-      ->check(CLI::Range(1, 1000));
-  inspect->add_option("--format", inspect_args.format, "Output format: text (default) or json")
-      ->check(CLI::IsMember({"text", "json"}));
-
-  ServiceCommands service(app);
-  GenerateCommand generate(app);
-  ReportCommand report(app);
-  PriceCommand price(app);
-  ClusterCommands cluster(app);
-  ServeCommand serve(app);
+  // Every command, one registration style (cli/command_group.hpp).
+  std::vector<std::unique_ptr<CommandGroup>> groups;
+  groups.push_back(std::make_unique<SceneCommands>(app));
+  groups.push_back(std::make_unique<ServiceCommands>(app));
+  groups.push_back(std::make_unique<GenerateCommand>(app));
+  groups.push_back(std::make_unique<ReportCommand>(app));
+  groups.push_back(std::make_unique<PriceCommand>(app));
+  groups.push_back(std::make_unique<ClusterCommands>(app));
+  groups.push_back(std::make_unique<ServeCommand>(app));
 
   // A word that is no command: CLI11 would say "A subcommand is required".
   if (argc > 1 && argv[1][0] != '-') {
@@ -88,16 +61,11 @@ int run(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitInvalidInput;  // help and --version are successes
   }
-  if (simulate->parsed()) return simulate_command(simulate_args);
-  if (replay->parsed()) return replay_command(replay_args);
-  if (inspect->parsed()) return inspect_command(inspect_args);
-  if (const auto code = service.run_parsed()) return *code;
-  if (const auto code = generate.run_parsed()) return *code;
-  if (const auto code = report.run_parsed()) return *code;
-  if (const auto code = price.run_parsed()) return *code;
-  if (const auto code = cluster.run_parsed()) return *code;
-  if (const auto code = serve.run_parsed()) return *code;
-  return validate_command(validate_file);
+  for (const auto& group : groups)
+    if (const std::optional<int> code = group->run_parsed()) return *code;
+  // require_subcommand(1) makes this unreachable; no command is a default.
+  std::cerr << "error: no command was given (vsi --help)\n";
+  return kExitInvalidInput;
 }
 
 }  // namespace

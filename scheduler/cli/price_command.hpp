@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/command_group.hpp"
+
 namespace railvsi::cli {
 
 struct PriceArgs {
@@ -17,10 +19,10 @@ struct PriceArgs {
   int threads = 1;
 };
 
-class PriceCommand {
+class PriceCommand final : public CommandGroup {
  public:
   explicit PriceCommand(CLI::App& app);
-  std::optional<int> run_parsed() const;
+  std::optional<int> run_parsed() const override;
 
  private:
   PriceArgs args_;

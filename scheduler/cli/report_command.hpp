@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/command_group.hpp"
+
 namespace railvsi::cli {
 
 struct ReportArgs {
@@ -17,10 +19,10 @@ struct ReportArgs {
   std::string format = "html";  // or "json": the content as data, on standard output without --out
 };
 
-class ReportCommand {
+class ReportCommand final : public CommandGroup {
  public:
   explicit ReportCommand(CLI::App& app);
-  std::optional<int> run_parsed() const;
+  std::optional<int> run_parsed() const override;
 
  private:
   ReportArgs args_;

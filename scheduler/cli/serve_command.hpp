@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/command_group.hpp"
 #include "cli/service_commands.hpp"
 
 namespace railvsi::cli {
@@ -18,10 +19,10 @@ struct ServeArgs {
   double max_body_mb = 16.0;
 };
 
-class ServeCommand {
+class ServeCommand final : public CommandGroup {
  public:
   explicit ServeCommand(CLI::App& app);
-  std::optional<int> run_parsed() const;
+  std::optional<int> run_parsed() const override;
 
  private:
   ServeArgs args_;

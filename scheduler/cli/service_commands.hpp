@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/command_group.hpp"
 #include "queue/job_queue.hpp"
 #include "store/sqlite.hpp"
 #include "workers/worker_pool.hpp"
@@ -35,13 +36,13 @@ struct ServiceArgs {
   std::optional<double> speed_min_kmh, speed_max_kmh;
 };
 
-class ServiceCommands {
+class ServiceCommands final : public CommandGroup {
  public:
   // Adds the subcommands to app.
   explicit ServiceCommands(CLI::App& app);
   // After app.parse(): the exit code of the subcommand that was parsed,
   // nullopt when none of these was.
-  std::optional<int> run_parsed() const;
+  std::optional<int> run_parsed() const override;
 
  private:
   ServiceArgs args_;

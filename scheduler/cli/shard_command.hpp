@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/command_group.hpp"
+
 namespace railvsi::cli {
 
 struct ClusterArgs {
@@ -29,12 +31,12 @@ struct ClusterArgs {
   int backoff_limit_per_index = 3;
 };
 
-class ClusterCommands {
+class ClusterCommands final : public CommandGroup {
  public:
   explicit ClusterCommands(CLI::App& app);
   // After app.parse(): the exit code of the subcommand parsed, nullopt when
   // none of these was.
-  std::optional<int> run_parsed() const;
+  std::optional<int> run_parsed() const override;
 
  private:
   ClusterArgs args_;
