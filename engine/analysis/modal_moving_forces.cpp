@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "simulation/load_model.hpp"
 #include "simulation/run_monitor.hpp"
 #include "simulation/simulation.hpp"
 
@@ -74,7 +75,7 @@ void fill_modal_summary(const ModalSweep& sweep, const ModalSweepRun& run, RunSu
   sum.dt_s = sweep.dt_s();
   sum.steps = run.steps;
   FidelityRecord& f = sum.fidelity;
-  f.model = "moving-forces";
+  f.model = load_model_name(LoadModel::kMovingForces);
   f.contact_law = "none";
   f.solver_path = "modal-exact";
   f.structure_backend = fmt::format("modal ({} modes up to {:.4g} Hz, exact recurrence{})", sweep.num_modes(),

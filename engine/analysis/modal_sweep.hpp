@@ -82,6 +82,9 @@ struct ModalSweepWorkspace {
   std::vector<double> offset;      // per rail and lane: the first axle's distance from that piece's start
 };
 
+// The kernel's raw output for one lane. Not a second result model: every
+// caller turns it into the one RunSummary by fill_modal_summary
+// (modal_moving_forces.hpp) before anything above the engine sees it.
 struct ModalSweepRun {
   Status status;
   long steps = 0;

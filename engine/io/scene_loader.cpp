@@ -144,9 +144,9 @@ AnalysisOptions parse_analysis(const json& a) {
     o.solver = a.at("solver").get<std::string>() == "reference" ? SolverPath::kReference : SolverPath::kCondensed;
   if (a.contains("contact")) o.contact = contact_options(a.at("contact"));
   if (a.contains("structure")) {
-    const std::string structure = a.at("structure").get<std::string>();
-    if (structure == "modal") o.structure_backend = StructureBackend::kModal;
-    if (structure == "hybrid") o.structure_backend = StructureBackend::kHybrid;
+    // The schema allows only the backends' names.
+    if (const auto backend = parse_structure_backend(a.at("structure").get<std::string>()))
+      o.structure_backend = *backend;
   }
   o.modal_modes = a.value("modes", o.modal_modes);
   o.modal_cutoff_hz = a.value("cutoff_hz", o.modal_cutoff_hz);

@@ -52,7 +52,7 @@ struct WheelSummary {
 
 // Which model a run actually used: recorded with every result.
 struct FidelityRecord {
-  std::string model;          // "moving-forces", "interaction"
+  std::string model;          // load_model_name(): "moving_forces", "interaction"
   std::string contact_law;    // "none", "rigid", "linear-hertz", "hertz"
   bool unilateral = false;
   std::string solver_path;    // "condensed", "reference"

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.hpp"
+#include "simulation/load_model.hpp"
 #include "simulation/modal_section_forces.hpp"
 #include "simulation/run_state.hpp"
 #include "simulation/static_equilibrium.hpp"
@@ -259,7 +260,7 @@ Result Simulation::run() const {
 
   // Fidelity record.
   const bool mf = sc.train.is_moving_forces();
-  sum.fidelity.model = mf ? "moving-forces" : "interaction";
+  sum.fidelity.model = load_model_name(mf ? LoadModel::kMovingForces : LoadModel::kInteraction);
   sum.fidelity.contact_law = mf ? "none" : std::string(make_contact_law(an.contact)->name());
   sum.fidelity.unilateral = !mf && !layout.contacts.empty() && layout.contacts.front().law->unilateral();
   sum.fidelity.solver_path = an.solver == SolverPath::kReference ? "reference" : "condensed";

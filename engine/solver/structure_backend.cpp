@@ -73,4 +73,15 @@ const char* structure_backend_name(StructureBackend backend) {
   return "fe";
 }
 
+std::optional<StructureBackend> parse_structure_backend(std::string_view name) {
+  for (const StructureBackend b : {StructureBackend::kFiniteElements, StructureBackend::kModal, StructureBackend::kHybrid})
+    if (name == structure_backend_name(b)) return b;
+  return std::nullopt;
+}
+
+std::vector<std::string> structure_backend_names() {
+  return {structure_backend_name(StructureBackend::kFiniteElements), structure_backend_name(StructureBackend::kModal),
+          structure_backend_name(StructureBackend::kHybrid)};
+}
+
 }  // namespace railvsi

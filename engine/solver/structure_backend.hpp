@@ -5,6 +5,10 @@
 // (the modes up to a cut-off, diagonal K_bar) and hybrid (the track in
 // finite elements, the bridge in its modes: hybrid_basis.hpp).
 #include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "solver/hybrid_basis.hpp"
 #include "solver/modal_basis.hpp"
@@ -56,7 +60,11 @@ std::shared_ptr<const StructureOperator> make_structure_operator(std::shared_ptr
                                                                  const EffectiveMatrixFactors& factors,
                                                                  const StructureOperatorOptions& options);
 
-// "fe", "modal" or "hybrid", as scenes name them.
+// "fe", "modal" or "hybrid", as scenes name them (analysis.schema.json):
+// the one spelling of a backend in scenes, records and the price table.
 const char* structure_backend_name(StructureBackend backend);
+// nullopt for a name that is none of structure_backend_names().
+std::optional<StructureBackend> parse_structure_backend(std::string_view name);
+std::vector<std::string> structure_backend_names();
 
 }  // namespace railvsi

@@ -164,7 +164,7 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
     const Task& task = tasks[i];
     const LadderRung& rung = ladder[task.rung];
     PriceRow& row = rows[i];
-    row.model = rung.model;
+    row.model = rung.model_name();
     row.structure = rung.structure_name();
     row.contact_law = rung.contact_law;
     row.rung = static_cast<int>(task.rung);
@@ -175,14 +175,14 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
       // outside the run's own timing, and charged to every row using it.
       Built<StructureOperator> op;
       Built<ModalBasis> basis;
-      if (rung.structure == RungStructure::kFe) op = operator_of(task.dt_s);
-      if (rung.structure == RungStructure::kModal) basis = basis_of();
-      if (rung.structure == RungStructure::kModal && rung.model == "interaction") {
+      if (rung.structure == StructureBackend::kFiniteElements) op = operator_of(task.dt_s);
+      if (rung.structure == StructureBackend::kModal) basis = basis_of();
+      if (rung.structure == StructureBackend::kModal && rung.model == LoadModel::kInteraction) {
         s.analysis.modal_cutoff_hz = basis.value->max_frequency_hz();
         op = modal_operator_of(s, basis.value);
       }
       Built<HybridBasis> hybrid;
-      if (rung.structure == RungStructure::kHybrid) {
+      if (rung.structure == StructureBackend::kHybrid) {
         hybrid = hybrid_basis_of();
         s.analysis.modal_cutoff_hz = hybrid.value->cutoff_hz();
         op = hybrid_operator_of(s, hybrid.value);
@@ -192,9 +192,9 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
       row.setup_cpu_s = op.cpu_s + basis.cpu_s + hybrid.cpu_s;
       // The cost model has no fit for interaction on the modes or the
       // hybrid structure: no prediction.
-      if (!(rung.structure != RungStructure::kFe && rung.model == "interaction"))
+      if (!(rung.structure != StructureBackend::kFiniteElements && rung.model == LoadModel::kInteraction))
         row.cpu_predicted_s =
-            predict_cost(cost_inputs(s, rung.structure == RungStructure::kModal, row.modes.value_or(0))).total_cpu_s();
+            predict_cost(cost_inputs(s, rung.structure == StructureBackend::kModal, row.modes.value_or(0))).total_cpu_s();
       RungResources resources;
       resources.structure_operator = [&] { return op.value; };
       resources.modal_basis = [&] { return basis.value; };

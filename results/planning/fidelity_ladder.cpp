@@ -23,43 +23,43 @@ Result run_modal_moving_forces_rung(const Scene& scene, const RungResources& res
 // on the operator of resources.structure_operator too: the caller builds
 // the modal or hybrid one for them.
 const std::vector<LadderRung> kLadder = {
-    {"moving-forces", RungStructure::kModal, "none", run_modal_moving_forces_rung},
-    {"moving-forces", RungStructure::kFe, "none", run_fe},
-    {"interaction", RungStructure::kModal, "linear-hertz", run_fe},
-    {"interaction", RungStructure::kModal, "hertz", run_fe},
-    {"interaction", RungStructure::kHybrid, "linear-hertz", run_fe},
-    {"interaction", RungStructure::kHybrid, "hertz", run_fe},
-    {"interaction", RungStructure::kFe, "rigid", run_fe},
-    {"interaction", RungStructure::kFe, "linear-hertz", run_fe},
-    {"interaction", RungStructure::kFe, "hertz", run_fe},
+    {LoadModel::kMovingForces, StructureBackend::kModal, "none", run_modal_moving_forces_rung},
+    {LoadModel::kMovingForces, StructureBackend::kFiniteElements, "none", run_fe},
+    {LoadModel::kInteraction, StructureBackend::kModal, "linear-hertz", run_fe},
+    {LoadModel::kInteraction, StructureBackend::kModal, "hertz", run_fe},
+    {LoadModel::kInteraction, StructureBackend::kHybrid, "linear-hertz", run_fe},
+    {LoadModel::kInteraction, StructureBackend::kHybrid, "hertz", run_fe},
+    {LoadModel::kInteraction, StructureBackend::kFiniteElements, "rigid", run_fe},
+    {LoadModel::kInteraction, StructureBackend::kFiniteElements, "linear-hertz", run_fe},
+    {LoadModel::kInteraction, StructureBackend::kFiniteElements, "hertz", run_fe},
 };
 
 }  // namespace
 
-std::string LadderRung::label() const { return model + " / " + structure_name() + " / " + contact_law; }
+std::string LadderRung::label() const { return model_name() + " / " + structure_name() + " / " + contact_law; }
 
 const std::vector<LadderRung>& fidelity_ladder() { return kLadder; }
 
 bool rung_applies(const LadderRung& rung, const Scene& scene) {
-  if (rung.model == "moving-forces") return true;
+  if (rung.model == LoadModel::kMovingForces) return true;
   if (scene.train.is_moving_forces()) return false;
-  if (rung.structure == RungStructure::kFe) return true;
+  if (rung.structure == StructureBackend::kFiniteElements) return true;
   const bool track = hybrid_partition(*scene.structure).unavailable.empty();
-  return rung.structure == RungStructure::kHybrid ? track : !track;
+  return rung.structure == StructureBackend::kHybrid ? track : !track;
 }
 
 Scene rung_scene(const LadderRung& rung, const Scene& scene, double dt_s) {
   Scene s = scene;
   s.analysis.dt_s = dt_s;
-  if (rung.model == "moving-forces") {
+  if (rung.model == LoadModel::kMovingForces) {
     if (!s.train.is_moving_forces()) {
       s.train.moving_forces = axle_loads(s.train);
       s.train.vehicles.clear();
     }
     return s;
   }
-  s.analysis.structure_backend = rung.structure == RungStructure::kModal    ? StructureBackend::kModal
-                                 : rung.structure == RungStructure::kHybrid ? StructureBackend::kHybrid
+  s.analysis.structure_backend = rung.structure == StructureBackend::kModal    ? StructureBackend::kModal
+                                 : rung.structure == StructureBackend::kHybrid ? StructureBackend::kHybrid
                                                                             : StructureBackend::kFiniteElements;
   s.analysis.contact.law = rung.contact_law;
   s.analysis.contact.unilateral =

@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "solver/modal_basis.hpp"
+#include "simulation/load_model.hpp"
 #include "simulation/result.hpp"
 #include "simulation/scene.hpp"
+#include "solver/structure_backend.hpp"
 #include "solver/structure_operator.hpp"
 
 namespace railvsi {
@@ -25,20 +27,17 @@ struct RungResources {
   std::function<std::shared_ptr<const ModalBasis>()> modal_basis;
 };
 
-enum class RungStructure { kFe, kModal, kHybrid };
-
 struct LadderRung {
-  std::string model;        // "moving-forces" or "interaction" (FidelityRecord::model)
-  RungStructure structure;  // full FE (HHT on K_bar), the structure's modes, or hybrid (track FE, bridge modes)
+  LoadModel model;
+  StructureBackend structure;  // full FE (HHT on K_bar), the structure's modes, or hybrid (track FE, bridge modes)
   std::string contact_law;  // "none" for moving forces, else a contact law name
   // Runs the rung's scene (rung_scene()). Throws InputError when the rung
   // cannot run this scene (e.g. rigid contact with alpha > -0.02).
   Result (*run)(const Scene& scene, const RungResources& resources);
 
-  std::string structure_name() const {
-    return structure == RungStructure::kFe ? "fe" : structure == RungStructure::kModal ? "modal" : "hybrid";
-  }
-  // "moving-forces / fe / none"
+  std::string model_name() const { return load_model_name(model); }
+  std::string structure_name() const { return structure_backend_name(structure); }
+  // "moving_forces / fe / none"
   std::string label() const;
 };
 

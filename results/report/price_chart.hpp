@@ -17,7 +17,7 @@
 namespace railvsi {
 
 struct PricePoint {
-  std::string rung;  // series label: "moving-forces / fe / none"
+  std::string rung;  // series label: "moving_forces / fe / none"
   double dt_s = 0.0;
   double cpu_s = 0.0;   // > 0
   double error = 0.0;   // signed relative error, fraction

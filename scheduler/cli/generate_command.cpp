@@ -99,7 +99,7 @@ GenerateCommand::GenerateCommand(CLI::App& app) {
   generate_->require_subcommand(1);
   CLI::App* deck = generate_->add_subcommand(
       "deck-3d", "Simply supported concrete spans (8-node hexahedra; solid, or a box girder with --section) with two "
-                 "rails on pads, refined to a number of DOFs; writes K.mtx, M.mtx, C.mtx, map.json, moving-forces.json, multibody.json");
+                 "rails on pads, refined to a number of DOFs; writes K.mtx, M.mtx, C.mtx, map.json, moving_forces.json, multibody.json");
   deck->add_option("--dofs", args_.dofs,
                    "Total DOFs (deck and rails) the mesh is refined to, within 5 % (the paper's size is 233,292)")
       ->required()
@@ -154,7 +154,7 @@ int generate_deck_3d_command(const GenerateArgs& args) {
                         : fmt::format("{} m x {} m solid concrete", o.width_m, o.depth_m),
                   deck.mesh.nx.front(), deck.mesh.ny, deck.mesh.nz);
   std::vector<FileToWrite> files = structure_files(model);
-  for (const auto& [name, scene] : {std::pair{"moving-forces.json", moving_force_scene(model, summary)},
+  for (const auto& [name, scene] : {std::pair{"moving_forces.json", moving_force_scene(model, summary)},
                                     std::pair{"multibody.json", multibody_scene(model, summary)}})
     files.push_back({name, [text = scene.dump(2) + "\n"](const auto& file) { write_text_file(file, text); }});
   write_files_together(args.out_dir, files);

@@ -33,7 +33,7 @@ class GenerateCommand final : public CommandGroup {
   CLI::App* generate_ = nullptr;
 };
 
-// Writes K.mtx, M.mtx, C.mtx, map.json, moving-forces.json and
+// Writes K.mtx, M.mtx, C.mtx, map.json, moving_forces.json and
 // multibody.json into args.out_dir and prints a JSON summary on stdout.
 int generate_deck_3d_command(const GenerateArgs& args);
 

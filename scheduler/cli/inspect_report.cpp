@@ -115,7 +115,7 @@ ordered_json train_report(const Train& train) {
     mass_kg += v.model->total_mass_kg();
   }
   ordered_json out = {{"name", train.name},
-                      {"model", train.is_moving_forces() ? "moving-forces" : "multibody"},
+                      {"model", train.is_moving_forces() ? "moving_forces" : "multibody"},
                       {"axles", train.num_axles()},
                       {"length_m", train.length_m()},
                       {"total_static_load_N", total_N}};

@@ -13,6 +13,7 @@
 
 #include "analysis/static_influence.hpp"
 #include "compliance/code_values.hpp"
+#include "compliance/stored_checks.hpp"
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
@@ -106,10 +107,6 @@ CheckResult quantity_check(CheckResult check, const std::vector<JobResult>& jobs
     cases.push_back({j.train, j.speed_kmh, j.irregularity, j.overall(check.quantity), j.id, "",
                      variants ? j.variant : "", j.error_estimate(check.quantity)});
   return evaluate_upper_limit(std::move(check), cases);
-}
-
-bool any_value(const std::vector<JobResult>& jobs, const std::string& quantity) {
-  return std::any_of(jobs.begin(), jobs.end(), [&](const JobResult& j) { return j.overall(quantity).has_value(); });
 }
 
 std::string fidelity_text(const JobResult& j) {
@@ -438,97 +435,24 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
 
   add_price_figures(db, study_id, report);
 
-  // Checks on stored quantities.
-  const bool ballasted = checks.value("track_type", std::string("ballasted")) != "direct_fastening";
+  // Checks on stored quantities: the table of rules (compliance/stored_checks).
   {
-    CheckResult c;
-    c.id = "deck_acceleration";
-    c.title = "Peak deck acceleration (filtered)";
-    c.quantity = "deck_acceleration_mps2";
-    c.unit = "m/s2";
-    const CodeValue code = ballasted ? deck_acceleration_limit_ballasted_mps2() : deck_acceleration_limit_direct_fastening_mps2();
-    c.clause = code.clause;
-    c.limit = *check_limit(checks, c.quantity);
-    if (checks.contains("deck_acceleration_limit_mps2")) {
-      c.limit_verified = c.limit == code.value && code.verified;
-      c.note = c.limit == code.value ? "" : "Limit given in the study's checks.";
-    } else {
-      c.limit_verified = code.verified;
-      c.note = std::string(ballasted ? "Ballasted track" : "Direct fastening") +
-               " limit (checks.track_type); frequencies up to the cut-off above.";
+    // The bound of the structure is named only when the study has several.
+    const bool variants =
+        std::any_of(jobs.begin(), jobs.end(), [](const JobResult& j) { return j.variant != "nominal"; });
+    std::vector<StoredCase> cases;
+    cases.reserve(jobs.size());
+    for (const JobResult& j : jobs) {
+      StoredCase c;
+      c.at = {j.train, j.speed_kmh, j.irregularity, std::nullopt, j.id, "", variants ? j.variant : ""};
+      c.axle_forces = j.axle_forces.value_or(false);
+      for (const StoredCheckRule& rule : stored_check_rules()) {
+        c.values[rule.quantity] = j.overall(rule.quantity);
+        c.error_estimates[rule.quantity] = j.error_estimate(rule.quantity);
+      }
+      cases.push_back(std::move(c));
     }
-    report.checks.push_back(quantity_check(c, jobs));
-  }
-  if (checks.contains("deck_displacement_limit_m")) {
-    CheckResult c;
-    c.id = "deck_displacement";
-    c.title = "Peak deck displacement";
-    c.quantity = "deck_displacement_m";
-    c.unit = "m";
-    c.clause = "limit given in the study's checks";
-    c.limit = *check_limit(checks, c.quantity);
-    c.limit_verified = true;
-    report.checks.push_back(quantity_check(c, jobs));
-  }
-  // Wheel and car-body checks concern trains of vehicles: a train given as
-  // axle forces (a load model such as HSLM) has no wheel or car body, so its
-  // cases are left out of these checks rather than counted as missing.
-  const std::vector<JobResult> vehicle_jobs = jobs_with_vehicles(jobs);
-  const std::size_t axle_force_jobs = jobs.size() - vehicle_jobs.size();
-  const auto vehicle_check = [&](const CheckResult& c) {
-    CheckResult out = quantity_check(c, vehicle_jobs);
-    if (axle_force_jobs == 0) return out;
-    if (vehicle_jobs.empty()) {
-      out.verdict = Verdict::kNotEvaluated;
-      out.note += " Not evaluated: every train of the study is given as axle forces (a load model has no wheels or "
-                  "car bodies).";
-    } else {
-      out.note += fmt::format(" The {} cases of trains given as axle forces (load models: no wheels or car bodies) "
-                              "are not part of this check.",
-                              axle_force_jobs);
-    }
-    return out;
-  };
-  const bool wheels = any_value(jobs, "unloading_ratio") || checks.contains("max_unloading_ratio");
-  if (wheels) {
-    CheckResult c;
-    c.id = "wheel_unloading";
-    c.title = "Wheel unloading dQ/Q";
-    c.quantity = "unloading_ratio";
-    c.unit = "";
-    const CodeValue code = unloading_ratio_limit();
-    c.limit = *check_limit(checks, c.quantity);
-    c.clause = checks.contains("max_unloading_ratio") ? "limit given in the study's checks" : code.clause;
-    c.limit_verified = checks.contains("max_unloading_ratio");
-    c.note = "1 means the wheel lost contact.";
-    report.checks.push_back(vehicle_check(c));
-  }
-  if (any_value(jobs, "carbody_acceleration_mps2") || checks.contains("carbody_acceleration_limit_mps2")) {
-    CheckResult c;
-    c.id = "passenger_comfort";
-    c.title = "Passenger comfort: car-body acceleration";
-    c.quantity = "carbody_acceleration_mps2";
-    c.unit = "m/s2";
-    c.clause = kComfortClause;
-    const std::string level = checks.value("comfort_level", std::string("very good"));
-    c.limit = *check_limit(checks, c.quantity);
-    c.limit_verified = kComfortVerified;
-    if (checks.contains("carbody_acceleration_limit_mps2")) {
-      c.note = "Limit given in the study's checks.";
-    } else {
-      c.note = "Required level: " + level + " (checks.comfort_level).";
-    }
-    c = vehicle_check(c);
-    if (c.governing && c.governing->value) {
-      std::string achieved = "below acceptable";
-      for (const ComfortLevel& l : comfort_levels())
-        if (*c.governing->value <= l.b_v_mps2) {
-          achieved = l.name;
-          break;
-        }
-      c.note += " Level reached by the governing case: " + achieved + ".";
-    }
-    report.checks.push_back(c);
+    for (CheckResult& c : evaluate_stored_checks(checks, cases)) report.checks.push_back(std::move(c));
   }
 
   // Static checks from the same structure: LM71 deflection and the dynamic

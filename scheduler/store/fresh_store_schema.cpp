@@ -96,7 +96,7 @@ CREATE TABLE price_rows (
   study_id    TEXT NOT NULL REFERENCES studies (id),
   job_id      TEXT NOT NULL REFERENCES jobs (id),  -- the priced job (its stored scene)
   run         INTEGER NOT NULL,     -- index of the run in the job's ladder (rung, then decreasing dt)
-  model       TEXT NOT NULL,        -- moving-forces, interaction
+  model       TEXT NOT NULL,        -- moving_forces, interaction
   structure   TEXT NOT NULL,        -- fe, modal
   contact_law TEXT NOT NULL,        -- none, rigid, linear-hertz, hertz
   modes       INTEGER,              -- modal rungs: modes kept; NULL for fe

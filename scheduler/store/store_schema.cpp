@@ -150,7 +150,7 @@ CREATE TABLE price_rows (
   study_id    TEXT NOT NULL REFERENCES studies (id),
   job_id      TEXT NOT NULL REFERENCES jobs (id),  -- the priced job (its stored scene)
   run         INTEGER NOT NULL,     -- index of the run in the job's ladder (rung, then decreasing dt)
-  model       TEXT NOT NULL,        -- moving-forces, interaction
+  model       TEXT NOT NULL,        -- moving_forces, interaction
   structure   TEXT NOT NULL,        -- fe, modal
   contact_law TEXT NOT NULL,        -- none, rigid, linear-hertz, hertz
   modes       INTEGER,              -- modal rungs: modes kept; NULL for fe
@@ -244,6 +244,20 @@ CREATE TABLE study_structures (
   position  INTEGER NOT NULL,         -- the bridge's place in the study's structures
   PRIMARY KEY (study_id, job_id, structure)
 ) WITHOUT ROWID;
+)sql"},
+      {"one spelling of the load model, the schema's: fidelity records and price rows of earlier versions said "
+       "\"moving-forces\" where scenes say \"moving_forces\" (a record is keyed by its SHA-256, so it is "
+       "written anew and its jobs point to it)",
+       R"sql(
+CREATE TEMP TABLE respelled AS
+  SELECT id AS old_id, replace(record, '"model":"moving-forces"', '"model":"moving_forces"') AS record
+  FROM fidelity_records WHERE instr(record, '"model":"moving-forces"') > 0;
+INSERT OR IGNORE INTO fidelity_records (id, record) SELECT vsi_sha256(record), record FROM respelled;
+UPDATE jobs SET fidelity_id = (SELECT vsi_sha256(r.record) FROM respelled r WHERE r.old_id = jobs.fidelity_id)
+  WHERE fidelity_id IN (SELECT old_id FROM respelled);
+DELETE FROM fidelity_records WHERE id IN (SELECT old_id FROM respelled);
+DROP TABLE respelled;
+UPDATE price_rows SET model = 'moving_forces' WHERE model = 'moving-forces';
 )sql"},
   };
   return all;

@@ -61,7 +61,7 @@ TEST_F(Documents, SimulatePrintsTheSummaryOfTheContractWithNullWheelsForMovingFo
   for (const char* key : {"model", "contact_law", "unilateral", "solver_path", "structure_backend", "structure_dofs",
                           "vehicle_dofs", "contacts", "hht_alpha", "hht_beta", "hht_gamma"})
     EXPECT_TRUE(summary["run"]["fidelity"].contains(key)) << key;
-  EXPECT_EQ(summary["run"]["fidelity"]["model"], "moving-forces");
+  EXPECT_EQ(summary["run"]["fidelity"]["model"], "moving_forces");
 }
 
 // The modal interaction rung prints the same section keys (mode
@@ -130,7 +130,7 @@ TEST_F(Documents, VehiclesAsMovingForcesRunAsAMovingForceModelWithoutWheelValues
   const VsiRun run = vsi("simulate '" + write_json("scene.json", scene).string() + "'");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const json summary = json::parse(run.out);
-  EXPECT_EQ(summary["run"]["fidelity"]["model"], "moving-forces");
+  EXPECT_EQ(summary["run"]["fidelity"]["model"], "moving_forces");
   EXPECT_TRUE(summary["wheels"]["min_contact_force_N"].is_null());
 }
 

@@ -36,7 +36,7 @@ TEST_F(Generate, Deck3dWritesTheImportFilesAtTheRequestedSize) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const json summary = json::parse(run.out);
   EXPECT_NEAR(summary["dofs"].get<double>(), 5000.0, 250.0);
-  for (const char* name : {"K.mtx", "M.mtx", "C.mtx", "map.json", "moving-forces.json", "multibody.json"})
+  for (const char* name : {"K.mtx", "M.mtx", "C.mtx", "map.json", "moving_forces.json", "multibody.json"})
     EXPECT_TRUE(std::filesystem::exists(out() / name)) << name;
 
   // The same options in memory: the files hold the same matrices, to the bit.
@@ -60,7 +60,7 @@ TEST_F(Generate, Deck3dWritesTheImportFilesAtTheRequestedSize) {
 
 TEST_F(Generate, Deck3dScenesRunWithEachAxleOnBothRails) {
   ASSERT_EQ(generate("--dofs 5000 --spans 20,25").exit_code, 0);
-  const VsiRun forces = simulate_shortened("moving-forces.json", 0.05);
+  const VsiRun forces = simulate_shortened("moving_forces.json", 0.05);
   ASSERT_EQ(forces.exit_code, 0) << forces.err;
   EXPECT_EQ(json::parse(forces.out)["status"], "ok");
 
@@ -84,7 +84,7 @@ TEST_F(Generate, Deck3dAbove20000DofsGetsItsThirdModeAsTheCodeFrequency) {
   const VsiRun generated = generate("--dofs 21500");
   ASSERT_EQ(generated.exit_code, 0) << generated.err;
   ASSERT_GT(json::parse(generated.out)["dofs"].get<int>(), 20000);
-  const VsiRun run = simulate_shortened("moving-forces.json", 0.05);
+  const VsiRun run = simulate_shortened("moving_forces.json", 0.05);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const json summary = json::parse(run.out);
   for (const json& w : summary["run"]["warnings"]) EXPECT_NE(w["code"], "cutoff_not_computed");
@@ -105,7 +105,7 @@ TEST_F(Generate, Deck3dAbove20000DofsGetsItsThirdModeAsTheCodeFrequency) {
 // (tests/engine/deck_twist_test.cpp twists an eccentric track).
 TEST_F(Generate, Deck3dStudyChecksTheTwistBetweenItsTwoRails) {
   ASSERT_EQ(generate("--dofs 5000 --spans 20 --approach 10").exit_code, 0);
-  const json scene = json::parse(read_text(out() / "moving-forces.json"));
+  const json scene = json::parse(read_text(out() / "moving_forces.json"));
   json axles = json::array();
   for (double offset : {0.0, 3.0}) axles.push_back({{"offset_m", offset}, {"load_N", 170e3}});
   json analysis = scene.at("analysis");

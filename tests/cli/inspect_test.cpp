@@ -121,7 +121,7 @@ TEST_F(Inspect, TextReportListsFrequenciesAxlesAndDamping) {
   const VsiRun run = vsi("inspect '" + write_json("scene.json", small_scene()).string() + "' --modes 2");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   for (const char* text : {"structure (bridge-2d)", "damping: 1.000 % (given)", "natural frequencies",
-                           "deck bending, 1 half-wave in span 1", "train 'one force' (moving-forces): 1 axles",
+                           "deck bending, 1 half-wave in span 1", "train 'one force' (moving_forces): 1 axles",
                            "irregularity: none"})
     EXPECT_NE(run.out.find(text), std::string::npos) << text << " in:\n" << run.out;
 }

@@ -40,7 +40,7 @@ json coach_scene() {
 // structure with modes up to modal_cutoff_hz for interaction on the modes.
 json rung_document(json doc, const json& row, double modal_cutoff_hz = 0.0) {
   doc["analysis"]["dt_s"] = row.at("dt_s");
-  if (row.at("model") == "moving-forces") {
+  if (row.at("model") == "moving_forces") {
     doc["train"]["as"] = "moving_forces";
   } else {
     json contact = {{"law", row.at("contact_law")}};
@@ -147,7 +147,7 @@ TEST_F(Price, ErrorsAgreeWithIndependentSimulateRuns) {
   ASSERT_EQ(mf_run.exit_code, 0) << mf_run.err;
   const double cutoff_hz = json::parse(mf_run.out).at("deck").at("cutoff_hz").get<double>();
   for (const json& row : rows) {
-    if (row.at("structure") != "modal" || row.at("model") != "moving-forces") continue;
+    if (row.at("structure") != "modal" || row.at("model") != "moving_forces") continue;
     Scene s = load_scene(write_json("modal.json", rung_document(doc, row)));
     ModalMovingForceOptions o;
     o.max_frequency_hz = 1.2 * cutoff_hz;
@@ -198,7 +198,7 @@ TEST_F(Price, TableAndCsv) {
   const auto scene = write_json("scene.json", doc);
   const VsiRun table = vsi("price " + scene.string());
   ASSERT_EQ(table.exit_code, 0) << table.err;
-  EXPECT_NE(table.out.find("reference: moving-forces / fe / none"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("reference: moving_forces / fe / none"), std::string::npos) << table.out;
   EXPECT_NE(table.out.find("cheapest within 1 % / 5 %"), std::string::npos);
   const VsiRun csv = vsi("price " + scene.string() + " --format csv");
   ASSERT_EQ(csv.exit_code, 0) << csv.err;

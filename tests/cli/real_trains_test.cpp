@@ -126,7 +126,7 @@ TEST_F(RealTrains, SetHslRealStandsForItsTrainsInOrder) {
   std::vector<std::string> names;
   for (const json& t : report["trains"]) {
     names.push_back(t["name"].get<std::string>());
-    EXPECT_EQ(t["model"], "moving-forces") << t["name"];
+    EXPECT_EQ(t["model"], "moving_forces") << t["name"];
   }
   // jobs/trains/sets/hsl-real.json, in its order, after the study's own.
   EXPECT_EQ(names, (std::vector<std::string>{"HSLM-A1", "ICE2", "Talgo350", "AVE-S100", "AVE-S103", "Eurostar", "KHST",

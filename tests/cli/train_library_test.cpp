@@ -56,12 +56,12 @@ TEST(TrainLibraryRuns, EveryLibraryTrainRunsOnASmallBridgeAsVehiclesAndAsForces)
   int multibody = 0;
   for (const std::string& name : names) {
     if (load_library_train(name).is_moving_forces()) {
-      expect_finite_ok_run(name, "moving-forces");
+      expect_finite_ok_run(name, "moving_forces");
       continue;
     }
     ++multibody;
     expect_finite_ok_run(name, "interaction");
-    expect_finite_ok_run(json{{"library", name}, {"as", "moving_forces"}}, "moving-forces");
+    expect_finite_ok_run(json{{"library", name}, {"as", "moving_forces"}}, "moving_forces");
   }
   EXPECT_GE(multibody, 4) << "ICE3, Eurostar, Shinkansen300, KHST";
 }

@@ -103,7 +103,7 @@ TEST(FidelityLadder, RungScenesOfAMultibodyScene) {
   // rungs set their contact law.
   const auto& ladder = fidelity_ladder();
   ASSERT_GE(ladder.size(), 5u);
-  EXPECT_EQ(ladder.back().model, "interaction");
+  EXPECT_EQ(ladder.back().model_name(), "interaction");
   EXPECT_EQ(ladder.back().contact_law, "hertz");
   EXPECT_EQ(ladder.front().structure_name(), "modal");
 }
@@ -149,7 +149,7 @@ TEST(AccuracyPrice, ErrorsOfEachRungMatchFrybaWithinTheRichardsonAccuracy) {
   const PriceReport p = price_scene(scene, po);
   ASSERT_TRUE(p.reference.row.has_value());
   const PriceRow& ref = p.rows[*p.reference.row];
-  EXPECT_EQ(ref.model, "moving-forces");
+  EXPECT_EQ(ref.model, "moving_forces");
   EXPECT_EQ(ref.structure, "fe");
   const std::string q = "deck_displacement_m";
   const RichardsonEstimate& rich = p.reference.richardson.at(q);

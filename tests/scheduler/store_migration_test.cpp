@@ -2,6 +2,7 @@
 // of a version-7 store move out of the jobs rows, and every reader still
 // sees them (view job_records), unchanged to the byte. 9: the envelopes are
 // keyed by the job's number; view envelopes gives them by job id as before.
+// 12: records and price rows take the schema's spelling of the load model.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -216,6 +217,51 @@ TEST_F(StoreMigration, NineKeysTheEnvelopesByTheJobsNumberAndKeepsThemByJobId) {
   EXPECT_EQ(std::count_if(after.begin(), after.end(),
                           [](const std::string& p) { return p.find("jobs without a number") != std::string::npos; }),
             1);
+}
+
+TEST_F(StoreMigration, TwelveSpellsTheLoadModelAsTheSchemaDoesInRecordsAndPriceRows) {
+  const StudyPlan plan = expand_study(tiny_study(), dir_, (dir_ / "s.json").string());
+  ASSERT_GE(plan.jobs.size(), 3u);
+  // Records as a version-11 vsi wrote them (nlohmann's dump, keys sorted).
+  const std::string old_record = R"json({"model":"moving-forces","structure_backend":"modal (3 modes)"})json";
+  const std::string other_record = R"json({"model":"interaction","structure_backend":"cholmod"})json";
+  const std::string new_record = R"json({"model":"moving_forces","structure_backend":"modal (3 modes)"})json";
+  {
+    Database db((dir_ / "old.sqlite").string());
+    migrate(db, 11);
+    ASSERT_EQ(insert_jobs(db, plan.jobs, 3, 0.0), plan.jobs.size());
+    for (const std::string& r : {old_record, other_record})
+      db.prepare("INSERT INTO fidelity_records (id, record) VALUES (?, ?)").bind(1, sha256_hex(r)).bind(2, r).run();
+    db.prepare("UPDATE jobs SET fidelity_id = ? WHERE id <> ?").bind(1, sha256_hex(old_record)).bind(2, plan.jobs[0].id).run();
+    db.prepare("UPDATE jobs SET fidelity_id = ? WHERE id = ?").bind(1, sha256_hex(other_record)).bind(2, plan.jobs[0].id).run();
+    db.exec("INSERT INTO studies (id, name, file, document, checks, job_count, submitted_at) VALUES ('s1', 's', 's.json', '{}', '{}', 0, 0)");
+    for (const char* model : {"moving-forces", "interaction"})
+      db.prepare("INSERT INTO price_rows (study_id, job_id, run, model, structure, contact_law, dt_s, status, cpu_s, "
+                 "wall_s, reference, quantity, pareto, priced_at) VALUES ('s1', ?, ?, ?, 'fe', 'none', 0.001, 'ok', 1, "
+                 "1, 0, 'deck_acceleration_mps2', 0, 0)")
+          .bind(1, plan.jobs[0].id).bind(2, std::string(model) == "interaction" ? 1 : 0).bind(3, model).run();
+  }
+  Database db((dir_ / "old.sqlite").string());
+  migrate(db);
+  EXPECT_EQ(count_rows(db, "PRAGMA user_version"), kStoreSchemaVersion);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM fidelity_records WHERE instr(record, 'moving-forces') > 0"), 0);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM fidelity_records"), 2);
+  // Each job's record by its key: the respelled one under its own SHA-256,
+  // the other untouched; no job points to a record that is gone.
+  Statement s = db.prepare("SELECT j.id, j.fidelity_id, f.record FROM jobs j LEFT JOIN fidelity_records f "
+                           "ON f.id = j.fidelity_id ORDER BY j.id");
+  int jobs = 0;
+  while (s.step()) {
+    ++jobs;
+    const bool first = s.text(0) == plan.jobs[0].id;
+    ASSERT_FALSE(s.is_null(2)) << s.text(0);
+    EXPECT_EQ(s.text(2), first ? other_record : new_record);
+    EXPECT_EQ(s.text(1), sha256_hex(first ? other_record : new_record));
+  }
+  EXPECT_EQ(jobs, static_cast<int>(plan.jobs.size()));
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM price_rows WHERE model = 'moving_forces'"), 1);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM price_rows WHERE model = 'interaction'"), 1);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM price_rows WHERE model = 'moving-forces'"), 0);
 }
 
 }  // namespace
