@@ -223,6 +223,32 @@ TEST_F(ModalBatches, BatchedJobsWithAProfileCarryIrregularityIgnored) {
   EXPECT_EQ(without, 4);
 }
 
+// Axles that start behind a short approach track enter it while the first
+// is inside the evaluation window: the batched modal jobs record
+// entry_inside_window, as the single-run path and the FE rungs' monitor do
+// (issue 35: the modal rung's record lacked it).
+TEST_F(ModalBatches, BatchedJobsRecordTheRailEndEntryInsideTheWindow) {
+  json doc = modal_study();
+  doc["speeds_kmh"] = json::array({200, 250});
+  doc["structure"]["track"] = {{"approach_m", 5.0}, {"exit_m", 5.0}};
+  doc["trains"] = json::parse(R"([{ "name": "four axles", "moving_forces": [
+      { "offset_m": 0, "load_N": 1.0e5 }, { "offset_m": 3, "load_N": 1.0e5 },
+      { "offset_m": 20, "load_N": 1.0e5 }, { "offset_m": 23, "load_N": 1.0e5 }] }])");
+  const std::string db_file = run_study(doc, "entry.sqlite", 256);
+  Database db(db_file);
+  Statement s = db.prepare("SELECT warnings, rung FROM job_records");
+  int jobs = 0;
+  while (s.step()) {
+    ++jobs;
+    EXPECT_EQ(s.text(1), "moving_forces/modal");
+    const json warnings = json::parse(s.text(0));
+    EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(),
+                            [](const json& w) { return w.at("code") == "entry_inside_window"; }))
+        << s.text(0);
+  }
+  EXPECT_EQ(jobs, 2);
+}
+
 // A step given in the study above the modal rung's sampling rule is
 // flagged as on the FE rungs: dt_above_policy, and filter_above_nyquist
 // where it cannot resolve the code frequency (the filtered value is left
