@@ -21,27 +21,11 @@
 namespace railvsi::test {
 namespace {
 
+// The span of two_hslm_trains_study (vsi_test_support.hpp).
 constexpr double kSpan_m = 25.0, kEI_Nm2 = 7.694e10;
 
 std::filesystem::path trains_dir() {
   return std::filesystem::path(RAILVSI_TEST_DATA) / ".." / ".." / ".." / "jobs" / "trains";
-}
-
-// Two HSLM trains over a 25 m simply supported span, five speeds.
-nlohmann::json small_study() {
-  return nlohmann::json::parse(R"({
-    "name": "phi'dyn plot",
-    "structure": {
-      "generator": "bridge-2d", "spans_m": [25], "continuous": false,
-      "deck": {"EI_Nm2": 7.694e10, "mass_kg_per_m": 15000},
-      "damping": {"ratio": 0.01}, "track": null
-    },
-    "trains": ["HSLM-A1", "HSLM-A2"],
-    "speeds_kmh": {"from": 200, "to": 400, "step": 50},
-    "analysis": {"hht_alpha": -0.05},
-    "outputs": {"points": [{"name": "quarter", "x_m": 6.25}, {"name": "midspan", "x_m": 12.5}]},
-    "checks": {"deck_acceleration_limit_mps2": 3.5}
-  })");
 }
 
 // Deflection at x of a simply supported beam under P at a (closed form).
@@ -70,7 +54,8 @@ class ReportPhiDynPlot : public VsiCliTest {};
 
 TEST_F(ReportPhiDynPlot, PhiDynOfTheDeflectionIsPlottedAgainstSpeedPerTrain) {
   const auto db = dir_ / "study.sqlite";
-  const VsiRun run = vsi("run '" + write_json("study.json", small_study()).string() + "' --db '" + db.string() + "'");
+  const auto study = write_json("study.json", two_hslm_trains_study("phi'dyn plot"));
+  const VsiRun run = vsi("run '" + study.string() + "' --db '" + db.string() + "'");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string id = study_id_of(run.out + run.err);
   ASSERT_FALSE(id.empty()) << run.out << run.err;
