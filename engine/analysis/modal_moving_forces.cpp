@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "analysis/modal_run_warnings.hpp"
 #include "core/input_error.hpp"
 #include "simulation/load_model.hpp"
 #include "simulation/run_monitor.hpp"
@@ -45,7 +46,7 @@ Result run_modal_moving_forces(const Scene& scene, const ModalBasis& basis, Deck
       sweep.run(modal_run_start_x_m(scene), scene.speed_mps, n_steps, ws, &result.histories, scene.analysis.history_stride);
   result.status = run.status;
   fill_modal_summary(sweep, run, result.summary);
-  result.summary.warnings = scene_input_warnings(scene);
+  result.summary.warnings = modal_run_warnings(scene);
   result.summary.wall_s = std::chrono::duration<double>(Clock::now() - t_start).count();
   return result;
 }

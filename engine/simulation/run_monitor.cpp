@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "model/undamped_structure.hpp"
+#include "simulation/track_entry.hpp"
 
 namespace railvsi {
 
@@ -82,28 +83,12 @@ void RunMonitor::warn_once(const std::string& code, std::string message, std::op
 void RunMonitor::check_track_ends(double start_x_m) {
   const StructureModel& st = *scene_.structure;
   if (!(scene_.speed_mps > 0.0)) return;
-  // Axles that start behind a modelled approach track enter it at its rail
-  // end during the run: a transient (an axle load applied at once, or a
-  // wheel leaving the rigid path) that a real track does not have. It is
-  // inside the evaluation window when the train's first axle is already in
-  // the window at that moment. Without an approach (the rail starts at the
-  // bridge) the entry is the bridge's own.
-  const double rail_start = st.rails().front().start_m();
-  const auto [bridge_start, bridge_end] = bridge_extent_m(st);
   std::vector<double> offsets;
   for (const MovingForce& m : scene_.train.moving_forces) offsets.push_back(m.offset_m);
   for (const ContactSpec& c : layout_.contacts) offsets.push_back(c.offset_m);
-  double worst_front_m = -std::numeric_limits<double>::infinity();
-  for (double off : offsets)
-    if (TrainLayout::position_m(start_x_m, off) < rail_start)
-      worst_front_m = std::max(worst_front_m, rail_start + off);  // front when this axle enters
-  if (rail_start < bridge_start && worst_front_m >= window_.start_m)
-    warn_once("entry_inside_window",
-              fmt::format("axles enter the modelled track (x = {:.1f} m) while the first axle is at x = {:.1f} m, "
-                          "inside the evaluation window from {:.1f} m: the entry transient is part of the results; "
-                          "lengthen the approach track",
-                          rail_start, worst_front_m, window_.start_m),
-              (worst_front_m - start_x_m) / scene_.speed_mps);
+  if (std::optional<RunWarning> entry = track_entry_warning(scene_, offsets, start_x_m))
+    warn_once(entry->code, std::move(entry->message), entry->t_s);
+  const auto bridge_end = bridge_extent_m(st).second;
 
   // A wheel running off the exit rail end onto the rigid path beyond meets
   // a step in its support (on the 3 x 25 m viaduct with ICE3: +-0.7 MN on a

@@ -9,11 +9,13 @@
 //                    banded factor costs ~ n_s
 //   FE, setup:       c_factor x n_s + c_flex x n_rail x n_s (interaction:
 //                    one solve per rail DOF for the rail flexibility)
-//   modal, per step: c_mode x modes x (n_a + n_points)
-//   modal, setup:    c_basis x n_s x modes (Lanczos)
+//   modal, per step: c_step + c_mode x modes x (n_a + n_points)
+//   modal, setup:    c_basis x n_s x modes (the modes, and the modes
+//                    sampled under the axles before the first step)
 //
 // The coefficients (cost_model.cpp) were fitted on two README scenes
-// measured by `vsi price` itself; `vsi price` prints predicted against
+// measured by `vsi price` itself, the modal ones re-measured by
+// tests/bench/cost_model_bench; `vsi price` prints predicted against
 // measured for every run, which is how a user sees whether the model
 // holds for a scene. A plane model has a banded factor; a 3D deck's factor
 // is denser and the prediction then low: treat it as an order of

@@ -98,6 +98,9 @@ struct ComplianceReport {
   std::string study_name, study_id, study_file;
   TitleBlock title;
   std::vector<PhiDynRow> phi_dyn;
+  // phi'dyn against speed, one figure per load effect (deflection, moment,
+  // shear), one line per train: at each speed the largest over the locations.
+  std::vector<ReportFigure> phi_dyn_figures;
   std::vector<ModeRow> modes;
   std::optional<ReportFigure> mode_shapes;  // the deck's, up to the code cut-off
   std::string modes_note;               // which modes the runs used

@@ -110,12 +110,15 @@ json report_json(const ComplianceReport& r) {
                        {"dynamic", optional_number(p.dynamic_value)},
                        {"speed_kmh", p.speed_kmh},
                        {"phi_dyn", optional_number(p.phi_dyn)}});
+  json phi_dyn_figures = json::array();
+  for (const ReportFigure& f : r.phi_dyn_figures) phi_dyn_figures.push_back(figure_json(f));
   json modes = json::array();
   for (const ModeRow& m : r.modes) modes.push_back({{"mode", m.number}, {"frequency_hz", m.frequency_hz}, {"role", m.role}});
   return {{"study", {{"name", r.study_name}, {"id", r.study_id}}},
           {"title", {{"project", r.title.project}, {"structure", r.title.structure}, {"author", r.title.author}}},
           {"response_figures", response},
           {"phi_dyn", phi_dyn},
+          {"phi_dyn_figures", phi_dyn_figures},
           {"modes", modes},
           {"modes_used", r.modes_note},
           {"mode_shapes", r.mode_shapes ? figure_json(*r.mode_shapes) : json(nullptr)},

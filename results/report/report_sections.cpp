@@ -145,7 +145,9 @@ std::string phi_dyn_html(const ComplianceReport& r) {
                        esc(p.train), esc(p.quantity), esc(p.location), number(p.static_value), esc(p.unit),
                        p.dynamic_value ? number(*p.dynamic_value) + " " + esc(p.unit) : "-",
                        p.dynamic_value ? fmt::format("{:g}", p.speed_kmh) : "-", p.phi_dyn ? number(*p.phi_dyn) : "-");
-  return out + "</table>\n";
+  out += "</table>\n";
+  for (const ReportFigure& f : r.phi_dyn_figures) out += figure_html(f);
+  return out;
 }
 
 std::string modes_html(const ComplianceReport& r) {

@@ -38,12 +38,16 @@ std::string progress_line(const scheduler::StateCounts& c, double rate, const st
 ProgressDisplay::ProgressDisplay(bool terminal, double log_interval_s)
     : terminal_(terminal), log_interval_s_(log_interval_s) {}
 
-void ProgressDisplay::update(const scheduler::StateCounts& c, double elapsed_s, bool final) {
-  const std::int64_t finished = c.done + c.failed + c.cancelled;
-  if (finished_at_start_ < 0) finished_at_start_ = finished;
-  // The rate of this process's session: jobs finished since it started.
-  const double rate = elapsed_s > 0.0 ? static_cast<double>(finished - finished_at_start_) / elapsed_s : 0.0;
-  const std::string eta = rate > 0.0 ? format_duration(static_cast<double>(c.unfinished()) / rate) : "?";
+std::string eta_text(const scheduler::Throughput& throughput) {
+  return throughput.eta_s ? format_duration(*throughput.eta_s) : std::string("?");
+}
+
+void ProgressDisplay::update(const scheduler::WorkProgress& progress, bool final) {
+  // The store's recent rate and ETA, as `vsi status` computes them (not this
+  // session's own average, which disagreed with status in the same second).
+  const scheduler::StateCounts& c = progress.counts;
+  const double rate = progress.throughput.jobs_per_s.value_or(0.0);
+  const std::string eta = eta_text(progress.throughput);
   if (terminal_) {
     // One line rewritten in place: never wider than the terminal (less one
     // column, so that the cursor does not wrap), padded to erase the last one.
@@ -56,8 +60,8 @@ void ProgressDisplay::update(const scheduler::StateCounts& c, double elapsed_s, 
     std::fflush(stderr);
     return;
   }
-  if (!final && elapsed_s - last_log_s_ < log_interval_s_) return;
-  last_log_s_ = elapsed_s;
+  if (!final && progress.elapsed_s - last_log_s_ < log_interval_s_) return;
+  last_log_s_ = progress.elapsed_s;
   spdlog::info("{}/{} jobs done, {} failed, {} queued, {} running; {:.2f} jobs/s, ETA {}", c.done, c.total(), c.failed,
                c.queued, c.running, rate, eta);
 }

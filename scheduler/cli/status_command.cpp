@@ -38,7 +38,8 @@ int status_command(const ServiceArgs& args) {
       out << fmt::format("  throughput: {:.2f} jobs/s over the last {:.0f} s of work", *s.jobs_per_s,
                          scheduler::kThroughputWindow_s);
       if (c.unfinished() > 0)
-        out << (s.eta_s ? ", ETA " + format_duration(*s.eta_s) : std::string(", no job finished recently: no ETA"));
+        out << (s.eta_s ? ", ETA " + eta_text({s.jobs_per_s, s.eta_s})  // as vsi work shows it
+                        : std::string(", no job finished recently: no ETA"));
       out << '\n';
     }
     if (s.job_wall_s > 0.0)

@@ -68,7 +68,7 @@ scheduler::WorkSummary work(const ServiceArgs& args, const WorkerIdentity* ident
   if (!identity) interrupts.emplace(args.db, options.worker_prefix);
   options.stopping = identity ? identity->stopping : interrupts->stopping();
   const scheduler::WorkSummary s = scheduler::run_workers(
-      options, [&](const scheduler::StateCounts& c, double elapsed_s, bool final) { display.update(c, elapsed_s, final); });
+      options, [&](const scheduler::WorkProgress& p, bool final) { display.update(p, final); });
   spdlog::info("this worker: {} jobs done, {} failed in {}; factorizations {} ({:.2f} s), cache lookups hit {}, evictions {}",
                s.jobs_done, s.jobs_failed, format_duration(s.wall_s), s.cache.factorizations, s.cache.factorization_s,
                s.cache.hits, s.cache.evictions);

@@ -164,6 +164,51 @@ std::pair<std::string, double> display_unit(const std::string& quantity) {
   return {"", 1.0};
 }
 
+// phi'dyn against speed (EN 1991-2 6.4.6.5), one figure per load effect
+// that has a static value, one line per train: at each speed the largest
+// phi'dyn over the locations (and the profiles, through the dynamic values).
+// The circle marks the largest of the figure, a value of the table.
+std::vector<ReportFigure> phi_dyn_figures(const std::vector<DynamicIncrement>& increments,
+                                          const std::vector<std::string>& train_order) {
+  struct Effect {
+    const char* quantity;
+    const char* name;
+  };
+  std::vector<ReportFigure> out;
+  for (const Effect e : {Effect{"deck_displacement_m", "deck deflection"}, Effect{"bending_moment_Nm", "bending moment"},
+                         Effect{"shear_force_N", "shear force"}}) {
+    LinePlot plot;
+    plot.title = std::string("phi'dyn of the ") + e.name;
+    plot.x_label = "speed [km/h]";
+    plot.y_label = "phi'dyn [-]";
+    std::optional<std::pair<double, double>> largest;
+    for (const std::string& t : train_order) {
+      std::map<double, double> by_speed;
+      for (const DynamicIncrement& d : increments) {
+        if (d.train != t || d.quantity != e.quantity) continue;
+        for (const auto& [v, phi] : d.phi_dyn_by_speed()) {
+          const auto [it, fresh] = by_speed.try_emplace(v, phi);
+          if (!fresh) it->second = std::max(it->second, phi);
+        }
+      }
+      if (by_speed.empty()) continue;
+      for (const auto& point : by_speed)
+        if (!largest || point.second > largest->second) largest = point;
+      plot.series.push_back({t, {by_speed.begin(), by_speed.end()}});
+    }
+    if (plot.series.empty()) continue;
+    plot.marked = largest;
+    plot.marked_label = fmt::format("largest {:.3g}", largest->second);
+    out.push_back({plot,
+                   std::string("phi'dyn = dynamic / static - 1 of the ") + e.name +
+                       " against speed, one line per train: at each speed the largest over the locations (and "
+                       "profiles); the static value is the same train's axle loads standing on the structure. The "
+                       "circle marks the largest, as in the table.",
+                   std::nullopt, ""});
+  }
+  return out;
+}
+
 // Stored quantities no check judges, against speed: what a designer reads
 // beside the checks (EN 1991-2 6.4.6: displacement, section forces, end
 // rotation), one line per train.
@@ -601,13 +646,15 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   // 6.4.6.5), as a table beside the check above.
   try {
     std::vector<std::string> unused;
-    for (const DynamicIncrement& d : dynamic_increments(db, jobs, unused)) {
+    const std::vector<DynamicIncrement> increments = dynamic_increments(db, jobs, unused);
+    for (const DynamicIncrement& d : increments) {
       const auto [unit, scale] = display_unit(d.quantity);
       PhiDynRow row{d.train, d.quantity, d.location, unit, d.static_value * scale, std::nullopt, d.governing_speed_kmh,
                     d.phi_dyn()};
       if (d.dynamic_value) row.dynamic_value = *d.dynamic_value * scale;
       report.phi_dyn.push_back(row);
     }
+    report.phi_dyn_figures = phi_dyn_figures(increments, train_order);
   } catch (const std::exception& e) {
     report.notes.push_back(std::string("phi'dyn not computed: ") + e.what());
   }

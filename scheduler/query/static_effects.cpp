@@ -1,5 +1,6 @@
 #include "query/static_effects.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,6 +14,13 @@ namespace railvsi::scheduler {
 std::optional<double> DynamicIncrement::phi_dyn() const {
   if (!dynamic_value || !(static_value > 0.0)) return std::nullopt;
   return *dynamic_value / static_value - 1.0;
+}
+
+std::vector<std::pair<double, double>> DynamicIncrement::phi_dyn_by_speed() const {
+  std::vector<std::pair<double, double>> out;
+  if (!(static_value > 0.0)) return out;
+  for (const auto& [speed_kmh, dynamic] : dynamic_by_speed) out.emplace_back(speed_kmh, dynamic / static_value - 1.0);
+  return out;
 }
 
 std::vector<DynamicIncrement> dynamic_increments(Database& db, const std::vector<JobResult>& jobs,
@@ -34,7 +42,8 @@ std::vector<DynamicIncrement> dynamic_increments(Database& db, const std::vector
   for (const std::string& t : trains) {
     const std::vector<MovingForce> axles = axle_loads(load_job_scene(db, by_train[t].front()->id).train);
     const auto add = [&](const char* quantity, const std::string& location, double static_value) {
-      DynamicIncrement d{t, quantity, location, static_value, std::nullopt, 0.0, 0};
+      DynamicIncrement d{t, quantity, location, static_value, std::nullopt, 0.0, 0, {}};
+      std::map<double, double> by_speed;
       for (const JobResult* j : by_train[t]) {
         std::optional<double> v;
         const auto q = j->envelopes.find(quantity);
@@ -47,7 +56,10 @@ std::vector<DynamicIncrement> dynamic_increments(Database& db, const std::vector
           continue;
         }
         if (!d.dynamic_value || *v > *d.dynamic_value) d.dynamic_value = v, d.governing_speed_kmh = j->speed_kmh;
+        const auto [it, fresh] = by_speed.try_emplace(j->speed_kmh, *v);
+        if (!fresh) it->second = std::max(it->second, *v);
       }
+      d.dynamic_by_speed.assign(by_speed.begin(), by_speed.end());
       out.push_back(std::move(d));
     };
     const auto& points = structure.outputs();

@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -31,8 +32,14 @@ struct DynamicIncrement {
   std::optional<double> dynamic_value;  // the largest over the train's jobs with a value
   double governing_speed_kmh = 0.0;
   int jobs_without_value = 0;
+  // (speed_kmh, the largest dynamic value at that speed over its jobs, e.g.
+  // the profiles), ascending in speed: dynamic_value is their largest.
+  std::vector<std::pair<double, double>> dynamic_by_speed;
   // dynamic / static - 1; absent without a dynamic value or a static value > 0
   std::optional<double> phi_dyn() const;
+  // (speed_kmh, phi'dyn at that speed) from dynamic_by_speed; empty without
+  // a static value > 0.
+  std::vector<std::pair<double, double>> phi_dyn_by_speed() const;
 };
 
 // One entry per train x load effect x location, trains in the order of the

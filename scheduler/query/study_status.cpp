@@ -1,12 +1,12 @@
 #include "query/study_status.hpp"
 
-#include <algorithm>
-
 #include "core/unix_time.hpp"
 
 namespace railvsi::scheduler {
 
-StudyStatus study_status(Database& db, const std::string& study_id) {
+StudyStatus study_status(Database& db, const std::string& study_id) { return study_status(db, study_id, unix_now_s()); }
+
+StudyStatus study_status(Database& db, const std::string& study_id, double now) {
   StudyStatus st;
   st.id = study_id;
   {
@@ -14,7 +14,6 @@ StudyStatus study_status(Database& db, const std::string& study_id) {
     if (s.bind(1, study_id).step()) st.name = s.text(0);
   }
   st.counts = state_counts(db, study_id);
-  const double now = unix_now_s();
   {
     Statement s = db.prepare(
         "SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
@@ -24,26 +23,15 @@ StudyStatus study_status(Database& db, const std::string& study_id) {
   }
   {
     Statement s = db.prepare(
-        "SELECT count(*), total(j.wall_s), total(j.loop_s), max(j.finished_at) "
-        "FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+        "SELECT total(j.wall_s), total(j.loop_s) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
         "WHERE sj.study_id = ? AND j.state IN ('done', 'failed') AND j.finished_at IS NOT NULL");
     s.bind(1, study_id).step();
-    const std::int64_t finished = s.int64(0);
-    st.job_wall_s = s.real(1);
-    st.loop_s = s.real(2);
-    if (finished > 0) {
-      // While jobs are left the window runs to now, so a stall lowers the rate.
-      const double end = st.counts.unfinished() > 0 ? now : s.real(3);
-      Statement w = db.prepare(
-          "SELECT count(*), min(j.started_at) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
-          "WHERE sj.study_id = ? AND j.state IN ('done', 'failed') AND j.finished_at > ? AND j.finished_at <= ?");
-      w.bind(1, study_id).bind(2, end - kThroughputWindow_s).bind(3, end).step();
-      const std::int64_t recent = w.int64(0);
-      const double begin = w.is_null(1) ? end - kThroughputWindow_s : std::max(end - kThroughputWindow_s, w.real(1));
-      st.jobs_per_s = static_cast<double>(recent) / std::max(end - begin, 1e-3);
-      if (*st.jobs_per_s > 0.0) st.eta_s = static_cast<double>(st.counts.unfinished()) / *st.jobs_per_s;
-    }
+    st.job_wall_s = s.real(0);
+    st.loop_s = s.real(1);
   }
+  const Throughput throughput = recent_throughput(db, study_id, st.counts, now);
+  st.jobs_per_s = throughput.jobs_per_s;
+  st.eta_s = throughput.eta_s;
   {
     Statement s = db.prepare("SELECT factorizations, hits, factorization_s, evictions FROM cache_stats WHERE study_id = ?");
     if (s.bind(1, study_id).step()) {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "analysis/modal_moving_forces.hpp"
+#include "analysis/modal_run_warnings.hpp"
 #include "analysis/modal_sweep.hpp"
 #include "core/input_error.hpp"
 #include "io/json_document.hpp"
@@ -189,7 +190,7 @@ void run_group_on_pass(ModalPass& pass, const std::vector<GroupMember>& group, c
     const ModalSweepRun& run = runs[g];
     RunSummary summary;
     fill_modal_summary(*pass.sweep, run, summary);
-    summary.warnings = scene_input_warnings(scene);
+    summary.warnings = modal_run_warnings(scene);
     for (RunWarning& w : modal_time_step_warnings(scene, job.cutoff_hz)) summary.warnings.push_back(std::move(w));
     if (pass.fidelity_text.empty()) {
       record_rung(scene, pass.plan, pass.plan.rung, summary);

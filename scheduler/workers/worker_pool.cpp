@@ -217,6 +217,14 @@ std::string worker_name_prefix() {
   return fmt::format("{}:{}:{}-{:08x}", host_name(), ::getpid(), start_s, random());
 }
 
+WorkProgress work_progress(Database& db, double now_s, double elapsed_s) {
+  WorkProgress p;
+  p.counts = state_counts(db);
+  p.throughput = recent_throughput(db, {}, p.counts, now_s);
+  p.elapsed_s = elapsed_s;
+  return p;
+}
+
 void single_threaded_blas() {
   ::setenv("OPENBLAS_NUM_THREADS", "1", 1);
   // OpenBLAS reads the variable when it is loaded, before main: tell the
@@ -244,12 +252,13 @@ WorkSummary run_workers(const WorkOptions& options, const ProgressCallback& prog
     if (!progress) return;
     try {
       if (!monitor) monitor = std::make_unique<Database>(options.db_file, OpenMode::kExisting);
-      progress(state_counts(*monitor), std::chrono::duration<double>(Clock::now() - start).count(), final);
+      progress(work_progress(*monitor, unix_now_s(), std::chrono::duration<double>(Clock::now() - start).count()),
+               final);
     } catch (const SqliteError& e) {
       spdlog::warn("progress: {}", e.what());
     }
   };
-  report(false);  // the state before this process starts: the baseline of its rate
+  report(false);  // the state before this process starts
 
   StopSignal stop_heartbeat, workers_finished;
   std::thread heartbeat([&] { heartbeat_loop(options, names, held, stop_heartbeat); });

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "queue/job_queue.hpp"
+#include "queue/throughput.hpp"
 #include "workers/factorization_cache.hpp"
 
 namespace railvsi::scheduler {
@@ -51,8 +52,20 @@ struct WorkSummary {
 // new name, so it never renews the leases of its dead predecessor.
 std::string worker_name_prefix();
 
+// What the progress of `vsi work` shows: the store's state counts and its
+// throughput and ETA (recent_throughput over all studies, the function
+// `vsi status` uses for one study), read at the same moment.
+struct WorkProgress {
+  StateCounts counts;
+  Throughput throughput;
+  double elapsed_s = 0.0;  // since run_workers started
+};
+
+// Reads the store's progress at now_s (unix time).
+WorkProgress work_progress(Database& db, double now_s, double elapsed_s);
+
 // Called from the calling thread while the workers run, then once at the end.
-using ProgressCallback = std::function<void(const StateCounts& counts, double elapsed_s, bool final)>;
+using ProgressCallback = std::function<void(const WorkProgress& progress, bool final)>;
 
 // OPENBLAS_NUM_THREADS=1 and the BLAS itself single-threaded: parallelism
 // is across jobs. Call before any BLAS call (vsi calls it in main).

@@ -21,23 +21,7 @@
 namespace railvsi::test {
 namespace {
 
-// Two HSLM trains over the 25 m span of the README example (light deck:
-// its resonances exceed the ballasted limit), five speeds: 10 quick jobs.
-nlohmann::json small_study() {
-  return nlohmann::json::parse(R"({
-    "name": "report test <HSLM>",
-    "structure": {
-      "generator": "bridge-2d", "spans_m": [25], "continuous": false,
-      "deck": {"EI_Nm2": 7.694e10, "mass_kg_per_m": 15000},
-      "damping": {"ratio": 0.01}, "track": null
-    },
-    "trains": ["HSLM-A1", "HSLM-A2"],
-    "speeds_kmh": {"from": 200, "to": 400, "step": 50},
-    "analysis": {"hht_alpha": -0.05},
-    "outputs": {"points": [{"name": "quarter", "x_m": 6.25}, {"name": "midspan", "x_m": 12.5}]},
-    "checks": {"deck_acceleration_limit_mps2": 3.5}
-  })");
-}
+nlohmann::json small_study() { return two_hslm_trains_study("report test <HSLM>"); }
 
 std::string strip_date_line(std::string html) {
   return std::regex_replace(html, std::regex("<span class=\"small\" id=\"date\">[^<]*</span>"), "");
