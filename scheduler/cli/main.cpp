@@ -37,6 +37,9 @@ int run(int argc, char** argv) {
                        "carbody.csv (created if needed)");
   simulate->add_flag("--allow-large", simulate_args.allow_large,
                      "Run even when the estimated step count, history memory or work exceeds the limits");
+  simulate->add_flag("--verify", simulate_args.verify,
+                     "Run the scene again at dt/2 and add dt_self_check: the relative change of each key quantity, "
+                     "with a dt_self_check warning for each one that moves more than accuracy.tolerance (default 1 %)");
 
   ReplayArgs replay_args;
   CLI::App* replay = app.add_subcommand(
