@@ -20,6 +20,7 @@
 #include "envelopes/job_envelopes.hpp"
 #include "planning/cost_model.hpp"
 #include "planning/fidelity_ladder.hpp"
+#include "price/dt_self_check.hpp"
 #include "simulation/simulation.hpp"
 
 namespace railvsi {
@@ -214,14 +215,7 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
       const JobEnvelopes e = compute_envelopes(result, s.analysis.dt_s, s.analysis.history_stride, report.cutoff_hz);
       row.status = e.status;
       row.message = e.message.empty() ? result.status.message() : e.message;
-      const auto set = [&](std::string_view q, std::optional<double> v) { row.values[std::string(q)] = v; };
-      set("deck_displacement_m", e.max_abs_displacement_m);
-      set("deck_acceleration_mps2", e.max_abs_acceleration_mps2);
-      set("deck_acceleration_unfiltered_mps2", e.max_abs_acceleration_unfiltered_mps2);
-      set("min_contact_force_N", e.min_contact_force_N);
-      set("unloading_ratio", e.max_unloading_ratio);
-      set("contact_loss_s", e.max_contact_loss_s);
-      set("carbody_acceleration_mps2", e.max_abs_carbody_acceleration_mps2);
+      row.values = key_quantity_values(e);
     } catch (const InputError& e) {
       row.status = "refused";
       row.message = e.describe();

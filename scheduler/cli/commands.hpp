@@ -23,6 +23,7 @@ struct SimulateArgs {
   std::string scene_file;
   std::optional<std::string> histories_dir;
   bool allow_large = false;  // run beyond the size limits (steps, history memory)
+  bool verify = false;       // run again at dt/2 and compare the key quantities
 };
 
 struct ReplayArgs {
@@ -41,9 +42,11 @@ int simulate_command(const SimulateArgs& args);
 // Runs a scene, writes its histories when asked, prints the summary JSON.
 // cutoff_hz: the code filter's cut-off (a stored job's), else from the
 // structure. allow_large lifts the size limits of a run. Exit 0 when the
-// run is ok, else 1.
+// run is ok, else 1. verify: also run the scene at dt/2 and add the
+// relative change of each key quantity ("dt_self_check", with a warning per
+// value that moves more than the scene's accuracy.tolerance).
 int run_scene(Scene scene, const std::string& file_for_errors, std::optional<double> cutoff_hz,
-              const std::optional<std::string>& histories_dir, bool allow_large = false);
+              const std::optional<std::string>& histories_dir, bool allow_large = false, bool verify = false);
 // Runs a stored job again from job_scenes.scene (vsi replay).
 int replay_command(const ReplayArgs& args);
 int validate_command(const std::string& file);

@@ -12,6 +12,9 @@ SceneCommands::SceneCommands(CLI::App& app) {
                        "carbody.csv (created if needed)");
   simulate_->add_flag("--allow-large", simulate_args_.allow_large,
                      "Run even when the estimated step count, history memory or work exceeds the limits");
+  simulate_->add_flag("--verify", simulate_args_.verify,
+                      "Run the scene again at dt/2 and add dt_self_check: the relative change of each key quantity, "
+                      "with a dt_self_check warning for each one that moves more than accuracy.tolerance (default 1 %)");
 
   replay_ = app.add_subcommand(
       "replay", "Run a job of a study database again from its stored scene; print its summary JSON and write its "

@@ -8,11 +8,13 @@
 #include "cli/commands.hpp"
 #include "cli/run_outputs.hpp"
 #include "envelopes/code_filter.hpp"
+#include "envelopes/job_envelopes.hpp"
 #include "core/input_error.hpp"
 #include "io/input_file.hpp"
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "planning/time_step_warnings.hpp"
+#include "price/dt_self_check.hpp"
 #include "simulation/simulation.hpp"
 #include "planning/deck_frequencies.hpp"
 #include "planning/scene_plan.hpp"
@@ -45,10 +47,43 @@ DeckFrequencies frequencies_of(const Scene& scene, std::vector<RunWarning>& warn
   return {};
 }
 
+// vsi simulate --verify: the scene again at half its step, planned as the
+// first run was (the same frequencies; a rung that escalates does so at
+// half its step too), and the key quantities of both compared.
+DtSelfCheck verify_dt(const Scene& scene, const Result& first, const scheduler::DeckFrequencies& f, double cutoff_hz,
+                      const std::string& file_for_errors, std::vector<RunWarning>& warnings) {
+  Scene half = scene;
+  half.analysis.dt_s = 0.5 * scene.analysis.dt_s;
+  const Result fine = [&] {
+    try {
+      return scheduler::run_planned(half, f);
+    } catch (const InputError& e) {
+      throw e.with_file(file_for_errors);
+    }
+  }();
+  const JobEnvelopes a = compute_envelopes(first, first.summary.dt_s, scene.analysis.history_stride, cutoff_hz);
+  const JobEnvelopes b = compute_envelopes(fine, fine.summary.dt_s, half.analysis.history_stride, cutoff_hz);
+  const DtSelfCheck check = dt_self_check(a, b, first.summary.dt_s, fine.summary.dt_s, scene.fidelity.tolerance);
+  if (!b.ok())
+    warnings.push_back({"dt_self_check",
+                        fmt::format("the run at dt/2 ended {} ({}): its values are not a reference", b.status,
+                                    b.message.empty() ? fine.status.message() : b.message),
+                        std::nullopt, std::nullopt, std::nullopt});
+  const auto rung = [](const Result& r) { return r.summary.fidelity.rung + " " + r.summary.fidelity.contact_law; };
+  if (rung(fine) != rung(first))
+    warnings.push_back({"dt_self_check",
+                        fmt::format("the run at dt/2 ran on {}, the run at dt on {}: the check compares rungs as "
+                                    "well as steps",
+                                    rung(fine), rung(first)),
+                        std::nullopt, std::nullopt, std::nullopt});
+  for (RunWarning& w : dt_self_check_warnings(check)) warnings.push_back(std::move(w));
+  return check;
+}
+
 }  // namespace
 
 int run_scene(Scene scene, const std::string& file_for_errors, std::optional<double> cutoff_hz,
-              const std::optional<std::string>& histories_dir, bool allow_large) {
+              const std::optional<std::string>& histories_dir, bool allow_large, bool verify) {
   scene.analysis.allow_large_run = allow_large;
   std::vector<RunWarning> extra;
   const bool need_frequencies = !cutoff_hz || scene.fidelity.mode != FidelityRequest::Mode::kAsGiven;
@@ -65,6 +100,8 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
       throw e.with_file(file_for_errors);
     }
   }();
+  std::optional<DtSelfCheck> check;
+  if (verify) check = verify_dt(scene, result, f, cutoff, file_for_errors, extra);
   // An escalation for wheel quantities ran at a finer dt: its histories and filter are at that dt.
   if (result.summary.dt_s > 0.0) scene.analysis.dt_s = result.summary.dt_s;
   // The time-step checks judge the contact law that ran (the planner's for "auto").
@@ -77,7 +114,9 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
   for (RunWarning& w : extra) result.summary.warnings.push_back(std::move(w));
   const RunFrame frame = run_frame(scene, cutoff);
   if (histories_dir) write_run_histories(result.histories, frame, *histories_dir);
-  std::cout << run_summary_json(result, scene, frame).dump(2) << '\n';
+  nlohmann::ordered_json summary = run_summary_json(result, scene, frame);
+  if (check) summary["dt_self_check"] = dt_self_check_json(*check);
+  std::cout << summary.dump(2) << '\n';
   return result.status.ok() ? kExitOk : kExitRuntimeFailure;
 }
 
@@ -95,9 +134,9 @@ int simulate_command(const SimulateArgs& args) {
                          "<stdin>");
     }
     const Scene scene = parse_scene(parse_json_text(text, "<stdin>"), std::filesystem::current_path(), "<stdin>");
-    return run_scene(scene, "<stdin>", std::nullopt, args.histories_dir, args.allow_large);
+    return run_scene(scene, "<stdin>", std::nullopt, args.histories_dir, args.allow_large, args.verify);
   }
-  return run_scene(load_scene(args.scene_file), args.scene_file, std::nullopt, args.histories_dir, args.allow_large);
+  return run_scene(load_scene(args.scene_file), args.scene_file, std::nullopt, args.histories_dir, args.allow_large, args.verify);
 }
 
 }  // namespace railvsi::cli

@@ -328,7 +328,8 @@ std::string format_table(const StudyInfo& study, const std::vector<JobResult>& j
     out += fmt::format("{} the run that gave this value has warnings (vsi query --format json lists them)\n",
                        kWarningMark);
   if (any_estimate)
-    out += fmt::format("\u00b1: error estimate of the value, from its re-run one rung up (accuracy.verify){}\n",
+    out += fmt::format("\u00b1: error estimate of the value, from its re-run at dt/2 (and one rung up when "
+                       "accuracy.verify is given){}\n",
                        any_above ? fmt::format("; {} above the study's tolerance {:g} %", kEstimateMark,
                                                100.0 * study.tolerance)
                                  : "");

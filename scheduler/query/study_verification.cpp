@@ -65,8 +65,9 @@ JobSpec verification_job(const json& doc, const StoredJob& of, const std::string
 }
 
 // The verification runs of one job, least refined first: dt/2 on its rung,
-// then dt/2 on the next rung when its rung is not the full model's.
-std::vector<JobSpec> verification_jobs(const std::string& job_id, const StoredJob& of) {
+// then dt/2 on the next rung when its rung is not the full model's (not
+// for dt_only: the default's time-step self-check).
+std::vector<JobSpec> verification_jobs(const std::string& job_id, const StoredJob& of, bool dt_only) {
   const std::string short_id = job_id.substr(0, 12);
   json doc = parse_json_text(of.scene, "job " + short_id);
   const double dt_s = 0.5 * of.dt_s;
@@ -75,7 +76,7 @@ std::vector<JobSpec> verification_jobs(const std::string& job_id, const StoredJo
   out.push_back(verification_job(doc, of, fmt::format("verification of job {}: its dt {:.4g} s halved", short_id, of.dt_s)));
   // Only where a rung was pinned (by the planner or the study): a scene run
   // as its analysis gives has no rung to climb.
-  if (!doc.contains("fidelity")) return out;
+  if (dt_only || !doc.contains("fidelity")) return out;
   const Scene scene = parse_scene(doc, "/", "job " + short_id);
   const ScenePlan plan = plan_scene(scene, DeckFrequencies{});
   const std::optional<Rung> next = next_rung(plan.rung);
@@ -108,16 +109,26 @@ std::vector<JobSpec> verification_jobs(const std::string& job_id, const StoredJo
 
 }  // namespace
 
-std::optional<VerifyRequest> verify_request(const json& study_document) {
+std::optional<VerifyRequest> verify_request(const json& study_document, bool by_default) {
   const auto accuracy = study_document.find("accuracy");
-  if (accuracy == study_document.end() || !accuracy->contains("verify")) return std::nullopt;
+  if (accuracy == study_document.end() || !accuracy->contains("verify"))
+    return by_default ? std::optional<VerifyRequest>(VerifyRequest{true, 0.0, true}) : std::nullopt;
   const json& v = accuracy->at("verify");
+  if (v.is_boolean() && !v.get<bool>()) return std::nullopt;
   VerifyRequest r;
   if (v.is_number()) {
     r.governing_only = false;
     r.fraction = v.get<double>();
   }
   return r;
+}
+
+bool verifies_by_default(Database& db, const std::string& study_id) {
+  Statement s = db.prepare(
+      "SELECT EXISTS (SELECT 1 FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ? "
+      "AND j.rung LIKE 'interaction/%' AND j.irregularity != 'none')");
+  s.bind(1, study_id).step();
+  return s.int64(0) != 0;
 }
 
 int verify_sample_size(const VerifyRequest& request, std::size_t n_ok) {
@@ -128,7 +139,7 @@ int verify_sample_size(const VerifyRequest& request, std::size_t n_ok) {
 std::size_t enqueue_verification(Database& db, const std::string& study_id, int max_attempts) {
   Statement s = db.prepare("SELECT document FROM studies WHERE id = ?");
   if (!s.bind(1, study_id).step()) return 0;
-  const std::optional<VerifyRequest> request = verify_request(json::parse(s.text(0)));
+  const std::optional<VerifyRequest> request = verify_request(json::parse(s.text(0)), verifies_by_default(db, study_id));
   if (!request) return 0;
   if (state_counts(db, study_id).unfinished() > 0) return 0;
   // Verified once; and not in a shard store, whose governing cases are not
@@ -153,7 +164,7 @@ std::size_t enqueue_verification(Database& db, const std::string& study_id, int 
     std::string why;
     for (const std::string& r : sampled.reasons) why += (why.empty() ? "" : ", ") + r;
     int refinement = 0;
-    for (JobSpec& j : verification_jobs(sampled.job.id, stored_job(db, sampled.job.id))) {
+    for (JobSpec& j : verification_jobs(sampled.job.id, stored_job(db, sampled.job.id), request->dt_only)) {
       links.push_back({sampled.job.id, j.id, why, ++refinement});
       jobs.push_back(std::move(j));
     }

@@ -25,12 +25,24 @@
 namespace railvsi::scheduler {
 
 // "governing", or the fraction of the study's jobs; nullopt when the study
-// document asks no verification.
+// document asks no verification ("verify": false), or leaves it out and
+// `by_default` is false.
 struct VerifyRequest {
   bool governing_only = true;
   double fraction = 0.0;  // (0, 1] when !governing_only
+  // The default's time-step self-check: dt/2 on the job's own rung only,
+  // not the next rung (which a "verify" given also runs).
+  bool dt_only = false;
 };
-std::optional<VerifyRequest> verify_request(const nlohmann::json& study_document);
+std::optional<VerifyRequest> verify_request(const nlohmann::json& study_document, bool by_default = false);
+
+// The default of accuracy.verify: "governing" for an interaction study on a
+// track with irregularities - some job of the study runs on an interaction
+// rung over a profile or defects (its irregularity is not "none"), where a
+// time step the policy accepts can still be too coarse for the track's
+// shortest features (issue 33): its governing cases re-run at dt/2 on
+// their own rung (VerifyRequest::dt_only); no verification otherwise.
+bool verifies_by_default(Database& db, const std::string& study_id);
 
 // How many jobs a request verifies among n_ok jobs done with status ok:
 // 0 for "governing" (price_sample: the governing cases alone), else

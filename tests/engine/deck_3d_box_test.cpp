@@ -159,11 +159,11 @@ TEST(Deck3dBox, FirstVerticalBendingFrequencyMatchesBeamTheory) {
   ASSERT_TRUE(modes.bending_hz) << "no mode with both webs moving down together";
   const double L = kSpan_m, m = o.density_kg_per_m3 * s.A + 2.0 * o.rail_mass_kg_per_m;
   const double EI = o.E_Pa * s.I;
-  // Euler-Bernoulli: f1 = (pi / 2L^2) sqrt(EI / m) = 7.004 Hz.
+  // Euler-Bernoulli: f1 = (pi / 2L^2) sqrt(EI / m) = 7.004 Hz. Not a
+  // reference for a 2 m deep box on a 25 m span (the FE is 7.26 % below it:
+  // shear deformation of the webs, the bearing offset, shear lag): only the
+  // order is asserted below, each effect softening the beam.
   const double f_eb = std::numbers::pi / (2.0 * L * L) * std::sqrt(EI / m);
-  // Measured -7.26 % (6.496 Hz): shear deformation of the webs, the bearing
-  // offset and shear lag in the slabs; the EB formula over-reads a box.
-  EXPECT_NEAR(*modes.bending_hz / f_eb, 1.0 - 0.0726, 0.005) << *modes.bending_hz << " Hz against " << f_eb;
   // Timoshenko with the webs as shear area (kappa A = 2 t_w h_w, the usual
   // box-girder approximation), rotary inertia rho I, and the bearings at
   // the soffit, zc below the axis, as in deck_3d_test: w^2 divides by
@@ -176,9 +176,15 @@ TEST(Deck3dBox, FirstVerticalBendingFrequencyMatchesBeamTheory) {
   const double w2 = (-qb - std::sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa) /
                     (1.0 + 2.0 * (o.density_kg_per_m3 * s.A / m) * std::pow(s.zc * k, 2));
   const double f_timoshenko = std::sqrt(w2) / (2.0 * std::numbers::pi);
-  // Measured -1.05 % (shear lag: the slabs' far fibres lag the webs).
-  EXPECT_NEAR(*modes.bending_hz / f_timoshenko, 1.0 - 0.0105, 0.005)
-      << *modes.bending_hz << " Hz against " << f_timoshenko;
+  // The reference is the Timoshenko beam (independent of the FE: the
+  // section written out above, closed form). Measured -1.05 % (6.496 Hz
+  // against 6.565; shear lag: the slabs' far fibres lag the webs, which the
+  // beam does not have); tolerance 3 %, 2.9x the measured error, centred on
+  // the reference, not on the FE's earlier answer.
+  EXPECT_NEAR(*modes.bending_hz / f_timoshenko, 1.0, 0.03) << *modes.bending_hz << " Hz against " << f_timoshenko;
+  // Shear lag only softens the Timoshenko beam, shear only Euler-Bernoulli's.
+  EXPECT_LT(*modes.bending_hz, f_timoshenko);
+  EXPECT_LT(f_timoshenko, f_eb);
 }
 
 TEST(Deck3dBox, FirstTorsionFrequencyAgainstStVenantTorsion) {
@@ -200,7 +206,12 @@ TEST(Deck3dBox, FirstTorsionFrequencyAgainstStVenantTorsion) {
   // only (a solid 5 m x 2 m deck on the same bearings is already 14 % below
   // its St Venant frequency at 25 m, 8 % at 50 m). A finer grid (100 x 24
   // x 10) gives 19.02 Hz.
-  EXPECT_NEAR(*modes.torsion_hz / f_T, 1.0 - 0.244, 0.01) << *modes.torsion_hz << " Hz against " << f_T;
+  // St Venant is not a reference for this box (a 24 % model-form gap), and
+  // no independent one (a distortion-and-bearing model, a published
+  // frequency of this section) is in the suite: the test asserts only what
+  // physics orders - distortion and soffit bearings soften, never stiffen -
+  // and that the mode is found, not the FE's own earlier -24.4 %.
+  EXPECT_LT(*modes.torsion_hz, f_T) << *modes.torsion_hz << " Hz against " << f_T;
 }
 
 // Intermediate diaphragms hold the cell against racking: the first torsion
@@ -224,8 +235,11 @@ TEST(Deck3dBox, IntermediateDiaphragmsRaiseTheTorsionFrequencyTowardsStVenant) {
               100.0 * (*without.torsion_hz / f_T - 1.0), *with.bending_hz, *without.bending_hz);
   // Measured -9.5 % of St Venant (23.50 Hz) against -24.4 % without: what
   // is left is mostly the bearings holding the twist at the soffit (a solid
-  // deck on the same bearings is 14 % below its St Venant frequency).
-  EXPECT_NEAR(*with.torsion_hz / f_T, 1.0 - 0.095, 0.01) << *with.torsion_hz << " Hz against " << f_T;
+  // deck on the same bearings is 14 % below its St Venant frequency). Only
+  // the order is asserted (no independent reference for the box's torsion,
+  // see above): the diaphragms raise it, and not past St Venant.
+  EXPECT_GT(*with.torsion_hz, *without.torsion_hz);
+  EXPECT_LT(*with.torsion_hz, f_T) << *with.torsion_hz << " Hz against " << f_T;
   // Bending: -4.2 % (6.22 Hz against 6.50). Rayleigh with each diaphragm's
   // added mass (the void filled over one element, 7.6 t) as a point mass on
   // the first mode sin(pi x / L) gives -4.9 %; the diaphragms also stiffen.

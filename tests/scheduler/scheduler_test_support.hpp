@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "../support/coach_json.hpp"
 #include "store/sqlite.hpp"
 
 namespace railvsi::test {
@@ -50,18 +51,7 @@ inline nlohmann::json tiny_study() {
 
 // One car-2d coach (ICE3-like values), as a train of vehicles of its own
 // when wrapped by one_car_train().
-inline nlohmann::json car(double primary_k_N_per_m) {
-  return {{"template", "car-2d"},
-          {"name", "coach"},
-          {"car_body", {{"mass_kg", 40000}, {"pitch_inertia_kgm2", 1.9e6}}},
-          {"bogie", {{"mass_kg", 3000}, {"pitch_inertia_kgm2", 1700}}},
-          {"wheelset", {{"mass_kg", 1800}, {"radius_m", 0.46}}},
-          {"bogie_spacing_m", 17.5},
-          {"axle_spacing_m", 2.5},
-          {"primary", {{"k_N_per_m", primary_k_N_per_m}, {"c_Ns_per_m", 2.0e4}}},
-          {"secondary", {{"k_N_per_m", 7.0e5}, {"c_Ns_per_m", 4.0e4}}},
-          {"length_m", 25.0}};
-}
+inline nlohmann::json car(double primary_k_N_per_m) { return railvsi::testing::coach_json(primary_k_N_per_m); }
 
 inline nlohmann::json one_car_train() {
   return {{"name", "one coach"}, {"vehicles", nlohmann::json::array({car(2.4e6)})}};

@@ -289,6 +289,75 @@ TEST_F(StudyVerification, RunsQueuedByAProcessThatDiedAreFinishedByTheNextWork) 
   EXPECT_GT(count("SELECT count(*) FROM envelopes WHERE error_estimate IS NOT NULL"), 0);
 }
 
+// accuracy.verify left out: "governing" only for an interaction study on a
+// track with irregularities (docs/accuracy-and-price.md "Error estimates").
+// The decision reads the submitted jobs' rungs and profiles; nothing runs.
+TEST_F(StudyVerification, DefaultVerifiesOnlyAnInteractionStudyOnAProfileOrDefects) {
+  const json dip = {{"defects", json::array({{{"type", "dip"}, {"x_m", 4.0}, {"length_m", 1.0}, {"depth_m", 0.01}}})}};
+  const auto by_default = [&](const json& doc, const std::string& name) {
+    const auto file = write_json(name + ".json", doc);
+    const std::string db_file = (dir_ / (name + ".sqlite")).string();
+    const VsiResult submitted = vsi({"submit", file.string(), "--db", db_file});
+    EXPECT_EQ(submitted.exit_code, 0) << name << ": " << submitted.err;
+    Database db(db_file, OpenMode::kExisting);
+    const std::string id = submitted.out.substr(6, 64);
+    EXPECT_EQ(count_rows(db, "SELECT count(*) FROM studies"), 1) << name;
+    const bool verifies = scheduler::verifies_by_default(db, id);
+    Statement s = db.prepare("SELECT document FROM studies WHERE id = ?");
+    EXPECT_TRUE(s.bind(1, id).step()) << name;
+    const auto request = scheduler::verify_request(json::parse(s.text(0)), verifies);
+    // verifies by default, verifies, only at dt/2 on the job's own rung
+    return std::tuple{verifies, request.has_value(), request && request->dt_only};
+  };
+  json interaction = tiny_study();
+  interaction["trains"] = json::array({one_car_train()});
+  interaction["speeds_kmh"] = json::array({200});
+  interaction["asks"] = {"deck", "wheel_unloading"};
+  interaction["irregularities"] = json::array({dip});
+  // The default re-runs at dt/2 on the job's rung only (the time-step self-check).
+  EXPECT_EQ(by_default(interaction, "interaction-dip"), std::tuple(true, true, true));
+  // The same on a perfect track: no default verification.
+  json perfect = interaction;
+  perfect["irregularities"] = json::array({nullptr});
+  EXPECT_EQ(by_default(perfect, "interaction-perfect"), std::tuple(false, false, false));
+  // Moving forces over the dip (the load model ignores the profile).
+  json forces = tiny_study();
+  forces["speeds_kmh"] = json::array({200});
+  forces["irregularities"] = json::array({dip});
+  EXPECT_EQ(by_default(forces, "forces-dip"), std::tuple(false, false, false));
+  // "verify": false turns the default off; a value given is kept.
+  json off = interaction;
+  off["accuracy"] = {{"verify", false}};
+  EXPECT_EQ(by_default(off, "interaction-off"), std::tuple(true, false, false));
+  json forces_asked = forces;
+  forces_asked["accuracy"] = {{"verify", "governing"}};
+  // Asked: the next rung as well.
+  EXPECT_EQ(by_default(forces_asked, "forces-asked"), std::tuple(false, true, false));
+}
+
+// The default at work: the one-coach study over a dip, worked, queues its
+// governing job's re-run at dt/2 on its own rung and nothing else.
+TEST_F(StudyVerification, DefaultQueuesTheGoverningJobAtHalfItsStepOnItsOwnRung) {
+  json doc = tiny_study();
+  doc["trains"] = json::array({one_car_train()});
+  doc["speeds_kmh"] = json::array({200});
+  doc["asks"] = {"deck", "wheel_unloading"};
+  doc["irregularities"] = json::array(
+      {{{"defects", json::array({{{"type", "dip"}, {"x_m", 4.0}, {"length_m", 1.0}, {"depth_m", 0.01}}})}}});
+  submit_and_work(doc);
+  ASSERT_EQ(count("SELECT count(*) FROM jobs WHERE state = 'done'"), 1);
+  const VsiResult worked = vsi({"work", "--db", db_});
+  ASSERT_EQ(worked.exit_code, 0) << worked.err;
+  EXPECT_EQ(count("SELECT count(*) FROM verification_jobs"), 1);
+  EXPECT_EQ(count("SELECT count(*) FROM verification_jobs WHERE refinement = 1"), 1);
+  // Its step halved exactly, the same rung, done; and estimates stored.
+  EXPECT_EQ(count("SELECT count(*) FROM verification_jobs v JOIN jobs j ON j.id = v.job_id JOIN jobs r ON "
+                  "r.id = v.verify_job_id WHERE r.dt_s = j.dt_s / 2 AND r.rung = j.rung AND r.state = 'done'"),
+            1);
+  EXPECT_GT(count("SELECT count(*) FROM envelopes WHERE error_estimate IS NOT NULL"), 0);
+  EXPECT_EQ(vsi({"check", "--db", db_}).exit_code, 0);
+}
+
 TEST_F(StudyVerification, BadVerifyValuesExit2NamingFileAndPath) {
   for (const json& bad : {json(0), json(1.5), json(-0.1), json("all"), json(true)}) {
     const auto file = write_json("bad.json", verified_study(bad));
