@@ -38,8 +38,12 @@ TEST_F(ProfileStatistics, QueryReportsMeanStandardDeviationAndExtremeOverSeeds) 
     scheduler::Statement id = d.prepare("SELECT id FROM studies");
     ASSERT_TRUE(id.step());
     study_id = id.text(0);
+    // The study's jobs: an interaction study over profiles also has its
+    // governing cases' dt/2 re-runs (accuracy.verify's default), which
+    // carry the same labels and are no sample of the profiles.
     scheduler::Statement s = d.prepare(
-        "SELECT j.train, j.speed_kmh, e.quantity, e.value FROM jobs j JOIN envelopes e ON e.job_id = j.id "
+        "SELECT j.train, j.speed_kmh, e.quantity, e.value FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
+        "JOIN envelopes e ON e.job_id = j.id "
         "WHERE e.location = '' AND j.irregularity LIKE 'german-high seed %' AND e.value IS NOT NULL");
     while (s.step()) groups[{s.text(0), s.real(1), s.text(2)}].values.push_back(s.real(3));
   }
