@@ -131,6 +131,27 @@ ModalSweep::ModalSweep(const ModalBasis& basis, const Train& train, const std::v
     }
     forms_fold_ = true;
     for (std::size_t f = 0; f < as_abs.size(); ++f) forms_fold_ = forms_fold_ && !(as_abs[f] && form_signed_[f]);
+    // Where an axle crosses a form's section or support, or a rail end: as
+    // the rail's node there (the bits of the train-load table's breakpoint,
+    // so that the two sides of the kink are the table's two pieces).
+    std::vector<double> at_m;
+    for (const Rail& rail : rails_) {
+      at_m.push_back(rail.start_m);
+      at_m.push_back(rail.end_m);
+      for (const LinearForm& form : forms.forms) {
+        const auto node = std::lower_bound(rail.x_m.begin(), rail.x_m.end(), form.x_m);
+        double nearest = form.x_m;
+        for (auto it : {node, node == rail.x_m.begin() ? node : node - 1})
+          if (it != rail.x_m.end() && std::abs(*it - form.x_m) < std::abs(nearest - form.x_m) + 1e-9) nearest = *it;
+        at_m.push_back(nearest);
+      }
+    }
+    std::sort(at_m.begin(), at_m.end());
+    at_m.erase(std::unique(at_m.begin(), at_m.end()), at_m.end());
+    for (double offset : offsets_)
+      for (double x : at_m) kinks_m_.push_back(x + offset);
+    std::sort(kinks_m_.begin(), kinks_m_.end());
+    kinks_m_.erase(std::unique(kinks_m_.begin(), kinks_m_.end()), kinks_m_.end());
   }
   twist_ = make_deck_twist_gauge(s, rail_lines);
   if (twist_.available()) {
@@ -196,6 +217,17 @@ void ModalSweep::modal_load(double x, double* p, std::size_t stride, std::size_t
       continue;
     }
     piece_load(rail, i, u, p, stride, false);
+  }
+}
+
+void ModalSweep::table_columns_at(double s, bool left, double* columns) const {
+  for (const Rail& rail : rails_) {
+    const std::vector<double>& b = rail.breaks;
+    if (b.size() < 2 || (left ? (s <= b.front() || s > b.back()) : (s < b.front() || s >= b.back()))) continue;
+    // left: b[i] < s <= b[i + 1]; from above: b[i] <= s < b[i + 1].
+    const auto at = left ? std::lower_bound(b.begin(), b.end(), s) : std::upper_bound(b.begin(), b.end(), s);
+    const auto i = static_cast<std::size_t>(at - b.begin()) - 1;
+    piece_load(rail, i, s - b[i], columns, 1, false);
   }
 }
 
@@ -329,6 +361,11 @@ template <int L>
       kept->resize(np);
       for (auto& k : *kept) k.resize(static_cast<std::size_t>(lanes[l].n_steps) + 1);
     }
+    if (sections_ && forms_fold_) {
+      ws.forms[static_cast<std::size_t>(l)].resize(n_forms);
+      for (auto& k : ws.forms[static_cast<std::size_t>(l)]) k.resize(static_cast<std::size_t>(lanes[l].n_steps) + 1);
+    }
+    ws.kink_splits[static_cast<std::size_t>(l)].clear();
   }
   const int stride = std::max(1, history_stride);
   if (histories) {
@@ -455,6 +492,8 @@ template <int L>
       return;
     }
     for (std::size_t f = 0; f < nf; ++f) {
+      for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
+        if (all || running(step, l)) ws.forms[l][f][static_cast<std::size_t>(step)] = lane_of(values[f], l);
       if (all) {
         raise_max_abs(max_abs_form[f], values[f]);
         max_form[f] = max_form[f] < values[f] ? values[f] : max_form[f];
@@ -463,6 +502,70 @@ template <int L>
       for (std::size_t l = 0; l < lanes_n; ++l) {
         if (!running(step, l)) continue;
         const double v = lane_of(values[f], l);
+        lane_of(max_abs_form[f], l) = std::max(lane_of(max_abs_form[f], l), std::abs(v));
+        lane_of(max_form[f], l) = std::max(lane_of(max_form[f], l), v);
+      }
+    }
+  };
+
+  // A form's influence line has a kink (a jump for a shear cut) where an
+  // axle stands on its section or support: its peak over time may fall
+  // between two steps, where the samples miss it and no parabola through
+  // them follows it. So at each such instant the forms are evaluated too:
+  // their static part exactly from the train-load table on both sides of
+  // the kink, their dynamic part from the modes' state there, interpolated
+  // within the step by the quintic Hermite polynomial through q, q', q'' at
+  // both ends (exact values of the recurrence; error of order
+  // (omega dt)^6 / 6! of a mode's amplitude), q'' from the equation of
+  // motion under the load there. A lane's next kink: next_kink[l].
+  const bool kinks = sections_ && !kinks_m_.empty();
+  const auto lane_x = [&](std::size_t l, long step) {
+    return lane[l].x0_m + lane[l].speed_mps * (static_cast<double>(step) * dt_s_);
+  };
+  std::array<std::size_t, L> next_kink{};
+  if (kinks) {
+    for (std::size_t l = 0; l < lanes_n; ++l)
+      next_kink[l] = static_cast<std::size_t>(std::upper_bound(kinks_m_.begin(), kinks_m_.end(), lane[l].x0_m) -
+                                              kinks_m_.begin());
+    for (auto* v : {&ws.q_start, &ws.qd_start, &ws.qdd_start}) v->assign(n * lanes_n, 0.0);
+    ws.kink_columns.assign(2 * width + 3 * n, 0.0);
+  }
+  const auto at_kink = [&](std::size_t l, double s, double theta) {
+    double* const below = ws.kink_columns.data();
+    double* const above = below + width;
+    double* const kq = above + width;
+    double* const kqd = kq + n;
+    double* const kqdd = kqd + n;
+    std::fill(below, below + 2 * width, 0.0);
+    table_columns_at(s, true, below);
+    table_columns_at(s, false, above);
+    // Quintic Hermite weights of the values and derivatives at the step's
+    // start (0) and end (1), and of its derivative.
+    const double h = dt_s_, t2 = theta * theta, t3 = t2 * theta, t4 = t3 * theta, t5 = t4 * theta;
+    const double w0 = 1.0 - 10.0 * t3 + 15.0 * t4 - 6.0 * t5, w3 = 1.0 - w0;
+    const double w1 = (theta - 6.0 * t3 + 8.0 * t4 - 3.0 * t5) * h, w4 = (-4.0 * t3 + 7.0 * t4 - 3.0 * t5) * h;
+    const double w2 = 0.5 * (t2 - 3.0 * t3 + 3.0 * t4 - t5) * h * h, w5 = 0.5 * (t3 - 2.0 * t4 + t5) * h * h;
+    const double d0 = (-30.0 * t2 + 60.0 * t3 - 30.0 * t4) / h, d3 = -d0;
+    const double d1 = 1.0 - 18.0 * t2 + 32.0 * t3 - 15.0 * t4, d4 = -12.0 * t2 + 28.0 * t3 - 15.0 * t4;
+    const double d2 = (theta - 4.5 * t2 + 6.0 * t3 - 2.5 * t4) * h, d5 = (1.5 * t2 - 4.0 * t3 + 2.5 * t4) * h;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = k * lanes_n + l;
+      const double q0 = ws.q_start[i], qd0 = ws.qd_start[i], qdd0 = ws.qdd_start[i];
+      const double q1 = lane_of(q[k], l), qd1 = lane_of(qd[k], l), qdd1 = lane_of(qdd[k], l);
+      kq[k] = w0 * q0 + w1 * qd0 + w2 * qdd0 + w3 * q1 + w4 * qd1 + w5 * qdd1;
+      kqd[k] = d0 * q0 + d1 * qd0 + d2 * qdd0 + d3 * q1 + d4 * qd1 + d5 * qdd1;
+      const ModalStep& m = steps_[k];
+      kqdd[k] = below[k] - 2.0 * m.zeta * m.omega * kqd[k] - m.omega * m.omega * kq[k];
+    }
+    for (const double* side : {below, above}) {
+      for (std::size_t f = 0; f < n_forms; ++f) ws.form_values[f] = side[n + f];
+      sections_->add_dynamic_part(kq, kqd, kqdd, below, ws.form_values.data());
+      if (!fold_forms) {
+        out[l].sections->update(ws.form_values);
+        continue;
+      }
+      for (std::size_t f = 0; f < n_forms; ++f) {
+        const double v = ws.form_values[f];
         lane_of(max_abs_form[f], l) = std::max(lane_of(max_abs_form[f], l), std::abs(v));
         lane_of(max_form[f], l) = std::max(lane_of(max_form[f], l), v);
       }
@@ -574,6 +677,16 @@ template <int L>
     for (long step = first; step < end; ++step) {
       const double t_new = static_cast<double>(step + 1) * dt_s_;
       V* const p_next = reinterpret_cast<V*>(ws.chunk.data() + static_cast<std::size_t>(step - first) * row);
+      // Does an axle of a running lane cross a kink in this step?
+      bool crossing = false;
+      for (std::size_t l = 0; kinks && l < static_cast<std::size_t>(count); ++l)
+        crossing = crossing || (step < last_step[l] && next_kink[l] < kinks_m_.size() &&
+                                kinks_m_[next_kink[l]] <= lane_x(l, step + 1));
+      if (crossing) {
+        std::copy(ws.q.begin(), ws.q.end(), ws.q_start.begin());
+        std::copy(ws.qd.begin(), ws.qd.end(), ws.qd_start.begin());
+        std::copy(ws.qdd.begin(), ws.qdd.end(), ws.qdd_start.begin());
+      }
       bool finite = true;
       V zero{};
       for (std::size_t k = 0; k < n; ++k) {
@@ -606,6 +719,24 @@ template <int L>
       const bool store = histories != nullptr && last_step[0] > step &&
                          ((step + 1) % stride == 0 || step + 1 == lanes[0].n_steps);
       record(step + 1, t_new, store);
+      for (std::size_t l = 0; crossing && l < static_cast<std::size_t>(count); ++l) {
+        if (step >= last_step[l]) continue;  // ended before this step's end
+        const double x_start = lane_x(l, step), x_end = lane_x(l, step + 1);
+        while (next_kink[l] < kinks_m_.size() && kinks_m_[next_kink[l]] <= x_end) {
+          const double at = kinks_m_[next_kink[l]++];
+          at_kink(l, at, x_end > x_start ? std::clamp((at - x_start) / (x_end - x_start), 0.0, 1.0) : 1.0);
+          // The samples before the kink end at this step's start; those
+          // after it begin at its end, or one later when the kink is on that
+          // sample (its value there is one side's).
+          std::vector<long>& splits = ws.kink_splits[l];
+          const long after = at == x_end ? step + 2 : step + 1;
+          if (!splits.empty() && splits.back() > step) splits.back() = std::max(splits.back(), after);
+          else {
+            splits.push_back(step);
+            splits.push_back(after);
+          }
+        }
+      }
     }
     // The chunk is refilled next: the last loads move out of it.
     std::copy(reinterpret_cast<const double*>(p), reinterpret_cast<const double*>(p) + row, ws.p.data());
@@ -614,13 +745,33 @@ template <int L>
   for (int l = 0; l < count; ++l) {
     ModalSweepRun& o = out[l];
     o.steps = last_step[static_cast<std::size_t>(l)];
-    if (fold_forms) {
-      for (std::size_t f = 0; f < n_forms; ++f)
-        ws.form_values[f] = lane_of(form_signed_[f] ? max_form[f] : max_abs_form[f], static_cast<std::size_t>(l));
-      o.sections->update(ws.form_values);
-    }
     // The peaks from the kept samples, each refined between its samples.
     const auto samples = static_cast<std::size_t>(o.steps) + 1;
+    if (fold_forms) {
+      // A form's samples between two kinks are smooth: each such segment is
+      // refined as the deck's peaks (a parabola across a kink would follow
+      // neither side). A form read signed (a reaction) is refined only
+      // where its largest value is also its largest |value|.
+      const std::vector<long>& splits = ws.kink_splits[static_cast<std::size_t>(l)];
+      for (std::size_t f = 0; f < n_forms; ++f) {
+        const auto lane = static_cast<std::size_t>(l);
+        double m = lane_of(form_signed_[f] ? max_form[f] : max_abs_form[f], lane);
+        if (!kinks || (form_signed_[f] && m < lane_of(max_abs_form[f], lane))) {
+          ws.form_values[f] = m;
+          continue;
+        }
+        const double* h = ws.forms[lane][f].data();
+        std::size_t start = 0;
+        for (std::size_t k = 0; k + 1 < splits.size() && static_cast<std::size_t>(splits[k]) < samples; k += 2) {
+          const auto end = static_cast<std::size_t>(splits[k]);
+          if (end > start) m = refine_max_abs(h + start, end - start + 1, 1, m, code);
+          start = static_cast<std::size_t>(splits[k + 1]);
+        }
+        if (start + 1 < samples) m = refine_max_abs(h + start, samples - start, 1, m, code);
+        ws.form_values[f] = m;
+      }
+      o.sections->update(ws.form_values);
+    }
     o.max_abs_displacement_m.resize(np);
     o.max_abs_acceleration_mps2.resize(np);
     const auto lane = static_cast<std::size_t>(l);

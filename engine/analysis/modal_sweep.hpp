@@ -80,6 +80,17 @@ struct ModalSweepWorkspace {
   std::array<std::vector<std::vector<double>>, kSweepLanes> displacement, acceleration;
   std::vector<std::size_t> piece;  // per rail and lane: the piece of its train load the first axle is on
   std::vector<double> offset;      // per rail and lane: the first axle's distance from that piece's start
+  // With section forces: the modal state at the start of a step in which
+  // an axle crosses a kink of the forms (lane-minor, as q), and the train
+  // load's columns on both sides of the kink.
+  std::vector<double> q_start, qd_start, qdd_start;
+  std::vector<double> kink_columns;
+  // Per lane: each form's value at every step, and where its samples split
+  // at the kinks (pairs: the last sample before a kink, the first after
+  // it not on it), so that a peak between two samples away from a kink is
+  // refined as the deck's.
+  std::array<std::vector<std::vector<double>>, kSweepLanes> forms;
+  std::array<std::vector<long>, kSweepLanes> kink_splits;
 };
 
 // The kernel's raw output for one lane. Not a second result model: every
@@ -90,7 +101,9 @@ struct ModalSweepRun {
   long steps = 0;
   // Per output point, refined between steps (core/sampled_peak.hpp).
   std::vector<double> max_abs_displacement_m, max_abs_acceleration_mps2;
-  // The section envelope when the sweep has section forces.
+  // The section envelope when the sweep has section forces: the maxima
+  // over the steps and over every instant between two steps at which an
+  // axle crosses a section, a support or a rail end (a kink of the forms).
   std::optional<SectionEnvelope> sections;
   // Deck twist over 3 m (m), max over steps and bases, and the start of
   // its base; absent when the sweep's rails give no twist (twist_gauge()).
@@ -180,6 +193,10 @@ class ModalSweep {
   // ends unstable, as RunMonitor's rule on the FE rungs: a linear model far
   // outside its range (a stiffness given in kN, a mass in t) is no result.
   void check_plausible(ModalSweepRun& run) const;
+  // The train load's columns for the first axle at s (width_ of them, +=),
+  // as the limit from below (left) or from above: at a breakpoint a form's
+  // influence line may have a kink or a jump (a shear cut).
+  void table_columns_at(double s, bool left, double* columns) const;
 
   const ModalBasis& basis_;
   double u_limit_m_ = 0.0;  // max(0.1 m, bridge length / 100)
@@ -204,6 +221,12 @@ class ModalSweep {
   std::vector<ModalStep> steps_;
   std::vector<double> inverse_omega2_;
   std::vector<double> offsets_, loads_N_;  // axles by offset
+  // Positions of the first axle at which some axle stands on a section of
+  // the forms, a support or a rail end, ascending: there a form's static
+  // part (its influence line) has a kink or a jump, so its peak may fall
+  // between two steps where no parabola through the samples follows it.
+  // The sweep evaluates the forms there, the modes' state interpolated.
+  std::vector<double> kinks_m_;
   std::vector<Rail> rails_;
 };
 

@@ -179,15 +179,17 @@ std::optional<Rung> next_rung(const Rung& rung) {
 }
 
 double modal_time_step_s(double code_frequency_hz, double tolerance, ModalPeaks peaks) {
-  const auto error = [&](double n) { return peaks == ModalPeaks::kRefined ? refined_peak_error(n) : sampled_peak_error(n); };
+  const bool refined = peaks != ModalPeaks::kSampled;
+  const auto error = [&](double n) { return refined ? refined_peak_error(n) : sampled_peak_error(n); };
   // Both errors fall as n grows; for small pi / n they are (pi / n)^2 / 2
   // and 3/8 (pi / n)^4, so the search starts just below that estimate. A
   // tolerance so small that no double-precision dt honours it stops at 10^6
   // samples a period.
-  const double estimate = peaks == ModalPeaks::kRefined ? std::numbers::pi * std::pow(0.375 / tolerance, 0.25)
+  const double estimate = refined ? std::numbers::pi * std::pow(0.375 / tolerance, 0.25)
                                                         : std::numbers::pi / std::sqrt(2.0 * tolerance);
   double n = std::max(3.0, std::floor(0.9 * std::min(estimate, 1e6)));
   while (n < 1e6 && error(n) > tolerance) n += 1.0;
+  if (peaks == ModalPeaks::kRefinedWithSections) n = std::max(n, std::ceil(8.0 * std::sqrt(0.01 / tolerance)));
   const double dt = 1.0 / (n * code_frequency_hz);
   const double scale = std::pow(10.0, std::floor(std::log10(dt)) - 2.0);
   return std::floor(dt / scale) * scale;

@@ -171,18 +171,31 @@ enum class ModalPeaks {
   // Deck displacement and acceleration (filtered or not) alone: each peak
   // is refined between its samples (core/sampled_peak.hpp).
   kRefined,
-  // Also section forces or deck twist, whose peaks are the largest sample
-  // (a section force has a kink where an axle passes the section, which no
-  // parabola follows).
+  // Also section forces: refined as the deck's between kinks, and
+  // evaluated at every instant an axle crosses a section or support (where
+  // their influence lines have a kink or a jump that no parabola follows;
+  // analysis/modal_sweep.hpp). What is left is the recurrence's own error
+  // (the load is linear within a step), largest on the midspan shear:
+  // measured against a step 16 times shorter over HSLM-A1..A10 at 100-400
+  // km/h (tests/results/section_force_peaks_test.cpp, 2026-11-27), at 8
+  // samples a period of the code frequency: shear 0.82 % (15 m, 5 Hz) and
+  // 0.63 % (8 m, 12 Hz), moment, reactions and end rotations <= 0.53 %;
+  // at 16 samples 0.19 % and 0.15 %: about 0.52 / n^2. So n >= 8 and
+  // n >= 8 sqrt(0.01 / tolerance) (0.82 x the tolerance at the worst case
+  // measured), whichever is larger with the deck's rule.
+  kRefinedWithSections,
+  // Also the deck twist, whose peak is the largest sample.
   kSampled,
 };
 
 // Time step of the modal rung, where dt only samples the load and the
-// output (the recurrence is exact): the smallest number n of samples a
-// period of a harmonic at the code frequency for which its peak is low by
-// at most the tolerance: 1 - cos(pi / n) for the largest sample (n = 23
-// for 1 %), 1 - cos(pi / n) (1 + sin^2(pi / n) / 2) when refined (n = 8
-// for 1 %). The step is rounded down to 3 significant digits.
+// output (the recurrence is exact for a load linear within a step): the
+// smallest number n of samples a period of a harmonic at the code
+// frequency for which its peak is low by at most the tolerance: 1 - cos(pi
+// / n) for the largest sample (n = 23 for 1 %), 1 - cos(pi / n) (1 +
+// sin^2(pi / n) / 2) when refined (n = 8 for 1 %), and with section forces
+// also n >= 8 sqrt(0.01 / tolerance) (above). The step is rounded down to 3
+// significant digits.
 double modal_time_step_s(double code_frequency_hz, double tolerance, ModalPeaks peaks);
 
 }  // namespace railvsi

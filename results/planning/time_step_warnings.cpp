@@ -51,8 +51,8 @@ std::vector<RunWarning> time_step_warnings(const Scene& scene, double cutoff_hz)
 }
 
 ModalPeaks modal_peaks_of(const Scene& scene) {
-  return scene.fidelity.asks_section_forces() || scene.structure->rails().size() >= 2 ? ModalPeaks::kSampled
-                                                                                       : ModalPeaks::kRefined;
+  if (scene.structure->rails().size() >= 2) return ModalPeaks::kSampled;
+  return scene.fidelity.asks_section_forces() ? ModalPeaks::kRefinedWithSections : ModalPeaks::kRefined;
 }
 
 std::vector<RunWarning> modal_time_step_warnings(const Scene& scene, double cutoff_hz) {
@@ -66,7 +66,9 @@ std::vector<RunWarning> modal_time_step_warnings(const Scene& scene, double cuto
                                "code frequency {:.1f} Hz {} within the tolerance {:g}); results are not converged to "
                                "the policy's accuracy",
                                dt, dt / rule_s, rule_s, cutoff_hz,
-                               peaks == ModalPeaks::kSampled ? "sampled" : "refined between samples",
+                               peaks == ModalPeaks::kSampled              ? "sampled"
+                               : peaks == ModalPeaks::kRefinedWithSections ? "refined, with section forces,"
+                                                                          : "refined between samples",
                                scene.fidelity.tolerance),
                    std::nullopt, std::nullopt, dt / rule_s});
   add_nyquist_warning(dt, cutoff_hz, out);

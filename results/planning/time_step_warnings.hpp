@@ -15,9 +15,9 @@ namespace railvsi {
 // cutoff_hz: the code frequency max(30 Hz, 1.5 f0, f3) of the structure.
 std::vector<RunWarning> time_step_warnings(const Scene& scene, double cutoff_hz);
 
-// The peaks a modal moving-force run keeps: section forces and deck twist
-// (a structure with two rail lines may have one) their largest sample, the
-// deck's refined between samples.
+// The peaks a modal moving-force run keeps: the deck twist (a structure
+// with two rail lines may have one) its largest sample; the deck's and the
+// section forces' refined between samples (ModalPeaks).
 ModalPeaks modal_peaks_of(const Scene& scene);
 
 // The same warnings on the modal moving-force rung, whose step only samples

@@ -86,7 +86,8 @@ std::vector<JobSpec> verification_jobs(const std::string& job_id, const StoredJo
   // largest sample, so it runs at half the sampled rule's step instead. (A
   // step the study gave is halved as it is.)
   if (plan.rung.exact_modal() && of.cutoff_hz > 0.0 &&
-      of.dt_s == modal_time_step_s(of.cutoff_hz, scene.fidelity.tolerance, ModalPeaks::kRefined)) {
+      (of.dt_s == modal_time_step_s(of.cutoff_hz, scene.fidelity.tolerance, ModalPeaks::kRefined) ||
+       of.dt_s == modal_time_step_s(of.cutoff_hz, scene.fidelity.tolerance, ModalPeaks::kRefinedWithSections))) {
     const double sampled_dt_s = modal_time_step_s(of.cutoff_hz, scene.fidelity.tolerance, ModalPeaks::kSampled);
     doc["analysis"]["dt_s"] = std::min(dt_s, 0.5 * sampled_dt_s);
   }

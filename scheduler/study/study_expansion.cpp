@@ -194,7 +194,9 @@ JobTimeStep job_time_step(bool dt_given, const Scene& scene, const DeckFrequenci
     return {dt, fmt::format("modal rung (exact recurrence: dt samples the load and output only): the peak at the code "
                             "frequency {:.1f} Hz {} within the tolerance {:g} needs {:.3e} s",
                             plan.code_frequency_hz,
-                            sampled ? "sampled (section forces or deck twist asked)" : "refined between samples",
+                            sampled ? "sampled (deck twist)"
+                            : peaks == ModalPeaks::kRefinedWithSections ? "refined between samples (with section forces)"
+                                                                        : "refined between samples",
                             scene.fidelity.tolerance, dt)};
   }
   TimeStepPolicy policy;

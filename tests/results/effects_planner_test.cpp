@@ -215,6 +215,16 @@ TEST(EffectsPlanner, ModalTimeStepOfRefinedPeaksIsEightSamplesAPeriodForOnePerce
   EXPECT_GT(modal_time_step_s(45.0, 1e-300, ModalPeaks::kSampled), 0.0);
 }
 
+TEST(EffectsPlanner, ModalTimeStepWithSectionForcesKeepsTheirMeasuredErrorBelowTheTolerance) {
+  // 1 %: n = max(8, 8 sqrt(0.01 / 0.01)) = 8, the deck's step.
+  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.01, ModalPeaks::kRefinedWithSections), 2.77e-3);
+  // 0.1 %: n = ceil(8 sqrt(10)) = 26 (the deck's rule alone: 14): 1 / (26 x 45 Hz) = 0.8547 ms.
+  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.001, ModalPeaks::kRefinedWithSections), 8.54e-4);
+  // 5 %: the deck's rule governs (n = 5: 1 - cos(pi/5)(1 + sin^2(pi/5)/2) = 0.0512 > 0.05, n = 6: 0.0257).
+  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.05, ModalPeaks::kRefinedWithSections),
+                   modal_time_step_s(45.0, 0.05, ModalPeaks::kRefined));
+}
+
 TEST(EffectsPlanner, NextRungClimbsTowardFiniteElementsAndUnilateralHertz) {
   // Exact modal moving forces -> moving forces on FE; then the top for a load model.
   const Rung modal_forces;
