@@ -50,13 +50,13 @@ DeckFrequencies frequencies_of(const Scene& scene, std::vector<RunWarning>& warn
 // vsi simulate --verify: the scene again at half its step, planned as the
 // first run was (the same frequencies; a rung that escalates does so at
 // half its step too), and the key quantities of both compared.
-DtSelfCheck verify_dt(const Scene& scene, const Result& first, const scheduler::DeckFrequencies& f, double cutoff_hz,
+DtSelfCheck verify_dt(const Scene& scene, const Result& first, const DeckFrequencies& f, double cutoff_hz,
                       const std::string& file_for_errors, std::vector<RunWarning>& warnings) {
   Scene half = scene;
   half.analysis.dt_s = 0.5 * scene.analysis.dt_s;
   const Result fine = [&] {
     try {
-      return scheduler::run_planned(half, f);
+      return run_planned(half, f);
     } catch (const InputError& e) {
       throw e.with_file(file_for_errors);
     }

@@ -85,6 +85,22 @@ TEST_F(Inspect, ViaductWithTrackSplitsDeckAndTrackDofs) {
   EXPECT_GT(report["modal_analysis"]["modes"][0]["deck_energy_fraction"].get<double>(), 0.5);
 }
 
+// A track on an almost free subballast (5 N/m) has modes far below the
+// deck's, with no deck motion: inspect names them track modes, never deck
+// bending (a 0.016 Hz track mode was once reported as "deck bending").
+TEST_F(Inspect, AVeryLowTrackModeIsATrackModeNotDeckBending) {
+  json scene = json::parse(read_text(kJobs / "examples" / "viaduct-ice3-german.json"));
+  scene["structure"]["track"] = {{"subballast_k_N_per_m", 5.0}};
+  const json report = inspect_json(write_json("soft.json", scene), "--modes 3");
+  const json& modes = report["modal_analysis"]["modes"];
+  ASSERT_EQ(modes.size(), 3u);
+  for (const json& m : modes) {
+    ASSERT_LT(m["frequency_hz"].get<double>(), 1.0) << m.dump();  // far below the deck's 5 Hz
+    EXPECT_EQ(m["type"].get<std::string>().rfind("track", 0), 0u) << m.dump();
+    EXPECT_LT(m["deck_energy_fraction"].get<double>(), 0.02) << m.dump();
+  }
+}
+
 TEST_F(Inspect, MultibodyTrainAxleLoadsAddUpToItsWeight) {
   const json report = inspect_json(kJobs / "trains/ICE3.json");
   EXPECT_EQ(report["document"], "train");
