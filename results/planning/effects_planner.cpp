@@ -189,7 +189,8 @@ double modal_time_step_s(double code_frequency_hz, double tolerance, ModalPeaks 
                                                         : std::numbers::pi / std::sqrt(2.0 * tolerance);
   double n = std::max(3.0, std::floor(0.9 * std::min(estimate, 1e6)));
   while (n < 1e6 && error(n) > tolerance) n += 1.0;
-  if (peaks == ModalPeaks::kRefinedWithSections) n = std::max(n, std::ceil(8.0 * std::sqrt(0.01 / tolerance)));
+  // The recurrence's own error, measured (effects_planner.hpp, kRefined).
+  if (refined) n = std::max(n, std::ceil(16.0 * std::sqrt(0.01 / tolerance)));
   const double dt = 1.0 / (n * code_frequency_hz);
   const double scale = std::pow(10.0, std::floor(std::log10(dt)) - 2.0);
   return std::floor(dt / scale) * scale;

@@ -170,6 +170,12 @@ std::optional<Rung> next_rung(const Rung& rung);
 enum class ModalPeaks {
   // Deck displacement and acceleration (filtered or not) alone: each peak
   // is refined between its samples (core/sampled_peak.hpp).
+  // The recurrence's own error (the load is linear within a step) sets a
+  // floor on both refined kinds: on S1 (25 m, f0 = 3.55 Hz, where mode 3
+  // at 31.95 Hz sets the code frequency) the filtered deck acceleration of
+  // HSLM-A1..A10 at 150-400 km/h against dt = 0.125 ms was -3.60 % at 8
+  // samples a period and -0.75 % at 16 (2026-11-27, the S1 sweep of
+  // tests/cli/s1_caldintav_sweep_test.cpp): n >= 16 sqrt(0.01 / tolerance).
   kRefined,
   // Also section forces: refined as the deck's between kinks, and
   // evaluated at every instant an axle crosses a section or support (where
@@ -180,9 +186,8 @@ enum class ModalPeaks {
   // km/h (tests/results/section_force_peaks_test.cpp, 2026-11-27), at 8
   // samples a period of the code frequency: shear 0.82 % (15 m, 5 Hz) and
   // 0.63 % (8 m, 12 Hz), moment, reactions and end rotations <= 0.53 %;
-  // at 16 samples 0.19 % and 0.15 %: about 0.52 / n^2. So n >= 8 and
-  // n >= 8 sqrt(0.01 / tolerance) (0.82 x the tolerance at the worst case
-  // measured), whichever is larger with the deck's rule.
+  // at 16 samples 0.19 % and 0.15 %: about 0.52 / n^2, below the floor
+  // n >= 16 sqrt(0.01 / tolerance) that the deck's acceleration needs.
   kRefinedWithSections,
   // Also the deck twist, whose peak is the largest sample.
   kSampled,
@@ -193,8 +198,8 @@ enum class ModalPeaks {
 // smallest number n of samples a period of a harmonic at the code
 // frequency for which its peak is low by at most the tolerance: 1 - cos(pi
 // / n) for the largest sample (n = 23 for 1 %), 1 - cos(pi / n) (1 +
-// sin^2(pi / n) / 2) when refined (n = 8 for 1 %), and with section forces
-// also n >= 8 sqrt(0.01 / tolerance) (above). The step is rounded down to 3
+// sin^2(pi / n) / 2) when refined (n = 8 for 1 %), and when refined at least
+// the recurrence's floor n >= 16 sqrt(0.01 / tolerance) (above; n = 16 for 1 %). The step is rounded down to 3
 // significant digits.
 double modal_time_step_s(double code_frequency_hz, double tolerance, ModalPeaks peaks);
 

@@ -205,24 +205,26 @@ TEST(EffectsPlanner, ModalTimeStepSamplesTheCodeFrequencyWithinTheTolerance) {
   EXPECT_LT(modal_time_step_s(45.0, 0.001, ModalPeaks::kSampled), dt / 3.0);
 }
 
-TEST(EffectsPlanner, ModalTimeStepOfRefinedPeaksIsEightSamplesAPeriodForOnePercent) {
-  // cos(pi/8) (1 + sin^2(pi/8) / 2) = 0.99153 >= 0.99, cos(pi/7) (1 + sin^2(pi/7) / 2) = 0.98578 < 0.99:
-  // n = 8, dt = 1 / (8 x 45 Hz) = 2.7778 ms, rounded down to 2.77 ms.
-  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.01, ModalPeaks::kRefined), 2.77e-3);
-  // 0.1 %: n = 14 (1 - cos(pi/14)(1 + sin^2(pi/14)/2) = 0.00094; n = 13: 0.00125).
-  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.001, ModalPeaks::kRefined), 1.58e-3);
+TEST(EffectsPlanner, ModalTimeStepOfRefinedPeaksIsSixteenSamplesAPeriodForOnePercent) {
+  // The refined peak of a harmonic alone would allow n = 8 (cos(pi/8) (1 + sin^2(pi/8) / 2) = 0.99153
+  // >= 0.99); the recurrence's floor n >= 16 sqrt(0.01 / tolerance) governs: n = 16,
+  // dt = 1 / (16 x 45 Hz) = 1.3889 ms, rounded down to 1.38 ms.
+  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.01, ModalPeaks::kRefined), 1.38e-3);
+  // 0.1 %: n = ceil(16 sqrt(10)) = 51 (the harmonic alone: 14): 1 / (51 x 45 Hz) = 0.43573 ms.
+  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.001, ModalPeaks::kRefined), 4.35e-4);
   // A tolerance no double-precision step honours stops at 10^6 samples a period, not in an endless search.
   EXPECT_GT(modal_time_step_s(45.0, 1e-300, ModalPeaks::kSampled), 0.0);
 }
 
-TEST(EffectsPlanner, ModalTimeStepWithSectionForcesKeepsTheirMeasuredErrorBelowTheTolerance) {
-  // 1 %: n = max(8, 8 sqrt(0.01 / 0.01)) = 8, the deck's step.
-  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.01, ModalPeaks::kRefinedWithSections), 2.77e-3);
-  // 0.1 %: n = ceil(8 sqrt(10)) = 26 (the deck's rule alone: 14): 1 / (26 x 45 Hz) = 0.8547 ms.
-  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.001, ModalPeaks::kRefinedWithSections), 8.54e-4);
-  // 5 %: the deck's rule governs (n = 5: 1 - cos(pi/5)(1 + sin^2(pi/5)/2) = 0.0512 > 0.05, n = 6: 0.0257).
-  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.05, ModalPeaks::kRefinedWithSections),
-                   modal_time_step_s(45.0, 0.05, ModalPeaks::kRefined));
+TEST(EffectsPlanner, ModalTimeStepWithSectionForcesIsTheDecksStep) {
+  // The section forces' measured n >= 8 sqrt(0.01 / tolerance) lies below the recurrence's floor
+  // 16 sqrt(0.01 / tolerance) that the deck takes too: 1 %, 0.1 % and 5 % (n = ceil(16 sqrt(0.2)) = 8)
+  // give the deck's step.
+  for (const double tolerance : {0.01, 0.001, 0.05})
+    EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, tolerance, ModalPeaks::kRefinedWithSections),
+                     modal_time_step_s(45.0, tolerance, ModalPeaks::kRefined))
+        << tolerance;
+  EXPECT_DOUBLE_EQ(modal_time_step_s(45.0, 0.05, ModalPeaks::kRefined), 2.77e-3);  // 1 / (8 x 45 Hz)
 }
 
 TEST(EffectsPlanner, NextRungClimbsTowardFiniteElementsAndUnilateralHertz) {

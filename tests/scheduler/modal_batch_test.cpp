@@ -126,11 +126,11 @@ TEST_F(ModalBatches, DeckAloneAndTheDefaultAsksTakeTheStepOfRefinedPeaks) {
   const auto [dt_deck, code_hz] = step(deck_only, "deck-step.sqlite");
   const auto [dt_all, code_hz_all] = step(modal_study(), "all-step.sqlite");
   EXPECT_EQ(code_hz, code_hz_all);
-  // The largest step with 8 samples a period of the code frequency, 3
-  // significant digits: the section forces' peaks are refined too
-  // (ModalPeaks::kRefinedWithSections at 1 %: n >= 8).
-  EXPECT_LE(dt_deck * code_hz, 1.0 / 8.0);
-  EXPECT_GT(dt_deck * code_hz, 0.99 / 8.0);
+  // The largest step with 16 samples a period of the code frequency, 3
+  // significant digits: the section forces' peaks are refined too, and
+  // both take the recurrence's floor (at 1 %: n >= 16).
+  EXPECT_LE(dt_deck * code_hz, 1.0 / 16.0);
+  EXPECT_GT(dt_deck * code_hz, 0.99 / 16.0);
   EXPECT_EQ(dt_all, dt_deck);
 }
 
