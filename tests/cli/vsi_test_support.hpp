@@ -13,6 +13,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "../support/two_hslm_study.hpp"
+
 namespace railvsi::test {
 
 struct VsiRun {
@@ -38,19 +40,8 @@ inline std::string read_text(const std::filesystem::path& file) {
 // Two HSLM trains over the 25 m span of the README example (light deck:
 // its resonances exceed the ballasted limit), five speeds: 10 quick jobs.
 inline nlohmann::json two_hslm_trains_study(const std::string& name) {
-  nlohmann::json doc = nlohmann::json::parse(R"({
-    "structure": {
-      "generator": "bridge-2d", "spans_m": [25], "continuous": false,
-      "deck": {"EI_Nm2": 7.694e10, "mass_kg_per_m": 15000},
-      "damping": {"ratio": 0.01}, "track": null
-    },
-    "trains": ["HSLM-A1", "HSLM-A2"],
-    "speeds_kmh": {"from": 200, "to": 400, "step": 50},
-    "analysis": {"hht_alpha": -0.05},
-    "outputs": {"points": [{"name": "quarter", "x_m": 6.25}, {"name": "midspan", "x_m": 12.5}]},
-    "checks": {"deck_acceleration_limit_mps2": 3.5}
-  })");
-  doc["name"] = name;
+  nlohmann::json doc = railvsi::testing::two_hslm_trains_without_speeds(name);
+  doc["speeds_kmh"] = {{"from", 200}, {"to", 400}, {"step", 50}};
   return doc;
 }
 

@@ -4,24 +4,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../support/two_hslm_study.hpp"
+
 namespace railvsi::test {
 
 // Two HSLM trains over a 25 m span at `speeds` speeds from 200 km/h by
 // 5 km/h: quick jobs (milliseconds each; the light deck fails the
 // ballasted-track limit at resonance, so the verdict is FAIL).
 inline nlohmann::json hslm_study(const std::string& name, int speeds = 5) {
-  nlohmann::json doc = nlohmann::json::parse(R"({
-    "structure": {
-      "generator": "bridge-2d", "spans_m": [25], "continuous": false,
-      "deck": {"EI_Nm2": 7.694e10, "mass_kg_per_m": 15000},
-      "damping": {"ratio": 0.01}, "track": null
-    },
-    "trains": ["HSLM-A1", "HSLM-A2"],
-    "analysis": {"hht_alpha": -0.05},
-    "outputs": {"points": [{"name": "quarter", "x_m": 6.25}, {"name": "midspan", "x_m": 12.5}]},
-    "checks": {"deck_acceleration_limit_mps2": 3.5}
-  })");
-  doc["name"] = name;
+  nlohmann::json doc = railvsi::testing::two_hslm_trains_without_speeds(name);
   nlohmann::json list = nlohmann::json::array();
   for (int i = 0; i < speeds; ++i) list.push_back(200 + 5 * i);
   doc["speeds_kmh"] = list;
