@@ -120,7 +120,7 @@ ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const H
   // 5.2 s in slices of 30).
   mo.slice_modes = 100;
   // Block Lanczos: the factor (10^8 nonzeros at seed scale) read once per
-  // 16 vectors (76.1 -> 53.1 s of the seed-scale setup, docs/performance.md).
+  // 16 vectors (interior modes 76.1 -> 56.3 s at seed scale, docs/performance.md).
   mo.lanczos_block = 16;
   if (factor) mo.shift_rad2_per_s2 = factor->sigma();
   r = modal_analysis(K, M, mo, factor);
