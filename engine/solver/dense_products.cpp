@@ -21,6 +21,22 @@ void multiply_transposed(const DenseMatrix& A, const DenseMatrix& B, DenseMatrix
   dgemm_("T", "N", &m, &n, &k, &alpha, A.data(), &lda, B.data(), &ldb, &beta, C.data(), &ldc);
 }
 
+void multiply_blocks(bool transpose_a, const Eigen::Ref<const DenseMatrix>& A, const Eigen::Ref<const DenseMatrix>& B,
+                     Eigen::Ref<DenseMatrix> C, double alpha, double beta) {
+  const int m = static_cast<int>(C.rows()), n = static_cast<int>(C.cols());
+  const int k = static_cast<int>(transpose_a ? A.rows() : A.cols());
+  if (m == 0 || n == 0) return;
+  if (k == 0) {  // an empty sum: C = beta C
+    if (beta == 0.0) C.setZero();
+    else C *= beta;
+    return;
+  }
+  const int lda = static_cast<int>(std::max<Eigen::Index>(1, A.outerStride()));
+  const int ldb = static_cast<int>(std::max<Eigen::Index>(1, B.outerStride()));
+  const int ldc = static_cast<int>(std::max<Eigen::Index>(1, C.outerStride()));
+  dgemm_(transpose_a ? "T" : "N", "N", &m, &n, &k, &alpha, A.data(), &lda, B.data(), &ldb, &beta, C.data(), &ldc);
+}
+
 DenseMatrix sparse_times_dense(const SparseMatrix& A, const Eigen::Ref<const DenseMatrix>& X) {
   // 32 columns of X row by row (a 32-wide multiply-add per nonzero of A,
   // on memory next to the last one: FE orderings keep A's columns near

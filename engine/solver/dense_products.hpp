@@ -13,6 +13,11 @@ namespace railvsi {
 void multiply_transposed(const DenseMatrix& A, const DenseMatrix& B, DenseMatrix& C, double alpha = 1.0,
                          double beta = 0.0);
 
+// C = alpha op(A) B + beta C (BLAS dgemm) on blocks of matrices (column
+// ranges of a basis), op(A) = A' when transpose_a; C keeps its size.
+void multiply_blocks(bool transpose_a, const Eigen::Ref<const DenseMatrix>& A, const Eigen::Ref<const DenseMatrix>& B,
+                     Eigen::Ref<DenseMatrix> C, double alpha = 1.0, double beta = 0.0);
+
 // Y = A X for a sparse A and a tall dense X, column block by column block.
 DenseMatrix sparse_times_dense(const SparseMatrix& A, const Eigen::Ref<const DenseMatrix>& X);
 

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
-#include <ctime>
 
 #include <Eigen/Eigenvalues>
 
 #include "core/input_error.hpp"
+#include "core/thread_cpu_time.hpp"
 #include "solver/dense_products.hpp"
 #include "solver/modal_analysis.hpp"
 #include "solver/shift_invert_factor.hpp"
@@ -17,14 +17,6 @@ namespace railvsi {
 namespace {
 
 enum class Part : char { kTrack, kInterface, kInterior };
-
-// The calling thread's CPU time (the setup summary; other threads' work
-// is not this basis's).
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 // Each DOF's part: track (the structure's track DOFs), interface (a bridge
 // DOF a track DOF couples to in K, M or C) or interior.
@@ -83,7 +75,9 @@ Blocks split(const SparseMatrix& A, const std::vector<Part>& part, const std::ve
 }
 
 // The interior's modes with the interface held, mass-normalised.
-ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const HybridBasisOptions& o) {
+// `factor`: K's L L' factor (the constraint modes'), the first shift (0).
+ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const HybridBasisOptions& o,
+                           const ShiftInvertFactor* factor) {
   const Eigen::Index n = K.rows();
   ModalResult r;
   if (n == 0) return r;
@@ -125,7 +119,11 @@ ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const H
   // 20,000-DOF deck to 221 Hz, 78 modes: 2 factors and 3.1 s against 5 and
   // 5.2 s in slices of 30).
   mo.slice_modes = 100;
-  r = modal_analysis(K, M, mo);
+  // Block Lanczos: the factor (10^8 nonzeros at seed scale) read once per
+  // 16 vectors (interior modes 76.1 -> 56.3 s at seed scale, docs/performance.md).
+  mo.lanczos_block = 16;
+  if (factor) mo.shift_rad2_per_s2 = factor->sigma();
+  r = modal_analysis(K, M, mo, factor);
   if (!r.status.ok())
     throw InputError("/structure", "the bridge interior's modes could not be computed: " + r.status.message());
   return r;
@@ -178,25 +176,30 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
   // at a time: the dense K_IG and CHOLMOD's workspace stay a block wide.
   double cpu_s = thread_cpu_s();
   DenseMatrix Psi(n_interior, n_interface_);
+  // K_II's factor is also the mode solver's first shift (0: below the
+  // spectrum, the interface held).
+  std::unique_ptr<ShiftInvertFactor> factor;
   if (n_interior > 0 && n_interface_ > 0) {
-    ShiftInvertFactor factor(K.II, M.II);
-    if (!factor.factorize(0.0).ok())
+    factor = std::make_unique<ShiftInvertFactor>(K.II, M.II);
+    if (!factor->factorize(0.0).ok())
       throw InputError("/structure", "the bridge with its track-bearing DOFs held is not supported: " +
-                                         factor.status().message());
+                                         factor->status().message());
     DenseMatrix rhs, x;
     for (int c0 = 0; c0 < n_interface_; c0 += block) {
       const int w = std::min(block, n_interface_ - c0);
       rhs = DenseMatrix(K.IG.middleCols(c0, w));
-      if (!factor.solve(rhs, x))
+      if (!factor->solve(rhs, x))
         throw InputError("/structure", "CHOLMOD failed to solve for the bridge's constraint modes");
       Psi.middleCols(c0, w) = -x;
     }
   }
   summary_.constraint_modes_cpu_s = thread_cpu_s() - cpu_s;
   cpu_s = thread_cpu_s();
-  const ModalResult modes = interior_modes(K.II, M.II, options);
+  const ModalResult modes = interior_modes(K.II, M.II, options, factor.get());
+  factor.reset();
   summary_.interior_modes_cpu_s = thread_cpu_s() - cpu_s;
   summary_.factorizations = modes.factorizations;
+  summary_.interior_factor_cpu_s = modes.factor_cpu_s;
   frequencies_hz_ = modes.frequencies_hz;
   const DenseMatrix& Phi = modes.shapes;
   const int m = num_modes();
@@ -220,17 +223,26 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
         const int rj = pj == Part::kTrack ? local[static_cast<std::size_t>(j)] : g0 + local[static_cast<std::size_t>(j)];
         t.emplace_back(ri, rj, it.value());
       }
-    DenseMatrix GG = b.GG + DenseMatrix(b.IG.transpose() * Psi);
-    DenseMatrix Gq, W, PsiW, WPhi;
-    if (!stiffness) Gq.resize(n_interface_, m);
-    for (int c0 = 0; !stiffness && c0 < n_interface_; c0 += block) {
-      const int w = std::min(block, n_interface_ - c0);
-      W = sparse_times_dense(b.II, Psi.middleCols(c0, w));
-      W += b.IG.middleCols(c0, w);
-      multiply_transposed(Psi, W, PsiW);
-      GG.middleCols(c0, w) += PsiW;
-      multiply_transposed(W, Phi, WPhi);
-      Gq.middleRows(c0, w) = WPhi;
+    // With X = A_IG' Psi (sparse times dense): A_GG + X + X' + Psi' A_II Psi,
+    // whose last term's symmetry halves the largest product: each block of
+    // its columns only from the diagonal down (the lower triangle, mirrored
+    // after). For K, Psi' K_II Psi = -X': K_GG + X.
+    const DenseMatrix X = b.IG.transpose() * Psi;
+    DenseMatrix GG = b.GG + X;
+    DenseMatrix Gq, Z, W, WPhi;
+    if (!stiffness) {
+      DenseMatrix S = DenseMatrix::Zero(n_interface_, n_interface_);
+      Gq.resize(n_interface_, m);
+      for (int c0 = 0; c0 < n_interface_; c0 += block) {
+        const int w = std::min(block, n_interface_ - c0);
+        Z = sparse_times_dense(b.II, Psi.middleCols(c0, w));
+        multiply_blocks(true, Psi.rightCols(n_interface_ - c0), Z, S.block(c0, c0, n_interface_ - c0, w));
+        W = Z + DenseMatrix(b.IG.middleCols(c0, w));
+        multiply_transposed(W, Phi, WPhi);
+        Gq.middleRows(c0, w) = WPhi;
+      }
+      S.triangularView<Eigen::StrictlyUpper>() = S.transpose();
+      GG += X.transpose() + S;
     }
     GG = (0.5 * (GG + GG.transpose())).eval();
     DenseMatrix qq;

@@ -55,8 +55,9 @@ struct HybridBasisOptions {
 struct HybridBasisSummary {
   double constraint_modes_cpu_s = 0.0;  // K_II's factor and Psi
   double interior_modes_cpu_s = 0.0;    // the modes with the interface held
+  double interior_factor_cpu_s = 0.0;   // of which the mode solver's factors
   double reduction_cpu_s = 0.0;         // T' K T, T' M T, T' C T
-  int factorizations = 0;               // of the mode solver
+  int factorizations = 0;               // of the mode solver (its first shift is K_II's factor)
 };
 
 class HybridBasis {

@@ -10,11 +10,10 @@
 #include <utility>
 #include <vector>
 
-#include <Spectra/MatOp/SparseSymMatProd.h>
-#include <Spectra/SymGEigsShiftSolver.h>
 #include <fmt/format.h>
 
-#include "core/split_mix64.hpp"
+#include "core/thread_cpu_time.hpp"
+#include "solver/nearest_eigenpairs.hpp"
 #include "solver/shift_invert_factor.hpp"
 
 namespace railvsi {
@@ -22,88 +21,7 @@ namespace {
 
 double eigenvalue_of(double frequency_hz) { return std::pow(2.0 * std::numbers::pi * frequency_hz, 2); }
 
-// Spectra's shift-invert operator on a factor at its shift, its range kept
-// M-orthogonal to pairs found already (a slice searched again for the
-// eigenvalues it missed). Spectra passes x = M v.
-class SliceOperator {
- public:
-  using Scalar = double;
-  SliceOperator(const ShiftInvertFactor& factor, const DenseMatrix& found, const DenseMatrix& M_found)
-      : factor_(factor), found_(found), M_found_(M_found) {}
-  Eigen::Index rows() const { return factor_.rows(); }
-  Eigen::Index cols() const { return factor_.rows(); }
-  void set_shift(double) {}  // the factor is at its shift already
-  void perform_op(const double* x, double* y) const {
-    factor_.solve(x, y);  // NaN on failure: Spectra then does not converge
-    if (found_.cols() == 0) return;
-    Eigen::Map<Vector> v(y, rows());
-    v -= found_ * (M_found_.transpose() * v);
-  }
-
- private:
-  const ShiftInvertFactor& factor_;
-  const DenseMatrix& found_;
-  const DenseMatrix& M_found_;
-};
-
-struct Pairs {
-  Status status;
-  std::vector<double> lambda;  // ascending, all above the shift
-  DenseMatrix phi;             // M-normalised columns
-  int iterations = 0;
-};
-
-// The `count` eigenpairs nearest the factor's shift (the largest
-// |1 / (lambda - sigma)|), M-orthogonal to the columns of `found`. Lanczos
-// converges the extremes of that spectrum: asking for the largest
-// 1 / (lambda - sigma) alone would leave the huge negative ones (the
-// eigenvalues just below an interior shift) to dominate every restart; a
-// dense band then did not converge in 1,000 restarts.
-Pairs nearest(const SparseMatrix& M, const ShiftInvertFactor& factor, Eigen::Index count, const DenseMatrix& found,
-              const ModalOptions& options, int max_restarts) {
-  Pairs out;
-  const Eigen::Index n = M.rows();
-  const Eigen::Index dims = n - found.cols();  // the operator's range
-  // Twice the pairs wanted: Lanczos then converges in a few restarts, and
-  // its dense work (n x ncv) stays small.
-  const Eigen::Index ncv = std::min(dims, std::max(2 * count + 1, count + 20));
-  count = std::min(count, ncv - 1);
-  if (count < 1) return out;
-  const DenseMatrix M_found = M * found;
-  SliceOperator op(factor, found, M_found);
-  Spectra::SparseSymMatProd<double> mass(M);
-  Spectra::SymGEigsShiftSolver<SliceOperator, Spectra::SparseSymMatProd<double>, Spectra::GEigsMode::ShiftInvert>
-      solver(op, mass, count, ncv, factor.sigma());
-  // A fixed pseudo-random start (the same modes to the last bit on every
-  // run), deflated like the operator.
-  SplitMix64 random(0x5eed + static_cast<std::uint64_t>(found.cols()));
-  Vector start(n);
-  for (Eigen::Index i = 0; i < n; ++i) start[i] = random.next_unit() - 0.5;
-  if (found.cols() > 0) start -= found * (M_found.transpose() * start);
-  solver.init(start.data());
-  solver.compute(Spectra::SortRule::LargestMagn, max_restarts, options.lanczos_tolerance,
-                 Spectra::SortRule::SmallestAlge);
-  out.iterations = static_cast<int>(solver.num_iterations());
-  if (solver.info() != Spectra::CompInfo::Successful) {
-    out.status = {StatusCode::kNoConvergence,
-                  fmt::format("Lanczos did not converge the {} eigenpairs nearest {:.6g} rad^2/s^2 in {} restarts",
-                              count, factor.sigma(), max_restarts)};
-    return out;
-  }
-  const Vector lambda = solver.eigenvalues();
-  const DenseMatrix phi = solver.eigenvectors();
-  std::vector<Eigen::Index> keep;
-  for (Eigen::Index k = 0; k < lambda.size(); ++k)
-    if (std::isfinite(lambda[k])) keep.push_back(k);
-  out.phi.resize(n, static_cast<Eigen::Index>(keep.size()));
-  for (std::size_t j = 0; j < keep.size(); ++j) {
-    out.lambda.push_back(lambda[keep[j]]);
-    auto col = out.phi.col(static_cast<Eigen::Index>(j));
-    col = phi.col(keep[j]);
-    col /= std::sqrt(col.dot(M * col));
-  }
-  return out;
-}
+using Pairs = NearestPairs;
 
 // The pairs of p above `sigma`.
 Pairs above(const Pairs& p, double sigma) {
@@ -158,7 +76,7 @@ std::optional<std::size_t> widest_gap(const std::vector<double>& points, std::si
 }  // namespace
 
 ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::Index modes,
-                           const ModalOptions& options) {
+                           const ModalOptions& options, const ShiftInvertFactor* first) {
   ModalResult result;
   result.solver = ModeSolver::kLanczos;
   const Eigen::Index n = K.rows();
@@ -169,13 +87,23 @@ ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::
 
   // The first shift lies below the spectrum (its L L' factor proves it);
   // the next ones inside, each factorized once as L D L'.
-  auto here = std::make_unique<ShiftInvertFactor>(K, M, options.indefinite);
+  // `here` is `first` or `owned`; the factor of the next shift reuses the
+  // storage (and MUMPS's ordering) of the one before.
+  std::unique_ptr<ShiftInvertFactor> owned;
   auto next = std::make_unique<ShiftInvertFactor>(K, M, options.indefinite);
-  if (!here->factorize(options.shift_rad2_per_s2).ok()) {
-    result.status = here->status();
-    return result;
+  const ShiftInvertFactor* here = first;
+  double cpu_s = thread_cpu_s();
+  if (!here) {
+    owned = std::make_unique<ShiftInvertFactor>(K, M, options.indefinite);
+    if (!owned->factorize(options.shift_rad2_per_s2).ok()) {
+      result.status = owned->status();
+      return result;
+    }
+    here = owned.get();
+    result.factorizations = 1;
   }
-  result.factorizations = 1;
+  result.factor_cpu_s += thread_cpu_s() - cpu_s;
+  const std::unique_ptr<NearestEigenpairs> solver = make_nearest_eigenpairs(options);
   Pairs all;  // every pair accepted
   all.phi.resize(n, 0);
   Eigen::Index grow = 1;  // a slice without a gap to put the next shift in is asked again, twice as wide
@@ -197,8 +125,8 @@ ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::
     // The modes found below the shift are deflated: else the nearest ones
     // would converge again (most of them, below a shift at the top of a
     // dense band).
-    Pairs near = nearest(M, *here, std::min(ask, n - 1 - all.phi.cols()), all.phi, options,
-                         wide ? options.lanczos_max_restarts : options.slice_restarts);
+    Pairs near = solver->nearest(M, *here, std::min(ask, n - 1 - all.phi.cols()), all.phi,
+                                 wide ? options.lanczos_max_restarts : options.slice_restarts);
     result.iterations += near.iterations;
     if (!near.status.ok()) {
       if (wide) {
@@ -247,10 +175,12 @@ ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::
     const std::size_t i = *gap;
     const double shift = (std::max(points[i], last && cut ? lambda_cut : points[i]) + points[i + 1]) / 2.0;
     ++result.factorizations;
+    cpu_s = thread_cpu_s();
     if (!next->factorize_indefinite(shift).ok()) {
       result.status = next->status();
       return result;
     }
+    result.factor_cpu_s += thread_cpu_s() - cpu_s;
     // The Sturm counts at both shifts: exactly this many eigenvalues
     // between them.
     const Eigen::Index expected = next->eigenvalues_below() - here->eigenvalues_below();
@@ -264,8 +194,8 @@ ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::
       const Eigen::Index missing = expected - in_slice();
       DenseMatrix known(n, all.phi.cols() + near.phi.cols());
       known << all.phi, near.phi;
-      Pairs more = nearest(M, *here, std::min(n - known.cols() - 1, 2 * missing + 4), known, options,
-                           options.lanczos_max_restarts);
+      Pairs more = solver->nearest(M, *here, std::min(n - known.cols() - 1, 2 * missing + 4), known,
+                                   options.lanczos_max_restarts);
       result.iterations += more.iterations;
       if (!more.status.ok()) break;
       merge(near, more);
@@ -282,7 +212,11 @@ ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::
     slice.phi = slice.phi.leftCols(expected).eval();
     merge(all, slice);
     if (last) break;
-    std::swap(here, next);
+    std::unique_ptr<ShiftInvertFactor> spare =
+        owned ? std::move(owned) : std::make_unique<ShiftInvertFactor>(K, M, options.indefinite);
+    owned = std::move(next);
+    here = owned.get();
+    next = std::move(spare);
   }
 
   auto keep = std::min(modes, static_cast<Eigen::Index>(all.lambda.size()));

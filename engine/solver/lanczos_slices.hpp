@@ -17,14 +17,17 @@
 // modes, so that the next shift comes close to the group and spreads it.
 #include "core/types.hpp"
 #include "solver/modal_types.hpp"
+#include "solver/shift_invert_factor.hpp"
 
 namespace railvsi {
 
 // The lowest max(modes, count below the cut-off) eigenpairs of K, M (the
 // cut-off is options.max_frequency_hz when > 0; `modes` may be 0 then);
 // never more than n - 1. Frequencies ascending, shapes M-orthonormal.
+// `first`: an L L' factor at options.shift_rad2_per_s2 (below the spectrum)
+// to start from, not counted in the result's factorizations; null: made here.
 ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::Index modes,
-                           const ModalOptions& options);
+                           const ModalOptions& options, const ShiftInvertFactor* first = nullptr);
 
 // The number of eigenvalues of K phi = omega^2 M phi with a frequency below
 // frequency_hz (one L D L' factor; -1 with the status when it fails).

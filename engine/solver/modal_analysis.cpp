@@ -57,7 +57,8 @@ ModalResult dense_modes(const SparseMatrix& K, const SparseMatrix& M, Eigen::Ind
 
 }  // namespace
 
-ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const ModalOptions& options) {
+ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const ModalOptions& options,
+                           const ShiftInvertFactor* first_factor) {
   ModalResult result;
   const Eigen::Index n = K.rows();
   const bool cut = options.max_frequency_hz > 0.0;
@@ -80,7 +81,7 @@ ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const M
     wanted = std::max(wanted, below);
   }
   if (n <= kDenseFromDofs && 2 * wanted > n) return dense_modes(K, M, wanted, options);
-  if (options.solver != ModeSolver::kSubspace) return lanczos_slices(K, M, nev, options);
+  if (options.solver != ModeSolver::kSubspace) return lanczos_slices(K, M, nev, options, first_factor);
 
   // Subspace iteration has one shift: its count comes from the Sturm count.
   wanted = std::min(wanted, n - 1);

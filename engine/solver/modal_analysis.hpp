@@ -6,6 +6,7 @@
 #include "core/types.hpp"
 #include "model/structure_model.hpp"
 #include "solver/modal_types.hpp"
+#include "solver/shift_invert_factor.hpp"
 
 namespace railvsi {
 
@@ -14,7 +15,11 @@ namespace railvsi {
 // sign of a Lanczos shape: its largest entry positive. A failed
 // factorization or a Lanczos that does not converge is a Status, not an
 // exception.
-ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const ModalOptions& options = {});
+// `first_factor`: an L L' factor of K - sigma M at options.shift_rad2_per_s2
+// already made (a substructure's K for its static modes), Lanczos's first
+// shift; null: factorized here.
+ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const ModalOptions& options = {},
+                           const ShiftInvertFactor* first_factor = nullptr);
 ModalResult modal_analysis(const StructureModel& structure, const ModalOptions& options = {});
 
 }  // namespace railvsi

@@ -10,6 +10,7 @@
 //       a scene's structure, written to a temporary directory for the peer;
 //       a cut-off asks every mode below it, the peer the same count
 // Further options: --no-peer; --slice-modes N (ModalOptions::slice_modes);
+// --block N (ModalOptions::lanczos_block: 1 single-vector Lanczos);
 // --one-shift: also the two Lanczos libraries alone on one shift below the
 // spectrum (exactly the modes asked, ncv = 2 k + 1, the same CHOLMOD L L'
 // factor and tolerance): Spectra (what the slices run on) and ARPACK's
@@ -227,6 +228,7 @@ int main(int argc, char** argv) {
   std::vector<double> modes{20, 50, 100, 200}, cutoffs_hz;
   bool peer = true, one_shift = false;
   int slice_modes = ModalOptions{}.slice_modes;
+  int block = ModalOptions{}.lanczos_block;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
@@ -235,11 +237,12 @@ int main(int argc, char** argv) {
     else if (a == "--modes") modes = numbers(value());
     else if (a == "--cutoffs-hz") cutoffs_hz = numbers(value());
     else if (a == "--slice-modes") slice_modes = std::stoi(value());
+    else if (a == "--block") block = std::stoi(value());
     else if (a == "--no-peer") peer = false;
     else if (a == "--one-shift") one_shift = true;
     else {
       std::fprintf(stderr, "usage: mode_solver_bench (--matrices DIR | --scene FILE) [--modes LIST] "
-                           "[--cutoffs-hz LIST] [--slice-modes N] [--no-peer] [--one-shift]\n");
+                           "[--cutoffs-hz LIST] [--slice-modes N] [--block N] [--no-peer] [--one-shift]\n");
       return 2;
     }
   }
@@ -267,6 +270,7 @@ int main(int argc, char** argv) {
               one_shift ? " spectra1_s  arpack1_s" : "", peer ? "   scipy_s   ratio  max_df/f" : "");
   ModalOptions base;
   base.slice_modes = slice_modes;
+  base.lanczos_block = block;
   const auto one = [&](int count) { return OneShift{spectra_one_shift(K, M, count), arpack_one_shift(K, M, count)}; };
   for (const double k : modes) {
     ModalOptions o = base;
