@@ -63,9 +63,14 @@ Values run(const Scene& scene, double code_cutoff_hz) {
   if (const auto* hybrid = dynamic_cast<const HybridOperator*>(op.get())) {
     const HybridBasisSummary& h = hybrid->basis().summary();
     std::printf("  hybrid setup CPU: constraint modes %.2f s, interior modes %.2f s (%d more factors: %.2f s), "
-                "reduction %.2f s\n",
+                "reduction %.2f s; interior modes' largest relative residual %.2e%s\n",
                 h.constraint_modes_cpu_s, h.interior_modes_cpu_s, h.factorizations, h.interior_factor_cpu_s,
-                h.reduction_cpu_s);
+                h.reduction_cpu_s, h.interior_max_residual,
+                h.interior_single_vector_fallback ? fmt::format(" (block Lanczos's {:.2e} failed the check: computed again "
+                                                                "one vector at a time)",
+                                                                h.interior_block_residual)
+                                                        .c_str()
+                                                  : "");
   }
   const Simulation sim(scene, op);
   const double t1 = bench::thread_cpu_s();
