@@ -19,17 +19,7 @@ using nlohmann::json;
 // Two HSLM trains over the 25 m span of the README example, two output
 // points; quick jobs (about a second each).
 json study(double speed_from_kmh, double speed_to_kmh, double step_kmh, double limit_mps2) {
-  json s = json::parse(R"({
-    "name": "query verdicts",
-    "structure": {
-      "generator": "bridge-2d", "spans_m": [25], "continuous": false,
-      "deck": {"EI_Nm2": 7.694e10, "mass_kg_per_m": 15000},
-      "damping": {"ratio": 0.01}, "track": null
-    },
-    "trains": ["HSLM-A1", "HSLM-A2"],
-    "analysis": {"hht_alpha": -0.05},
-    "outputs": {"points": [{"name": "quarter", "x_m": 6.25}, {"name": "midspan", "x_m": 12.5}]}
-  })");
+  json s = railvsi::testing::two_hslm_trains_without_speeds("query verdicts");
   s["speeds_kmh"] = {{"from", speed_from_kmh}, {"to", speed_to_kmh}, {"step", step_kmh}};
   s["checks"] = {{"deck_acceleration_limit_mps2", limit_mps2}};
   return s;
