@@ -58,22 +58,15 @@ struct HybridBasisSummary {
   double interior_factor_cpu_s = 0.0;   // of which the mode solver's factors
   double reduction_cpu_s = 0.0;         // T' K T, T' M T, T' C T
   int factorizations = 0;               // of the mode solver (its first shift is K_II's factor)
-  // The largest relative residual |K phi - w^2 M phi| / |K phi| of the
-  // interior modes kept, and whether block Lanczos's modes failed that
-  // check (kMaxInteriorResidual) and were computed again one vector at a time.
+  // The interior modes come from block Lanczos: the largest true relative
+  // residual of its pairs and of those kept, and whether its pairs failed
+  // kMaxBlockLanczosResidual (ModalResult) and were computed again one
+  // vector at a time. Zero when the interior is solved densely.
+  double interior_block_residual = 0.0;
   double interior_max_residual = 0.0;
   bool interior_single_vector_fallback = false;
-  double interior_block_residual = 0.0;  // block Lanczos's own, before a fallback
 };
 
-// Block Lanczos's own stopping test was seen to be optimistic inside bands
-// of nearly equal modes (true relative residuals 1e-7 to 8.6e-4 where it
-// stopped at 1e-12); every interior mode is checked against this residual,
-// and the modes are computed again one vector at a time when one fails it.
-// Measured on the 20,000-DOF deck: block 3.3e-8, one vector at a time
-// 3.0e-12, the hybrid run's values against FE the same to the digits shown
-// (hybrid_bench, 2026-11-27).
-inline constexpr double kMaxInteriorResidual = 1e-6;
 
 class HybridBasis {
  public:

@@ -1,5 +1,6 @@
 #include "solver/modal_analysis.hpp"
 
+#include <limits>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -55,6 +56,24 @@ ModalResult dense_modes(const SparseMatrix& K, const SparseMatrix& M, Eigen::Ind
   return result;
 }
 
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// The largest |K phi - w^2 M phi| / |K phi| of the pairs; infinity when one
+// is not finite.
+double max_relative_residual(const SparseMatrix& K, const SparseMatrix& M, const ModalResult& r) {
+  double worst = 0.0;
+  for (Eigen::Index k = 0; k < r.shapes.cols(); ++k) {
+    const Eigen::VectorXd Kphi = K * r.shapes.col(k);
+    const double w = 2.0 * std::numbers::pi * r.frequencies_hz[static_cast<std::size_t>(k)];
+    const double norm = Kphi.norm();
+    const double residual = (Kphi - w * w * (M * r.shapes.col(k))).norm();
+    const double relative = norm > 0.0 ? residual / norm : residual;
+    if (!std::isfinite(relative)) return kInfinity;
+    worst = std::max(worst, relative);
+  }
+  return worst;
+}
+
 }  // namespace
 
 ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const ModalOptions& options,
@@ -81,7 +100,22 @@ ModalResult modal_analysis(const SparseMatrix& K, const SparseMatrix& M, const M
     wanted = std::max(wanted, below);
   }
   if (n <= kDenseFromDofs && 2 * wanted > n) return dense_modes(K, M, wanted, options);
-  if (options.solver != ModeSolver::kSubspace) return lanczos_slices(K, M, nev, options, first_factor);
+  if (options.solver != ModeSolver::kSubspace) {
+    ModalResult block = lanczos_slices(K, M, nev, options, first_factor);
+    if (options.lanczos_block <= 1) return block;
+    block.block_residual = block.status.ok() ? max_relative_residual(K, M, block) : kInfinity;
+    block.max_residual = block.block_residual;
+    if (block.block_residual <= kMaxBlockLanczosResidual) return block;
+    ModalOptions single = options;
+    single.lanczos_block = 1;
+    ModalResult r = lanczos_slices(K, M, nev, single, first_factor);
+    r.factorizations += block.factorizations;
+    r.factor_cpu_s += block.factor_cpu_s;
+    r.block_residual = block.block_residual;
+    r.block_fallback = true;
+    r.max_residual = r.status.ok() ? max_relative_residual(K, M, r) : kInfinity;
+    return r;
+  }
 
   // Subspace iteration has one shift: its count comes from the Sturm count.
   wanted = std::min(wanted, n - 1);
