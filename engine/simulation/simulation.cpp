@@ -124,6 +124,10 @@ std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& sc
   return make_structure_operator(scene.structure, structure_factors(h), options);
 }
 
+std::shared_ptr<const HybridBasis> make_hybrid_basis(const Scene& scene) {
+  return make_hybrid_basis(scene.structure, structure_operator_options(scene));
+}
+
 RunEstimate estimate_run(const Scene& scene, double duration_s) {
   RunEstimate e;
   const AnalysisOptions& an = scene.analysis;

@@ -21,6 +21,11 @@ std::shared_ptr<const StructureOperator> make_structure_operator(const Scene& sc
                                                                  std::shared_ptr<const ModalBasis> modal_basis = nullptr,
                                                                  std::shared_ptr<const HybridBasis> hybrid_basis = nullptr);
 
+// The hybrid structure's reduction a scene asks for (its bridge modes: a
+// count or a cut-off), for operators of several dt to share. Throws
+// InputError as HybridBasis does.
+std::shared_ptr<const HybridBasis> make_hybrid_basis(const Scene& scene);
+
 // Time simulated by default: until the last axle has left the modelled track
 // (every rail end, and the evaluation margin past the bridge), then the free
 // vibration (free_vibration_s below), plus the extra time asked for.

@@ -75,8 +75,11 @@ struct WorkerIdentity {
 // vsi work's loop: work until the queue is empty, then the studies'
 // refinement passes and verification runs. Without `identity`, the call
 // holds its own InterruptRelease, as vsi work does.
+// The passes share one cache: `cache` when given (vsi run's, which its
+// submission filled), else one of args.cache_mb made for this call.
 scheduler::WorkSummary work_and_refine(const ServiceArgs& args, scheduler::Database& db,
                                        const std::vector<std::string>& studies,
-                                       const WorkerIdentity* identity = nullptr);
+                                       const WorkerIdentity* identity = nullptr,
+                                       scheduler::FactorizationCache* cache = nullptr);
 
 }  // namespace railvsi::cli

@@ -20,10 +20,16 @@
 #include "queue/job_queue.hpp"
 #include "study/study_cost.hpp"
 #include "study/study_plan.hpp"
+#include "study/structure_key.hpp"
+#include "workers/cached_operator.hpp"
 #include "workers/worker_pool.hpp"
 
 namespace railvsi::cli {
 namespace {
+
+std::size_t cache_budget_bytes(const ServiceArgs& args) {
+  return static_cast<std::size_t>(args.cache_mb * 1024.0 * 1024.0);
+}
 
 // Expands and validates the whole study first: when anything is wrong,
 // InputError leaves here and nothing is enqueued.
@@ -32,9 +38,15 @@ struct Submitted {
   scheduler::SubmitResult result;
 };
 
-Submitted submit(const ServiceArgs& args) {
+// `cache`, when given, receives what the dry run builds (vsi run's workers
+// use it next).
+Submitted submit(const ServiceArgs& args, scheduler::FactorizationCache* cache = nullptr) {
   scheduler::ExpandOptions options;
   options.allow_large = args.allow_large;
+  if (cache)
+    options.operators = [cache](const Scene& scene, const std::string& key) {
+      return scheduler::cached_operator(*cache, key, scheduler::structure_part(key), scene).op;
+    };
   require_study_file(args.study_file);
   const scheduler::StudyPlan plan = scheduler::load_study(args.study_file, options);
   spdlog::info("study {}: {}", plan.id.substr(0, 12), scheduler::describe(scheduler::estimate_study_cost(plan)));
@@ -53,12 +65,12 @@ Submitted submit(const ServiceArgs& args) {
   return s;
 }
 
-scheduler::WorkSummary work(const ServiceArgs& args, const WorkerIdentity* identity) {
+scheduler::WorkSummary work(const ServiceArgs& args, const WorkerIdentity* identity, scheduler::FactorizationCache& cache) {
   scheduler::WorkOptions options;
   options.db_file = args.db;
   options.threads = args.threads;
   options.lease_s = args.lease_s;
-  options.cache_budget_bytes = static_cast<std::size_t>(args.cache_mb * 1024.0 * 1024.0);
+  options.cache_budget_bytes = cache_budget_bytes(args);
   options.db_retry_s = args.db_retry_s;
   options.max_batch_jobs = static_cast<std::size_t>(args.batch);
   options.worker_prefix = identity ? identity->prefix : scheduler::worker_name_prefix();
@@ -68,7 +80,7 @@ scheduler::WorkSummary work(const ServiceArgs& args, const WorkerIdentity* ident
   if (!identity) interrupts.emplace(args.db, options.worker_prefix);
   options.stopping = identity ? identity->stopping : interrupts->stopping();
   const scheduler::WorkSummary s = scheduler::run_workers(
-      options, [&](const scheduler::WorkProgress& p, bool final) { display.update(p, final); });
+      options, cache, [&](const scheduler::WorkProgress& p, bool final) { display.update(p, final); });
   spdlog::info("this worker: {} jobs done, {} failed in {}; factorizations {} ({:.2f} s), cache lookups hit {}, evictions {}",
                s.jobs_done, s.jobs_failed, format_duration(s.wall_s), s.cache.factorizations, s.cache.factorization_s,
                s.cache.hits, s.cache.evictions);
@@ -94,7 +106,7 @@ namespace {
 // (again at every call: idempotent, and a run killed before this point is
 // finished by the next vsi work or vsi run).
 void verify(const ServiceArgs& args, scheduler::Database& db, const std::vector<std::string>& studies,
-            scheduler::WorkSummary& total, const WorkerIdentity* identity) {
+            scheduler::WorkSummary& total, const WorkerIdentity* identity, scheduler::FactorizationCache& cache) {
   std::size_t added = 0;
   for (const std::string& id : studies) {
     const std::size_t n = scheduler::enqueue_verification(db, id, args.max_attempts);
@@ -102,7 +114,7 @@ void verify(const ServiceArgs& args, scheduler::Database& db, const std::vector<
     added += n;
   }
   if (added > 0 || scheduler::state_counts(db).unfinished() > 0) {
-    const scheduler::WorkSummary s = work(args, identity);
+    const scheduler::WorkSummary s = work(args, identity, cache);
     // A verification run that fails is not a failed job of the study: its
     // job keeps no estimate (the report shows none), and the log says why.
     total.jobs_done += s.jobs_done;
@@ -125,11 +137,17 @@ void verify(const ServiceArgs& args, scheduler::Database& db, const std::vector<
 // until every peak is resolved (a bounded number of passes). Failed jobs are
 // counted over all passes; an error of the workers ends the passes.
 scheduler::WorkSummary work_and_refine(const ServiceArgs& args, scheduler::Database& db,
-                                       const std::vector<std::string>& studies, const WorkerIdentity* identity) {
+                                       const std::vector<std::string>& studies, const WorkerIdentity* identity,
+                                       scheduler::FactorizationCache* given_cache) {
   constexpr int kMaxPasses = 12;  // 10 km/h to 1 km/h takes 4; a wide range of peaks a few more
+  // One cache for every pass: a refinement's speeds and the dt/2
+  // verification runs share the operators and reductions computed before.
+  std::optional<scheduler::FactorizationCache> own_cache;
+  if (!given_cache) own_cache.emplace(cache_budget_bytes(args));
+  scheduler::FactorizationCache& cache = given_cache ? *given_cache : *own_cache;
   scheduler::WorkSummary total;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
-    const scheduler::WorkSummary s = work(args, identity);
+    const scheduler::WorkSummary s = work(args, identity, cache);
     total.jobs_done += s.jobs_done;
     total.jobs_failed += s.jobs_failed;
     if (!s.error.empty()) {
@@ -144,7 +162,7 @@ scheduler::WorkSummary work_and_refine(const ServiceArgs& args, scheduler::Datab
     }
     if (added == 0) break;
   }
-  if (total.error.empty()) verify(args, db, studies, total, identity);
+  if (total.error.empty()) verify(args, db, studies, total, identity, cache);
   return total;
 }
 
@@ -156,13 +174,16 @@ int work_command(const ServiceArgs& args) {
 }
 
 int run_command(const ServiceArgs& args) {
-  const Submitted submitted = submit(args);
+  // The submission's dry run and the workers share one cache: a
+  // structure's setup is computed once.
+  scheduler::FactorizationCache cache(cache_budget_bytes(args));
+  const Submitted submitted = submit(args, &cache);
   const scheduler::SubmitResult& r = submitted.result;
   scheduler::Database& db = *submitted.db;
   // 12 digits, as the other log lines: the whole id wrapped the line at 80 columns.
   spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id.substr(0, 12), r.jobs, r.new_jobs,
                scheduler::terminal_safe(args.db));
-  if (!work_and_refine(args, db, {r.study_id}).error.empty()) return kExitRuntimeFailure;
+  if (!work_and_refine(args, db, {r.study_id}, nullptr, &cache).error.empty()) return kExitRuntimeFailure;
   const scheduler::StudyInfo info = scheduler::study_info(db, r.study_id);
   const auto jobs = scheduler::study_results(db, {r.study_id, {}, {}, {}, {}, {}});
   std::cout << scheduler::format_table(info, jobs);

@@ -19,6 +19,20 @@ void hash_matrix(Sha256& h, const SparseMatrix& A) {
   h.update(c.valuePtr(), sizeof(double) * static_cast<std::size_t>(c.nonZeros()));
 }
 
+// What a run reads of the structure besides its matrices: rail lines (node
+// x and element DOFs) and output points (name, x, DOF).
+void hash_rails_and_outputs(Sha256& h, const StructureModel& structure) {
+  for (const RailLine& r : structure.rails()) {
+    const std::int64_t n[2] = {static_cast<std::int64_t>(r.x_m.size()), static_cast<std::int64_t>(r.element_dofs.size())};
+    h.update(n, sizeof n);
+    h.update(r.x_m.data(), sizeof(double) * r.x_m.size());
+    for (const auto& e : r.element_dofs) h.update(e.data(), sizeof(int) * e.size());
+  }
+  for (const OutputPoint& o : structure.outputs()) {
+    h.update(fmt::format("|{}:{}|{:a}|{}", o.name.size(), o.name, o.x_m, o.dof));
+  }
+}
+
 }  // namespace
 
 std::string structure_model_hash(const StructureModel& structure) {
@@ -47,7 +61,8 @@ std::string operator_key(const std::string& structure_hash, const AnalysisOption
                                 ? fmt::format("|hybrid|modes={}|cutoff={:a}", analysis.modal_modes,
                                               analysis.modal_cutoff_hz)
                                 : std::string();
-  return sha256_hex(fmt::format("railvsi operator v1|{}|dt={:a}|alpha={:a}|beta={:a}|gamma={:a}|flex={}{}",
+  return structure_hash + "/" +
+         sha256_hex(fmt::format("railvsi operator v1|{}|dt={:a}|alpha={:a}|beta={:a}|gamma={:a}|flex={}{}",
                                 structure_hash, analysis.dt_s, analysis.hht.alpha, analysis.hht.beta,
                                 analysis.hht.gamma, rail_flexibility ? 1 : 0, modal));
 }
@@ -56,16 +71,24 @@ std::string modal_operator_key(const std::string& structure_hash, const Structur
                                double dt_s) {
   Sha256 h;
   h.update(fmt::format("railvsi modal v1|{}|cutoff={:a}|dt={:a}", structure_hash, cutoff_hz, dt_s));
-  for (const RailLine& r : structure.rails()) {
-    const std::int64_t n[2] = {static_cast<std::int64_t>(r.x_m.size()), static_cast<std::int64_t>(r.element_dofs.size())};
-    h.update(n, sizeof n);
-    h.update(r.x_m.data(), sizeof(double) * r.x_m.size());
-    for (const auto& e : r.element_dofs) h.update(e.data(), sizeof(int) * e.size());
-  }
-  for (const OutputPoint& o : structure.outputs()) {
-    h.update(fmt::format("|{}:{}|{:a}|{}", o.name.size(), o.name, o.x_m, o.dof));
-  }
-  return h.hex_digest();
+  hash_rails_and_outputs(h, structure);
+  return structure_hash + "/" + h.hex_digest();
+}
+
+std::string structure_part(const std::string& operator_key) {
+  const auto slash = operator_key.find('/');
+  return slash == std::string::npos ? operator_key : operator_key.substr(0, slash);
+}
+
+std::string hybrid_basis_key(const std::string& structure_part, const StructureModel& structure, int modes,
+                             double cutoff_hz) {
+  Sha256 h;
+  const StructureInfo& info = structure.info();
+  h.update(fmt::format("railvsi hybrid basis v1|{}|modes={}|cutoff={:a}|beam={}|bridge={:a},{:a}|f1={:a}",
+                       structure_part, modes, cutoff_hz, info.deck_beam ? 1 : 0, info.bridge_start_m,
+                       info.bridge_end_m, info.first_frequency_hz));
+  hash_rails_and_outputs(h, structure);
+  return structure_part + "/" + h.hex_digest();
 }
 
 }  // namespace railvsi::scheduler

@@ -401,8 +401,9 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
         on_rung.rung = f.plan.rung;
         on_rung.modal_cutoff_hz = f.plan.modal_cutoff_hz;
         apply_rung_structure(on_rung, dry.analysis);
-        auto& op = operators[operator_key(f.structure_hash, dry.analysis, f.rail_flexibility)];
-        if (!op) op = make_structure_operator(dry);
+        const std::string key = operator_key(f.structure_hash, dry.analysis, f.rail_flexibility);
+        auto& op = operators[key];
+        if (!op) op = options.operators ? options.operators(dry, key) : make_structure_operator(dry);
         const Simulation setup(dry, op);
       }
     } catch (const InputError& e) {

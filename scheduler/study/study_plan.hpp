@@ -5,10 +5,17 @@
 // the SHA-256 of that text, so the same job submitted twice is one job.
 #include <cstddef>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+namespace railvsi {
+struct Scene;
+class StructureOperator;
+}  // namespace railvsi
 
 namespace railvsi::scheduler {
 
@@ -49,9 +56,17 @@ struct StudyPlan {
   std::vector<std::string> structures;
 };
 
+// The dry run's operator for a scene and its operator key: empty, built
+// for the dry run alone; vsi run gives its workers' cache, so that what the
+// dry run computed (a factor, the hybrid structure's reduction) is not
+// computed again by the jobs.
+using DryRunOperators =
+    std::function<std::shared_ptr<const StructureOperator>(const Scene& scene, const std::string& operator_key)>;
+
 struct ExpandOptions {
   std::size_t max_jobs = 100000;  // more is refused unless allow_large
   bool allow_large = false;
+  DryRunOperators operators;
 };
 
 // Validates the whole study before anything is returned: the schema, every

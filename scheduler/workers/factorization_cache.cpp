@@ -5,6 +5,11 @@
 
 namespace railvsi::scheduler {
 
+CacheStats operator-(const CacheStats& after, const CacheStats& before) {
+  return {after.factorizations - before.factorizations, after.hits - before.hits,
+          after.evictions - before.evictions, after.factorization_s - before.factorization_s};
+}
+
 FactorizationCache::FactorizationCache(std::size_t budget_bytes) : budget_bytes_(budget_bytes) {}
 
 std::size_t FactorizationCache::estimated_bytes(const StructureOperator& op) { return op.memory_bytes(); }
@@ -24,7 +29,7 @@ int FactorizationCache::evict_to_fit(std::size_t incoming_bytes) {
 
 CacheLookup FactorizationCache::get(const std::string& key,
                                     const std::function<std::shared_ptr<const StructureOperator>()>& build) {
-  const Lookup l = lookup(key, [&] { return Model{build(), ModalModel{}}; });
+  const Lookup l = lookup(key, [&] { return Model{build(), ModalModel{}, nullptr}; });
   return {l.model.op, l.built, l.build_s, l.evictions};
 }
 
@@ -33,8 +38,20 @@ std::size_t ModalModel::memory_bytes() const {
 }
 
 BasisLookup FactorizationCache::get_basis(const std::string& key, const std::function<ModalModel()>& build) {
-  const Lookup l = lookup(key, [&] { return Model{nullptr, build()}; });
+  const Lookup l = lookup(key, [&] { return Model{nullptr, build(), nullptr}; });
   return {l.model.modal.basis, l.model.modal.sections, l.built, l.build_s, l.evictions};
+}
+
+HybridBasisLookup FactorizationCache::get_hybrid_basis(const std::string& key,
+                                                       const std::function<std::shared_ptr<const HybridBasis>()>& build) {
+  const Lookup l = lookup(key, [&] { return Model{nullptr, ModalModel{}, build()}; });
+  return {l.model.hybrid, l.built, l.build_s, l.evictions};
+}
+
+std::size_t FactorizationCache::Model::memory_bytes() const {
+  if (op) return estimated_bytes(*op);
+  if (hybrid) return hybrid->memory_bytes();
+  return modal.memory_bytes();
 }
 
 FactorizationCache::Lookup FactorizationCache::lookup(const std::string& key, const std::function<Model()>& build) {
@@ -62,8 +79,7 @@ FactorizationCache::Lookup FactorizationCache::lookup(const std::string& key, co
   }
   result.built = true;
   result.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const std::size_t bytes =
-      result.model.op ? estimated_bytes(*result.model.op) : result.model.modal.memory_bytes();
+  const std::size_t bytes = result.model.memory_bytes();
   lock.lock();
   building_.erase(key);
   ++stats_.factorizations;

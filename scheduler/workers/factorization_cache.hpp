@@ -1,7 +1,8 @@
 #pragma once
 // Structure operators (K_bar factor and rail flexibility) shared by the
 // worker threads of one process, keyed by the job's operator key (structure
-// hash, dt, HHT parameters, rail flexibility). Least recently used entries
+// hash, dt, HHT parameters, rail flexibility), and what operators for
+// several dt share (a modal basis, the hybrid structure's reduction). Least recently used entries
 // are dropped to stay within a memory budget; an operator still in use by a
 // running job lives on in that job's shared_ptr. Concurrent requests for the
 // same key factorize once: the others wait for it.
@@ -17,6 +18,7 @@
 #include <string>
 
 #include "simulation/modal_section_forces.hpp"
+#include "solver/hybrid_basis.hpp"
 #include "solver/modal_basis.hpp"
 #include "solver/structure_operator.hpp"
 
@@ -28,6 +30,9 @@ struct CacheStats {
   std::int64_t evictions = 0;
   double factorization_s = 0.0;
 };
+
+// What happened between two readings of stats().
+CacheStats operator-(const CacheStats& after, const CacheStats& before);
 
 struct CacheLookup {
   std::shared_ptr<const StructureOperator> op;
@@ -53,6 +58,13 @@ struct BasisLookup {
   int evictions = 0;
 };
 
+struct HybridBasisLookup {
+  std::shared_ptr<const HybridBasis> basis;
+  bool built = false;  // this call computed the reduction
+  double build_s = 0.0;
+  int evictions = 0;
+};
+
 class FactorizationCache {
  public:
   explicit FactorizationCache(std::size_t budget_bytes = std::size_t{2} << 30);
@@ -63,6 +75,10 @@ class FactorizationCache {
   // The same for a modal basis, sized by ModalModel::memory_bytes(); bases
   // and operators share the budget and the LRU order.
   BasisLookup get_basis(const std::string& key, const std::function<ModalModel()>& build);
+  // The same for the hybrid structure's reduction (hybrid_basis_key: one
+  // for every dt), sized by HybridBasis::memory_bytes().
+  HybridBasisLookup get_hybrid_basis(const std::string& key,
+                                     const std::function<std::shared_ptr<const HybridBasis>()>& build);
   CacheStats stats() const;
 
   // Estimated memory of an operator (StructureOperator::memory_bytes: the
@@ -70,10 +86,12 @@ class FactorizationCache {
   static std::size_t estimated_bytes(const StructureOperator& op);
 
  private:
-  // One of the two is set.
+  // One of the three is set.
   struct Model {
     std::shared_ptr<const StructureOperator> op;
     ModalModel modal;
+    std::shared_ptr<const HybridBasis> hybrid;
+    std::size_t memory_bytes() const;
   };
   struct Entry {
     Model model;

@@ -19,6 +19,8 @@
 #include "envelopes/envelope_rows.hpp"
 #include "envelopes/job_envelopes.hpp"
 #include "planning/time_step_warnings.hpp"
+#include "study/structure_key.hpp"
+#include "workers/cached_operator.hpp"
 #include "summary/summary_json.hpp"
 #include "planning/rung_runner.hpp"
 
@@ -32,11 +34,12 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 std::string job_name(const ClaimedJob& job) { return "job " + job.id.substr(0, 12); }
 
 // File names in a job are absolute (made so at submission). An imported
-// model is shared between the jobs of one operator key, which hashes the
-// matrices the study read at submission.
+// model is shared between the jobs whose operator keys have the same
+// structure part (the hash of the matrices the study read at submission),
+// whatever their dt.
 Scene parse_job_scene(const ClaimedJob& job, ImportedStructures* imports) {
   const std::string name = job_name(job);
-  return parse_scene(parse_json_text(job.scene, name), "/", name, imports, job.operator_key);
+  return parse_scene(parse_json_text(job.scene, name), "/", name, imports, structure_part(job.operator_key));
 }
 
 // The outcome's record of a run and its envelopes; fidelity_text: the
@@ -289,7 +292,7 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache, ImportedStr
       if (s.analysis.structure_backend != *first_backend)
         key += fmt::format("/{}", structure_backend_name(s.analysis.structure_backend));
       const CacheLookup before = lookup;  // the first run's, counted with the escalation's
-      lookup = cache.get(key, [&] { return make_structure_operator(s, nullptr, reuse); });
+      lookup = cached_operator(cache, key, structure_part(job.operator_key), s, std::move(reuse));
       lookup.factorized = lookup.factorized || before.factorized;
       lookup.factorization_s += before.factorization_s;
       lookup.evictions += before.evictions;

@@ -234,12 +234,17 @@ void single_threaded_blas() {
 }
 
 WorkSummary run_workers(const WorkOptions& options, const ProgressCallback& progress) {
+  FactorizationCache cache(options.cache_budget_bytes);
+  return run_workers(options, cache, progress);
+}
+
+WorkSummary run_workers(const WorkOptions& options, FactorizationCache& cache, const ProgressCallback& progress) {
   const auto start = Clock::now();
   {
     Database db(options.db_file, OpenMode::kExisting);
     migrate(db);
   }
-  FactorizationCache cache(options.cache_budget_bytes);
+  const CacheStats cache_before = cache.stats();
   Tally tally;
   const int threads = std::max(1, options.threads);
   std::vector<std::string> names;
@@ -285,7 +290,7 @@ WorkSummary run_workers(const WorkOptions& options, const ProgressCallback& prog
   summary.jobs_done = tally.done;
   summary.jobs_failed = tally.failed;
   summary.lost_leases = tally.lost;
-  summary.cache = cache.stats();
+  summary.cache = cache.stats() - cache_before;
   summary.error = tally.error;
   summary.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;

@@ -71,7 +71,12 @@ using ProgressCallback = std::function<void(const WorkProgress& progress, bool f
 // is across jobs. Call before any BLAS call (vsi calls it in main).
 void single_threaded_blas();
 
-// Opens an existing database (NoSuchDatabase otherwise).
+// Opens an existing database (NoSuchDatabase otherwise). The workers share
+// a cache of options.cache_budget_bytes made for this call.
 WorkSummary run_workers(const WorkOptions& options, const ProgressCallback& progress = {});
+// The same on a cache the caller keeps, so that passes of one process (a
+// study's refinement and verification runs) share what they computed; the
+// summary counts this call's lookups only.
+WorkSummary run_workers(const WorkOptions& options, FactorizationCache& cache, const ProgressCallback& progress = {});
 
 }  // namespace railvsi::scheduler

@@ -151,9 +151,13 @@ TEST_F(WorkerProcesses, FactorizationsEqualTheDistinctStructureStepKeys) {
   doc["trains"].push_back(one_car_train());
   doc["speeds_kmh"] = json::array({150, 250});
   const auto study = write_json("mixed.json", doc);
+  // Submitted, then worked by another process: the workers factorize.
   const std::string db_file = (dir_ / "mixed.sqlite").string();
-  const VsiResult run = vsi({"run", study.string(), "--db", db_file, "--threads", "2"});
-  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const VsiResult submitted = vsi({"submit", study.string(), "--db", db_file});
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.err;
+  const std::string id = study_id_of(submitted);
+  const VsiResult work = vsi({"work", "--db", db_file, "--threads", "2"});
+  ASSERT_EQ(work.exit_code, 0) << work.err;
 
   Database db(db_file);
   // One structure: a key is a time step and whether the train has wheels
@@ -162,9 +166,25 @@ TEST_F(WorkerProcesses, FactorizationsEqualTheDistinctStructureStepKeys) {
   scheduler::Statement s = db.prepare("SELECT dt_s, train FROM jobs");
   while (s.step()) keys.insert({s.real(0), s.text(1) == "one coach"});
   EXPECT_GE(keys.size(), 2u);
-  EXPECT_EQ(count_rows(db, "SELECT count(DISTINCT operator_key) FROM jobs"), static_cast<std::int64_t>(keys.size()));
-  EXPECT_EQ(count_rows(db, "SELECT factorizations FROM cache_stats"), static_cast<std::int64_t>(keys.size()));
-  EXPECT_EQ(count_rows(db, "SELECT hits FROM cache_stats"), 6 - static_cast<std::int64_t>(keys.size()));
+  const auto n_keys = static_cast<std::int64_t>(keys.size());
+  EXPECT_EQ(count_rows(db, "SELECT count(DISTINCT operator_key) FROM jobs"), n_keys);
+  EXPECT_EQ(count_rows(db, "SELECT factorizations FROM cache_stats"), n_keys);
+  EXPECT_EQ(count_rows(db, "SELECT hits FROM cache_stats"), 6 - n_keys);
+
+  // vsi run: its workers take the operators its submission's dry run built
+  // (each train's first key) instead of factorizing them again, and store
+  // the same envelopes.
+  const std::string run_file = (dir_ / "mixed-run.sqlite").string();
+  const VsiResult run = vsi({"run", study.string(), "--db", run_file, "--threads", "2"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  Database run_db(run_file);
+  const std::int64_t run_factorizations = count_rows(run_db, "SELECT factorizations FROM cache_stats");
+  EXPECT_LT(run_factorizations, n_keys);
+  EXPECT_EQ(count_rows(run_db, "SELECT hits FROM cache_stats"), 6 - run_factorizations);
+  const VsiResult a = vsi({"query", "--db", db_file, "--study", id, "--format", "csv"});
+  const VsiResult b = vsi({"query", "--db", run_file, "--study", id, "--format", "csv"});
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_EQ(a.out, b.out) << "vsi run's envelopes differ from submit + work's";
 }
 
 TEST_F(WorkerProcesses, InvalidStudyEnqueuesNothingAndNamesThePath) {
