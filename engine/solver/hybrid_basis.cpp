@@ -4,8 +4,11 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
+#include <optional>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
 #include "core/input_error.hpp"
 #include "core/thread_cpu_time.hpp"
@@ -132,6 +135,32 @@ ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const H
   return r;
 }
 
+// (a0, a1) when the bridge's damping couples its interior as Rayleigh
+// damping, C_II = a0 M_II + a1 K_II and C_IG = a0 M_IG + a1 K_IG, to
+// `tolerance` of C's largest entry there; nullopt otherwise. Fitted on the
+// interior's diagonal (columns scaled), then checked on every entry.
+std::optional<std::pair<double, double>> interior_rayleigh(const Blocks& C, const Blocks& M, const Blocks& K,
+                                                           double tolerance) {
+  const Eigen::VectorXd c = C.II.diagonal(), m = M.II.diagonal(), k = K.II.diagonal();
+  const double m_scale = m.cwiseAbs().maxCoeff(), k_scale = k.cwiseAbs().maxCoeff();
+  if (c.size() == 0 || !(m_scale > 0.0) || !(k_scale > 0.0)) return std::nullopt;
+  Eigen::MatrixX2d A(c.size(), 2);
+  A.col(0) = m / m_scale;
+  A.col(1) = k / k_scale;
+  const Eigen::Vector2d x = A.colPivHouseholderQr().solve(c);
+  const double a0 = x(0) / m_scale, a1 = x(1) / k_scale;
+  if (!std::isfinite(a0) || !std::isfinite(a1)) return std::nullopt;
+  const auto off = [&](const SparseMatrix& Cb, const SparseMatrix& Mb, const SparseMatrix& Kb, double& largest) {
+    const SparseMatrix r = Cb - a0 * Mb - a1 * Kb;
+    largest = std::max(largest, Cb.coeffs().size() ? Cb.coeffs().cwiseAbs().maxCoeff() : 0.0);
+    return r.coeffs().size() ? r.coeffs().cwiseAbs().maxCoeff() : 0.0;
+  };
+  double largest = 0.0;
+  const double r_ii = off(C.II, M.II, K.II, largest), r_ig = off(C.IG, M.IG, K.IG, largest);
+  if (!(largest > 0.0) || !(std::max(r_ii, r_ig) <= tolerance * largest)) return std::nullopt;
+  return std::make_pair(a0, a1);
+}
+
 void add_dense(std::vector<Triplet>& t, const DenseMatrix& B, int row0, int col0) {
   for (Eigen::Index j = 0; j < B.cols(); ++j)
     for (Eigen::Index i = 0; i < B.rows(); ++i)
@@ -214,55 +243,61 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
   // and its coupling to the modes W' Phi. For K, W = K_IG + K_II Psi = 0
   // (Psi's definition): K_GG + K_IG' Psi, uncoupled from the modes.
   const int g0 = n_track_, q0 = n_track_ + n_interface_;
-  const auto reduce = [&](const SparseMatrix& A, const Blocks& b, bool stiffness) {
-    std::vector<Triplet> t;
-    for (int j = 0; j < A.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
-        const auto i = static_cast<std::size_t>(it.row());
-        const Part pi = part[i], pj = part[static_cast<std::size_t>(j)];
-        if (pi == Part::kInterior || pj == Part::kInterior) continue;
-        if (pi == Part::kInterface && pj == Part::kInterface) continue;  // in GG below
-        const int ri = pi == Part::kTrack ? local[i] : g0 + local[i];
-        const int rj = pj == Part::kTrack ? local[static_cast<std::size_t>(j)] : g0 + local[static_cast<std::size_t>(j)];
-        t.emplace_back(ri, rj, it.value());
-      }
+  // The bridge's blocks of T' A T: interface x interface, interface x
+  // modes, modes x modes.
+  struct Reduced {
+    DenseMatrix GG, Gq, qq;
+  };
+  const auto reduce_bridge = [&](const Blocks& b, bool stiffness) {
     // With X = A_IG' Psi (sparse times dense): A_GG + X + X' + Psi' A_II Psi,
     // whose last term's symmetry halves the largest product: each block of
     // its columns only from the diagonal down (the lower triangle, mirrored
     // after). For K, Psi' K_II Psi = -X': K_GG + X.
+    Reduced r;
     const DenseMatrix X = b.IG.transpose() * Psi;
-    DenseMatrix GG = b.GG + X;
-    DenseMatrix Gq, Z, W, WPhi;
+    r.GG = b.GG + X;
+    r.Gq = DenseMatrix::Zero(n_interface_, m);
+    DenseMatrix Z, W, WPhi;
     if (!stiffness) {
       DenseMatrix S = DenseMatrix::Zero(n_interface_, n_interface_);
-      Gq.resize(n_interface_, m);
       for (int c0 = 0; c0 < n_interface_; c0 += block) {
         const int w = std::min(block, n_interface_ - c0);
         Z = sparse_times_dense(b.II, Psi.middleCols(c0, w));
         multiply_blocks(true, Psi.rightCols(n_interface_ - c0), Z, S.block(c0, c0, n_interface_ - c0, w));
         W = Z + DenseMatrix(b.IG.middleCols(c0, w));
         multiply_transposed(W, Phi, WPhi);
-        Gq.middleRows(c0, w) = WPhi;
+        r.Gq.middleRows(c0, w) = WPhi;
       }
       S.triangularView<Eigen::StrictlyUpper>() = S.transpose();
-      GG += X.transpose() + S;
+      r.GG += X.transpose() + S;
     }
-    GG = (0.5 * (GG + GG.transpose())).eval();
-    DenseMatrix qq;
-    multiply_transposed(Phi, sparse_times_dense(b.II, Phi), qq);
-    qq = (0.5 * (qq + qq.transpose())).eval();
-    add_dense(t, GG, g0, g0);
-    if (!stiffness) {
-      add_dense(t, Gq, g0, q0);
-      add_dense(t, Gq.transpose(), q0, g0);
-    }
-    add_dense(t, qq, q0, q0);
+    r.GG = (0.5 * (r.GG + r.GG.transpose())).eval();
+    multiply_transposed(Phi, sparse_times_dense(b.II, Phi), r.qq);
+    r.qq = (0.5 * (r.qq + r.qq.transpose())).eval();
+    return r;
+  };
+  // T' A T: the track's rows and columns as they are, the bridge's blocks.
+  const auto assemble = [&](const SparseMatrix& A, const Reduced& r) {
+    std::vector<Triplet> t;
+    for (int j = 0; j < A.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+        const auto i = static_cast<std::size_t>(it.row());
+        const Part pi = part[i], pj = part[static_cast<std::size_t>(j)];
+        if (pi == Part::kInterior || pj == Part::kInterior) continue;
+        if (pi == Part::kInterface && pj == Part::kInterface) continue;  // in GG
+        const int ri = pi == Part::kTrack ? local[i] : g0 + local[i];
+        const int rj = pj == Part::kTrack ? local[static_cast<std::size_t>(j)] : g0 + local[static_cast<std::size_t>(j)];
+        t.emplace_back(ri, rj, it.value());
+      }
+    add_dense(t, r.GG, g0, g0);
+    add_dense(t, r.Gq, g0, q0);
+    add_dense(t, r.Gq.transpose(), q0, g0);
+    add_dense(t, r.qq, q0, q0);
     SparseMatrix R(size(), size());
     R.setFromTriplets(t.begin(), t.end());
     R.makeCompressed();
     return R;
   };
-
   index_.assign(static_cast<std::size_t>(n), -1);
   for (int d = 0; d < n; ++d) {
     const auto u = static_cast<std::size_t>(d);
@@ -282,7 +317,23 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
   info.deck_dofs = size() - n_track_;
   for (int d = 0; d < n_track_; ++d) info.track_dof_list.push_back(d);
   cpu_s = thread_cpu_s();
-  reduced_ = std::make_shared<const StructureModel>(reduce(s.K(), K, true), reduce(s.M(), M, false), reduce(s.C(), C, false),
+  const Reduced rK = reduce_bridge(K, true), rM = reduce_bridge(M, false);
+  Reduced rC;
+  const auto rayleigh = options.rayleigh_shortcut ? interior_rayleigh(C, M, K, kRayleighFitTolerance) : std::nullopt;
+  if (rayleigh) {
+    // C = a0 M + a1 K on the bridge's interior: its blocks follow from M's
+    // and K's (W_K = 0, so C couples the modes through M only), which
+    // saves the largest product, Psi' C_II Psi.
+    const auto [a0, a1] = *rayleigh;
+    rC.GG = C.GG + a0 * (rM.GG - M.GG) + a1 * (rK.GG - K.GG);
+    rC.GG = (0.5 * (rC.GG + rC.GG.transpose())).eval();
+    rC.Gq = a0 * rM.Gq;
+    rC.qq = a0 * rM.qq + a1 * rK.qq;
+  } else {
+    rC = reduce_bridge(C, false);
+  }
+  summary_.rayleigh_damping = rayleigh.has_value();
+  reduced_ = std::make_shared<const StructureModel>(assemble(s.K(), rK), assemble(s.M(), rM), assemble(s.C(), rC),
                                                     std::move(rails), std::vector<OutputPoint>{}, std::move(info));
 
   summary_.reduction_cpu_s = thread_cpu_s() - cpu_s;

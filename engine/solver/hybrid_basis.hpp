@@ -49,7 +49,15 @@ struct HybridBasisOptions {
   // Interface columns per block of the constraint modes' solve and of the
   // reduction's products: the dense work arrays are a block wide.
   int column_block = 128;
+  // When the bridge's interior is damped as a0 M + a1 K (to
+  // kRayleighFitTolerance), reduce C from M's and K's reductions instead
+  // of its own products (false: always its own; for verification).
+  bool rayleigh_shortcut = true;
 };
+
+// How exactly C must equal a0 M + a1 K on the bridge's interior (largest
+// entry of the difference over C's largest there) for the shortcut.
+inline constexpr double kRayleighFitTolerance = 1e-12;
 
 // What the reduction cost, by part (CPU seconds of the building thread).
 struct HybridBasisSummary {
@@ -65,6 +73,9 @@ struct HybridBasisSummary {
   double interior_block_residual = 0.0;
   double interior_max_residual = 0.0;
   bool interior_single_vector_fallback = false;
+  // C was reduced from M's and K's reductions (HybridBasisOptions::
+  // rayleigh_shortcut and a Rayleigh-damped interior).
+  bool rayleigh_damping = false;
 };
 
 

@@ -190,6 +190,45 @@ TEST(HybridStructure, InteriorModesToACutoffEqualTheDenseSolversAndPassTheResidu
   EXPECT_LE(h.interior_max_residual, kMaxBlockLanczosResidual);
 }
 
+// A deck damped as a0 M + a1 K (the generated 3D deck: Rayleigh on the
+// deck, the pads' own dampers on the track) gets its reduced C from M's and
+// K's reductions, which must equal C's own products; a C that is not
+// Rayleigh on the bridge's interior takes its own products.
+TEST(HybridStructure, ARayleighDampedInteriorReducesCFromMAndKAsItsOwnProducts) {
+  Deck3dOptions d;
+  d.spans_m = {12.0, 12.0};
+  d.approach_m = 12.0;
+  d.exit_m = 6.0;
+  d.mesh = Deck3dMesh{{12, 12}, 3, 2};
+  const auto structure = make_deck_3d(d).model;
+  HybridBasisOptions o{150.0, 0, false};
+  const HybridBasis shortcut(structure, o);
+  o.rayleigh_shortcut = false;
+  const HybridBasis own(structure, o);
+  EXPECT_TRUE(shortcut.summary().rayleigh_damping);
+  EXPECT_FALSE(own.summary().rayleigh_damping);
+  ASSERT_EQ(shortcut.num_modes(), own.num_modes());
+  const DenseMatrix a = DenseMatrix(shortcut.reduced().C()), b = DenseMatrix(own.reduced().C());
+  ASSERT_EQ(a.rows(), b.rows());
+  const double d_c = (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+  ASSERT_TRUE(std::isfinite(d_c));
+  std::printf("[hybrid Rayleigh C] largest difference %.2e of the largest entry\n", d_c);
+  // Measured 9.8e-15 (2026-11-27); K and M are the same products.
+  EXPECT_LE(d_c, 2.9e-14);
+  for (auto A : {&StructureModel::K, &StructureModel::M})
+    EXPECT_EQ(DenseMatrix((shortcut.reduced().*A)()), DenseMatrix((own.reduced().*A)()));
+
+  // Every DOF's own damping 0.1 % more (the couplings as they were): not
+  // Rayleigh on the interior.
+  SparseMatrix C = structure->C();
+  for (int k = 0; k < C.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(C, k); it; ++it)
+      if (it.row() == it.col()) it.valueRef() *= 1.001;
+  const auto damped = std::make_shared<const StructureModel>(structure->K(), structure->M(), C, structure->rails(),
+                                                             structure->outputs(), structure->info());
+  EXPECT_FALSE(HybridBasis(damped, HybridBasisOptions{150.0, 0, false}).summary().rayleigh_damping);
+}
+
 TEST(HybridStructure, RefusesAStructureWithoutTrack) {
   Bridge2dOptions b = testing::hslm_check_span_options();
   const auto structure = make_bridge_2d(b);
