@@ -61,14 +61,15 @@ Status solve_contact_problem(const Vector& delta_bar, const DenseMatrix& A,
       if (ws.phi_trial.norm() < norm) break;
     }
     // The last trial is the accepted one: its delta and Phi are at hand,
-    // only the Jacobian is new.
+    // only the Jacobian is new, and needed only if another iteration follows.
     P = ws.P_trial;
     ws.phi.swap(ws.phi_trial);
-    contact_jacobian(A, laws, ws.delta, ws.J);
     norm = ws.phi.norm();
     summary.relative_residual = norm / scale;
     if (!std::isfinite(norm)) return {StatusCode::kDiverged, "contact residual is not finite"};
-    if (summary.relative_residual <= options.tolerance) {
+    if (summary.relative_residual > options.tolerance) {
+      contact_jacobian(A, laws, ws.delta, ws.J);
+    } else {
       // Make the returned forces admissible: exactly the law's value.
       for (Eigen::Index c = 0; c < P.size(); ++c) {
         const ContactLaw& law = *laws[static_cast<std::size_t>(c)];

@@ -23,9 +23,12 @@ HhtCoefficients::HhtCoefficients(const HhtParameters& p, double dt_s)
 }
 
 void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new, KinematicState& s) {
+  // The coefficients in locals: the stores could alias h, which the
+  // compiler would otherwise reload at every entry.
+  const double c0 = h.c0, c1 = h.c1, c2 = h.c2, dt = h.dt, gamma = h.gamma, one_gamma = 1.0 - h.gamma;
   for (Eigen::Index i = 0; i < u_new.size(); ++i) {
-    const double a_new = h.c0 * (u_new[i] - s.u[i]) - h.c1 * s.v[i] - h.c2 * s.a[i];
-    s.v[i] += h.dt * ((1.0 - h.gamma) * s.a[i] + h.gamma * a_new);
+    const double a_new = c0 * (u_new[i] - s.u[i]) - c1 * s.v[i] - c2 * s.a[i];
+    s.v[i] += dt * (one_gamma * s.a[i] + gamma * a_new);
     s.a[i] = a_new;
     s.u[i] = u_new[i];
   }
@@ -37,11 +40,19 @@ void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new,
   out.u.resize(n);
   out.v.resize(n);
   out.a.resize(n);
+  const double c0 = h.c0, c1 = h.c1, c2 = h.c2, dt = h.dt, gamma = h.gamma, one_gamma = 1.0 - h.gamma;
+  const double* un = u_new.data();
+  const double* ou = old.u.data();
+  const double* ov = old.v.data();
+  const double* oa = old.a.data();
+  double* __restrict nu = out.u.data();
+  double* __restrict nv = out.v.data();
+  double* __restrict na = out.a.data();
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double a_new = h.c0 * (u_new[i] - old.u[i]) - h.c1 * old.v[i] - h.c2 * old.a[i];
-    out.v[i] = old.v[i] + h.dt * ((1.0 - h.gamma) * old.a[i] + h.gamma * a_new);
-    out.a[i] = a_new;
-    out.u[i] = u_new[i];
+    const double a_new = c0 * (un[i] - ou[i]) - c1 * ov[i] - c2 * oa[i];
+    nv[i] = ov[i] + dt * (one_gamma * oa[i] + gamma * a_new);
+    na[i] = a_new;
+    nu[i] = un[i];
   }
 }
 

@@ -71,7 +71,8 @@ void hht_history_rhs(const HhtCoefficients& h, const Mat& M, const Mat& C, const
 // (eqs. 16-17), in place.
 void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new, KinematicState& s);
 // The same into `out` (resized), from the state `old` at t_n: the time
-// loop swaps its two states instead of copying one.
+// loop swaps its two states instead of copying one. `out` must not share
+// storage with `old` or u_new.
 void hht_update(const HhtCoefficients& h, const Eigen::Ref<const Vector>& u_new, const KinematicState& old,
                 KinematicState& out);
 

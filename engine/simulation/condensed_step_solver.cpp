@@ -110,29 +110,47 @@ class CondensedStepSolver final : public StepSolver {
     else add_pairs<false>(rows);
   }
 
+  // Two partners e, e + 1 of contact c at once, one SIMD lane each: a lane
+  // does its pair's scalar sum in the same order. A DOF a lane's contact
+  // lacks (or a lane past the last contact) gets weight 0 and block entry 0
+  // (refresh_blocks), so its terms are +-0, which leave a sum started at +0
+  // exactly as it was: A is the same bit for bit as one pair at a time.
   template <bool kResidual>
   void add_pairs(const std::vector<std::optional<RailContactRow>>& rows) {
+    using Two = double __attribute__((vector_size(2 * sizeof(double))));
     const auto nc = A_.rows();
+    const auto lane_weights = [&](Eigen::Index e, std::array<double, 4>& w) {
+      for (int j = 0; j < 4; ++j) w[j] = e < nc && rows[e] && rows[e]->dof[j] >= 0 ? rows[e]->weight[j] : 0.0;
+    };
+    static const PairBlock kZero{};
     for (Eigen::Index c = 0; c < nc; ++c) {
-      for (Eigen::Index e = c; e < nc; ++e) {
-        double a = 0.0, residual = 0.0;
-        if (rows[c] && rows[e]) {
-          const PairBlock& b = blocks_[static_cast<std::size_t>(c * nc + e)];
+      for (Eigen::Index e = c; e < nc; e += 2) {
+        Two a{0.0, 0.0}, residual{0.0, 0.0};
+        if (rows[c]) {
+          std::array<double, 4> w0{}, w1{};
+          lane_weights(e, w0);
+          lane_weights(e + 1, w1);
+          const PairBlock& b0 = blocks_[static_cast<std::size_t>(c * nc + e)];
+          const PairBlock& b1 = e + 1 < nc ? blocks_[static_cast<std::size_t>(c * nc + e + 1)] : kZero;
           for (int i = 0; i < 4; ++i) {
             if (rows[c]->dof[i] < 0) continue;
+            const double wi = rows[c]->weight[i];
             for (int j = 0; j < 4; ++j) {
-              if (rows[e]->dof[j] < 0) continue;
-              const double w = rows[c]->weight[i] * rows[e]->weight[j];
-              a += w * b.F[i][j];
-              if constexpr (kResidual) residual += w * b.R[i][j];
+              const Two w = Two{wi, wi} * Two{w0[j], w1[j]};
+              a += w * Two{b0.F[i][j], b1.F[i][j]};
+              if constexpr (kResidual) residual += w * Two{b0.R[i][j], b1.R[i][j]};
             }
           }
         }
-        const ContactSpec& cc = layout_.contacts[c];
-        const ContactSpec& ce = layout_.contacts[e];
-        if (cc.vehicle == ce.vehicle)
-          a += vehicles_[layout_.vehicles[cc.vehicle].type].wheel_flexibility(cc.local_wheel, ce.local_wheel);
-        A_(c, e) = A_(e, c) = (1.0 + options_.alpha) * a + residual;
+        for (int l = 0; l < 2 && e + l < nc; ++l) {
+          const Eigen::Index f = e + l;
+          double al = a[l];
+          const ContactSpec& cc = layout_.contacts[c];
+          const ContactSpec& cf = layout_.contacts[f];
+          if (cc.vehicle == cf.vehicle)
+            al += vehicles_[layout_.vehicles[cc.vehicle].type].wheel_flexibility(cc.local_wheel, cf.local_wheel);
+          A_(c, f) = A_(f, c) = (1.0 + options_.alpha) * al + residual[l];
+        }
       }
     }
   }

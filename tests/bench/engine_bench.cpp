@@ -8,6 +8,7 @@
 
 #include <chrono>
 
+#include "io/scene_loader.hpp"
 #include "simulation/simulation.hpp"
 #include "solve_floor.hpp"
 #include "test_scenes.hpp"
@@ -53,8 +54,8 @@ void BM_StructureSolve(benchmark::State& state) {
 }
 BENCHMARK(BM_StructureSolve)->Unit(benchmark::kMicrosecond);
 
-void BM_Ice3Viaduct300(benchmark::State& state) {
-  const Scene scene = ice3_on_viaduct();
+// One run of the scene and the solve floor after it, as counters.
+void run_against_floor(benchmark::State& state, const Scene& scene) {
   Result r;
   double t_solve = 0.0, t_solve_cpu = 0.0, loop_cpu_s = 0.0, op_factorization_s = 0.0, op_flexibility_s = 0.0;
   bool one_solve = false;
@@ -94,7 +95,15 @@ void BM_Ice3Viaduct300(benchmark::State& state) {
   state.counters["max_unloading"] = s.max_unloading_ratio;
   state.counters["max_deck_acc"] = s.max_abs_acceleration_mps2;
 }
+void BM_Ice3Viaduct300(benchmark::State& state) { run_against_floor(state, ice3_on_viaduct()); }
 BENCHMARK(BM_Ice3Viaduct300)->Unit(benchmark::kSecond)->Iterations(1);
+
+// The example job as `vsi simulate` runs it (the same viaduct on the German
+// low-interference profile; every step stored in the histories).
+void BM_Ice3ViaductGermanJob(benchmark::State& state) {
+  run_against_floor(state, load_scene(RAILVSI_EXAMPLES_DIR "/viaduct-ice3-german.json"));
+}
+BENCHMARK(BM_Ice3ViaductGermanJob)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 }  // namespace railvsi
