@@ -471,8 +471,8 @@ TEST(HardCases, BilateralLinearHertzOverTheDipFlagsTensionNotLoss) {
 // 4): at 0.25 ms each run warns dt_above_policy naming the factor and the
 // feature; at the policy's step the dips converge.
 void warns_at_quarter_millisecond(const std::string& name, const json& doc, const char* feature_text,
-                                  double factor_min) {
-  const Outcome o = run(doc, kTwoSpanCutoff);
+                                  double factor_min, double cutoff_hz = kTwoSpanCutoff) {
+  const Outcome o = run(doc, cutoff_hz);
   expect_finite(o);
   EXPECT_TRUE(o.result.status.ok()) << o.result.status.message();
   EXPECT_EQ(o.codes, (std::set<std::string>{"dt_above_policy"})) << codes_text(o);
@@ -573,6 +573,96 @@ TEST(HardCasesTrack, ShortWavelengthProfileWarns) {
   warns_at_quarter_millisecond("corrugation 0.5 mm x 0.3 m, 300 km/h, 0.25 ms",
                                with_irregularity(two_span_scene(300, 2.5e-4), {{"x_m", x}, {"r_m", r}}),
                                "mm peak to peak", 9.0);
+}
+
+// The issue's viaduct scenes: three simply supported 25 m spans with
+// ballasted track (jobs/examples/viaduct-ice3.json's structure), one ICE3
+// coach (the whole train takes 4-5x longer: measured by hand, see
+// docs/verification.md), Hertz, at the time-step policy's step for the
+// scene as a study plans it, against a quarter of it.
+json viaduct_scene(double speed_kmh, json irregularity) {
+  json doc = {{"structure",
+               {{"generator", "bridge-2d"},
+                {"spans_m", {25.0, 25.0, 25.0}},
+                {"deck", {{"EI_Nm2", 7.124e10}, {"mass_kg_per_m", 18000}}},
+                {"damping", {{"ratio", 0.02}}},
+                {"track", json::object()}}},
+              {"train", one_coach()},
+              {"speed_kmh", speed_kmh},
+              {"irregularity", std::move(irregularity)},
+              {"analysis", {{"dt_s", 2.5e-4}, {"hht_alpha", -0.05}, {"contact", {{"law", "hertz"}}}}}};
+  const Scene scene = parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs", "hard case");
+  const DeckFrequencies f = deck_frequencies(*scene.structure);
+  const TimeStepChoice policy = choose_time_step(*scene.structure, scene.train, scene.speed_mps,
+                                                 scene.analysis.contact, f.f0_hz, f.f3_hz, {}, scene.irregularity.get());
+  doc["analysis"]["dt_s"] = policy.dt_s;
+  return doc;
+}
+
+// f0 = 5.0 Hz, f3 = 45 Hz for these spans (the example's EI).
+const double kViaductCutoff = ss_cutoff(5.0);
+
+json viaduct_dip(double speed_kmh) {
+  return viaduct_scene(speed_kmh, {{"defects", {{{"type", "dip"}, {"x_m", 37.0}, {"length_m", 1.0}, {"depth_m", 0.03}}}}});
+}
+
+TEST(HardCasesViaduct, TenMillimetreStepDownThenUpAt300WarnsAtThePolicysFloor) {
+  const json doc = viaduct_scene(300, {{"x_m", {-400.0, 37.0, 37.01, 39.0, 39.01, 400.0}},
+                                       {"r_m", {0.0, 0.0, -0.010, -0.010, 0.0, 0.0}}});
+  EXPECT_DOUBLE_EQ(doc["analysis"]["dt_s"].get<double>(), 2e-3 / 128);  // the ladder's floor
+  // A step's rise over 0.01 m needs 3.6 us at 83.3 m/s: the floor is 4.4x
+  // that. 36 s on a loaded machine (the floor's 200,000 steps).
+  warns_at_quarter_millisecond("viaduct, 10 mm step down, up 2 m later, 300 km/h, one coach, 15.6 us", doc,
+                               "10 mm peak to peak", 4.0, kViaductCutoff);
+}
+
+// The policy's step against a quarter of it: deck displacement, filtered
+// deck acceleration, car body and the contact-loss time (the wheel leaves
+// the rail after the dip: Q min 0 and dQ/Q 1 in both).
+struct DipConvergence {
+  double w, a, body, loss;
+};
+DipConvergence viaduct_dip_converges(const char* name, double speed_kmh, double policy_dt_s) {
+  const json doc = viaduct_dip(speed_kmh);
+  EXPECT_DOUBLE_EQ(doc["analysis"]["dt_s"].get<double>(), policy_dt_s);
+  const Outcome coarse = run(doc, kViaductCutoff);
+  const Outcome fine = run(with_dt(doc, policy_dt_s / 4), kViaductCutoff);
+  expect_finite(coarse);
+  expect_finite(fine);
+  EXPECT_TRUE(coarse.result.status.ok()) << coarse.result.status.message();
+  EXPECT_TRUE(fine.result.status.ok()) << fine.result.status.message();
+  EXPECT_TRUE(coarse.codes.empty()) << codes_text(coarse);
+  EXPECT_LE(coarse.result.summary.energy_residual, 1e-9);
+  EXPECT_GT(fine.result.summary.contact_loss_s, 0.0);
+  EXPECT_DOUBLE_EQ(coarse.result.summary.max_unloading_ratio, 1.0);
+  const Convergence c = compare(coarse, fine);
+  const double loss = rel(coarse.result.summary.contact_loss_s, fine.result.summary.contact_loss_s);
+  table_row(name, coarse,
+            fmt::format("{}, contact loss {:.3g} %", convergence_text(c, "dt/4"), 100 * loss));
+  return {c.displacement, c.acceleration, c.carbody, loss};
+}
+
+TEST(HardCasesViaduct, Dip30mmOverOneMetreAt350ConvergesAtThePolicysStep) {
+  // 1 m / (150 x 97.2 m/s) = 6.9e-5 s -> 62.5 us.
+  const DipConvergence c = viaduct_dip_converges("viaduct, dip 30 mm x 1 m, 350 km/h, one coach", 350, 6.25e-5);
+  // Measured 2026-11-27 (26 s for both runs on a loaded machine): w
+  // 7.7e-6, a_filt 1.04e-5, body 4.3e-4, contact loss 1.0e-3; 3x each.
+  EXPECT_LE(c.w, 2.3e-5);
+  EXPECT_LE(c.a, 3.1e-5);
+  EXPECT_LE(c.body, 1.3e-3);
+  EXPECT_LE(c.loss, 3.0e-3);
+}
+
+TEST(HardCasesViaduct, Dip30mmOverOneMetreAt400ConvergesAtThePolicysStep) {
+  // 1 m / (150 x 111.1 m/s) = 6.0e-5 s -> 31.25 us.
+  const DipConvergence c = viaduct_dip_converges("viaduct, dip 30 mm x 1 m, 400 km/h, one coach", 400, 3.125e-5);
+  // Measured 2026-11-27 (30 s): w 2.1e-5, a_filt 3.8e-4, body 1.0e-4,
+  // contact loss 6.0e-3 (steps of 31.25 us in a 20 ms loss); 3x each, the
+  // loss held to the 1 % the issue asks.
+  EXPECT_LE(c.w, 6.3e-5);
+  EXPECT_LE(c.a, 1.1e-3);
+  EXPECT_LE(c.body, 3.1e-4);
+  EXPECT_LE(c.loss, 0.01);
 }
 
 }  // namespace
