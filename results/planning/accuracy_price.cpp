@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "planning/time_step_warnings.hpp"
+#include "planning/wheel_value_warnings.hpp"
 #include "solver/modal_basis.hpp"
 #include "planning/effects_planner.hpp"
 #include "solver/hybrid_basis.hpp"
@@ -209,6 +210,7 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
       std::vector<RunWarning> warnings = result.summary.warnings;
       if (result.summary.fidelity.solver_path != "modal-exact")
         for (RunWarning& w : time_step_warnings(s, report.cutoff_hz)) warnings.push_back(std::move(w));
+      for (RunWarning& w : wheel_value_warnings(s, result.summary, report.cutoff_hz)) warnings.push_back(std::move(w));
       for (const RunWarning& w : warnings)
         if (std::find(row.warnings.begin(), row.warnings.end(), w.code) == row.warnings.end())
           row.warnings.push_back(w.code);

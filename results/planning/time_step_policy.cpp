@@ -71,7 +71,7 @@ TimeStepChoice choose_time_step(const StructureModel& structure, const Train& tr
   require(finite_non_negative(f0_hz) && finite_non_negative(f3_hz), "f0_hz and f3_hz must be finite and >= 0");
   require(policy.dt_max_s > 0.0 && policy.max_period_error > 0.0 && policy.max_travel_fraction_of_element > 0.0 &&
               policy.contact_steps_per_period > 0.0 && policy.track_steps_per_feature > 0.0 &&
-              policy.impact_steps_per_feature > 0.0,
+              policy.impact_steps_per_feature > 0.0 && policy.rigid_steps_per_element > 0.0,
           "policy values must be > 0");
 
   TimeStepChoice c;
@@ -87,6 +87,11 @@ TimeStepChoice choose_time_step(const StructureModel& structure, const Train& tr
     c.bounds.push_back({"wheel travel", policy.max_travel_fraction_of_element * h / speed_mps,
                         fmt::format("wheel travel {:g} x {:.3f} m element at {:.1f} m/s",
                                     policy.max_travel_fraction_of_element, h, speed_mps)});
+  if (speed_mps > 0.0 && std::isfinite(h) && contact.law == "rigid" && !train.is_moving_forces())
+    c.bounds.push_back({"rigid contact", h / (policy.rigid_steps_per_element * speed_mps),
+                        fmt::format("rigid contact: a wheel crosses each {:.3f} m rail element in {:g} steps at "
+                                    "{:.1f} m/s (the rail's curvature jumps at its nodes)",
+                                    h, policy.rigid_steps_per_element, speed_mps)});
   const double f_H = highest_contact_frequency_hz(train, contact);
   if (f_H > 0.0)
     c.bounds.push_back({"contact frequency", 1.0 / (policy.contact_steps_per_period * f_H),

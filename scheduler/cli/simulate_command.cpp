@@ -14,6 +14,7 @@
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
 #include "planning/time_step_warnings.hpp"
+#include "planning/wheel_value_warnings.hpp"
 #include "price/dt_self_check.hpp"
 #include "simulation/simulation.hpp"
 #include "planning/deck_frequencies.hpp"
@@ -111,6 +112,7 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
   for (RunWarning& w : result.summary.fidelity.solver_path != "modal-exact" ? time_step_warnings(ran, cutoff)
                                                                              : modal_time_step_warnings(ran, cutoff))
     extra.push_back(std::move(w));
+  for (RunWarning& w : wheel_value_warnings(ran, result.summary, cutoff)) extra.push_back(std::move(w));
   for (RunWarning& w : extra) result.summary.warnings.push_back(std::move(w));
   const RunFrame frame = run_frame(scene, cutoff);
   if (histories_dir) write_run_histories(result.histories, frame, *histories_dir);

@@ -19,6 +19,7 @@
 #include "envelopes/envelope_rows.hpp"
 #include "envelopes/job_envelopes.hpp"
 #include "planning/time_step_warnings.hpp"
+#include "planning/wheel_value_warnings.hpp"
 #include "study/structure_key.hpp"
 #include "workers/cached_operator.hpp"
 #include "summary/summary_json.hpp"
@@ -302,7 +303,9 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache, ImportedStr
     out.factorized = lookup.factorized;
     out.factorization_s = lookup.factorization_s;
     out.evictions = lookup.evictions;
-    for (RunWarning& w : time_step_warnings(scene_as_run(scene, result.summary), job.cutoff_hz))
+    const Scene ran = scene_as_run(scene, result.summary);
+    for (RunWarning& w : time_step_warnings(ran, job.cutoff_hz)) result.summary.warnings.push_back(std::move(w));
+    for (RunWarning& w : wheel_value_warnings(ran, result.summary, job.cutoff_hz))
       result.summary.warnings.push_back(std::move(w));
     const RunSummary& s = result.summary;
     out.setup_s = s.setup_s + lookup.factorization_s;

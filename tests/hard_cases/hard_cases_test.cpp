@@ -23,7 +23,11 @@
 #include "envelopes/job_envelopes.hpp"
 #include "io/scene_loader.hpp"
 #include "io/train_loader.hpp"
+#include "planning/deck_frequencies.hpp"
+#include "planning/rung_runner.hpp"
+#include "planning/time_step_policy.hpp"
 #include "planning/time_step_warnings.hpp"
+#include "planning/wheel_value_warnings.hpp"
 #include "simulation/simulation.hpp"
 #include "../support/worst_of.hpp"
 
@@ -86,6 +90,8 @@ Outcome run(const Scene& scene, double cutoff_hz) {
   Outcome o;
   o.result = sim.run();
   for (RunWarning& w : time_step_warnings(scene, cutoff_hz)) o.result.summary.warnings.push_back(std::move(w));
+  for (RunWarning& w : wheel_value_warnings(scene, o.result.summary, cutoff_hz))
+    o.result.summary.warnings.push_back(std::move(w));
   o.env = compute_envelopes(o.result, scene.analysis.dt_s, scene.analysis.history_stride, cutoff_hz);
   for (const RunWarning& w : o.result.summary.warnings) o.codes.insert(w.code);
   return o;
@@ -93,6 +99,21 @@ Outcome run(const Scene& scene, double cutoff_hz) {
 
 Outcome run(const json& doc, double cutoff_hz) {
   return run(parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs", "hard case"), cutoff_hz);
+}
+
+// The scene through its fidelity (run_planned, as vsi simulate runs it),
+// with the warnings vsi simulate adds for the run as it ran.
+Outcome planned(const json& doc, double cutoff_hz) {
+  const Scene scene = parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs", "hard case");
+  Outcome o;
+  o.result = run_planned(scene, deck_frequencies(*scene.structure));
+  const Scene ran = scene_as_run(scene, o.result.summary);
+  for (RunWarning& w : time_step_warnings(ran, cutoff_hz)) o.result.summary.warnings.push_back(std::move(w));
+  for (RunWarning& w : wheel_value_warnings(ran, o.result.summary, cutoff_hz))
+    o.result.summary.warnings.push_back(std::move(w));
+  o.env = compute_envelopes(o.result, o.result.summary.dt_s, ran.analysis.history_stride, cutoff_hz);
+  for (const RunWarning& w : o.result.summary.warnings) o.codes.insert(w.code);
+  return o;
 }
 
 // Relative difference; NaN, which fails every comparison, when either run
@@ -235,8 +256,57 @@ TEST(HardCases, GermanHighAt400) {
   const json doc = with_irregularity(two_span_scene(400, 2.5e-4), {{"spectrum", "german-high"}, {"seed", 1}});
   // dQ/Q converges slowest on the roughest profile at 400 km/h. Measured
   // 2026-11-27: w 0.00174 %, a_filt 0.0562 %, dQ/Q 4.10 %, body 0.00605 %.
-  claimed("German high, Hertz, 400 km/h", doc, with_dt(doc, 1.25e-4), kTwoSpanCutoff, {}, 1e-9,
-          {5e-5, 1.5e-3, 0.12, 1.8e-4}, "dt/2");
+  // A wheel keeps 52 % of its load on the rail: at the policy's step (0.25
+  // ms) its Q min is +3.9 % off dt/4, and the run says so (wheel_values_dt).
+  Outcome coarse;
+  claimed("German high, Hertz, 400 km/h", doc, with_dt(doc, 1.25e-4), kTwoSpanCutoff, {"wheel_values_dt"}, 1e-9,
+          {5e-5, 1.5e-3, 0.12, 1.8e-4}, "dt/2", &coarse);
+  for (const RunWarning& w : coarse.result.summary.warnings)
+    if (w.code == "wheel_values_dt") {
+      ASSERT_TRUE(w.factor.has_value());
+      EXPECT_DOUBLE_EQ(*w.factor, 2.0) << w.message;  // 0.25 ms against 0.5 x the policy's 0.25 ms
+      EXPECT_NE(w.message.find("nonlinear Hertz on rung interaction/fe"), std::string::npos) << w.message;
+    }
+}
+
+// Issue 33: a pinned unilateral linear Hertz over the German high profile
+// at 400 km/h had an unconservative Q min and no warning. Against the full
+// model (unilateral Hertz at dt/4 = 62.5 us), measured 2026-11-27: linear
+// Hertz at the policy's 0.25 ms +2.54 % (Hertz at 0.25 ms +3.92 %: the step
+// error), linear Hertz at dt/4 -1.43 % (its own law error); the planner's
+// answer ("auto": repeated with unilateral Hertz at 0.125 ms) -0.13 %.
+TEST(HardCases, PinnedLinearHertzOnGermanHighWarnsAndThePlannerIsWithinOnePercent) {
+  json doc = with_irregularity(two_span_scene(400, 2.5e-4), {{"spectrum", "german-high"}, {"seed", 1}});
+  json pinned = doc;
+  pinned["analysis"]["contact"] = {{"law", "linear-hertz"}, {"unilateral", true}};
+  pinned["fidelity"] = {{"model", "interaction"}, {"structure", "fe"}, {"contact_law", "linear-hertz"},
+                        {"unilateral", true}};
+  const Outcome linear = planned(pinned, kTwoSpanCutoff);
+  json automatic = doc;
+  automatic["fidelity"] = "auto";
+  const Outcome planner = planned(automatic, kTwoSpanCutoff);
+  const Result& auto_run = planner.result;
+  const Outcome full = run(with_dt(doc, 6.25e-5), kTwoSpanCutoff);
+  expect_finite(linear);
+  expect_finite(full);
+  EXPECT_TRUE(linear.result.status.ok()) << linear.result.status.message();
+  EXPECT_TRUE(auto_run.status.ok()) << auto_run.status.message();
+  EXPECT_EQ(linear.result.summary.fidelity.contact_law, "linear-hertz");
+  EXPECT_EQ(linear.codes, (std::set<std::string>{"wheel_values_dt", "linear_hertz_unloaded"})) << codes_text(linear);
+  for (const RunWarning& w : linear.result.summary.warnings)
+    EXPECT_NE(w.message.find("unilateral linear Hertz on rung interaction/fe (pinned in the scene)"), std::string::npos)
+        << w.message;
+  EXPECT_TRUE(planner.codes.empty()) << codes_text(planner);
+  EXPECT_EQ(auto_run.summary.fidelity.contact_law, "hertz");
+  EXPECT_DOUBLE_EQ(auto_run.summary.dt_s, 1.25e-4);
+  const double q_full = full.result.summary.min_contact_force_N;
+  ASSERT_GT(q_full, 0.0);
+  const double e_linear = linear.result.summary.min_contact_force_N / q_full - 1.0;
+  const double e_planner = auto_run.summary.min_contact_force_N / q_full - 1.0;
+  EXPECT_GT(e_linear, 0.01);               // why it warns: measured +2.54 %
+  EXPECT_LE(std::abs(e_planner), 0.0039);  // measured -0.13 % (3x)
+  table_row("pinned unilateral linear Hertz, German high, 400 km/h", linear,
+            fmt::format("Q min vs Hertz dt/4: pinned {:+.3g} %, planner {:+.3g} %", 100 * e_linear, 100 * e_planner));
 }
 
 TEST(HardCases, TenMetreSpanAt500AtResonance) {
@@ -307,18 +377,24 @@ TEST(HardCases, ContinuousFourSpanGirder) {
           "dt/2");  // measured w 0.000826 %, a_filt 0.039 %, dQ/Q 0.268 %, body 0.00306 %
 }
 
-void library_train_over_two_spans(const char* train, const Tolerances& tol) {
+void library_train_over_two_spans(const char* train, const Tolerances& tol, const std::set<std::string>& warnings) {
   json doc = with_irregularity(two_span_scene(300, 2.5e-4), {{"spectrum", "german-low"}, {"seed", 1}});
   doc["structure"]["track"].erase("approach_m");  // the whole train on the track at t = 0
   doc["train"] = train;
-  claimed(fmt::format("{}, German low, 300 km/h", train), doc, with_dt(doc, 1.25e-4), kTwoSpanCutoff, {}, 1e-9,
+  claimed(fmt::format("{}, German low, 300 km/h", train), doc, with_dt(doc, 1.25e-4), kTwoSpanCutoff, warnings, 1e-9,
           tol, "dt/2");
 }
 
 // Measured 2026-11-27: Eurostar w 7.63e-5 %, a_filt 0.015 %, dQ/Q 1.17 %,
 // body 4.64e-5 %; KHST w 0.00083 %, a_filt 0.0147 %, dQ/Q 0.95 %, body 0.000502 %.
-TEST(HardCases, EurostarOverTwoSpans) { library_train_over_two_spans("Eurostar", {2.2e-6, 4.5e-4, 0.035, 1.3e-6}); }
-TEST(HardCases, KhstOverTwoSpans) { library_train_over_two_spans("KHST", {2.4e-5, 4.4e-4, 0.028, 1.5e-5}); }
+// Both unload a wheel below 70 % of its load on the rail at the policy's
+// 0.25 ms: wheel_values_dt (their dQ/Q moves about 1 % to dt/2).
+TEST(HardCases, EurostarOverTwoSpans) {
+  library_train_over_two_spans("Eurostar", {2.2e-6, 4.5e-4, 0.035, 1.3e-6}, {"wheel_values_dt"});
+}
+TEST(HardCases, KhstOverTwoSpans) {
+  library_train_over_two_spans("KHST", {2.4e-5, 4.4e-4, 0.028, 1.5e-5}, {"wheel_values_dt"});
+}
 
 TEST(HardCases, ThreeDimensionalDeckAtFiveThousandDofs) {
   // One 25 m span of the deck-3d generator (hexahedra, two rails on pads),
@@ -359,7 +435,8 @@ TEST(HardCases, RailEndEntryInsideTheWindowWarns) {
   const Outcome o = run(doc, kTwoSpanCutoff);
   expect_finite(o);
   EXPECT_TRUE(o.result.status.ok());
-  EXPECT_EQ(o.codes, (std::set<std::string>{"entry_inside_window"})) << codes_text(o);
+  // The entry transient unloads a wheel below 70 % on the rail: wheel_values_dt too.
+  EXPECT_EQ(o.codes, (std::set<std::string>{"entry_inside_window", "wheel_values_dt"})) << codes_text(o);
   table_row("rail-end entry 5 m before the bridge", o, "not claimed (entry transient)");
 }
 
@@ -380,7 +457,8 @@ TEST(HardCases, BilateralLinearHertzOverTheDipFlagsTensionNotLoss) {
   expect_finite(o);
   EXPECT_TRUE(o.result.status.ok()) << o.result.status.message();
   // At 0.25 ms the 20 mm x 1 m dip is above the track bound too.
-  EXPECT_EQ(o.codes, (std::set<std::string>{"dt_above_policy", "tensile_contact"})) << codes_text(o);
+  EXPECT_EQ(o.codes, (std::set<std::string>{"dt_above_policy", "linear_hertz_unloaded", "tensile_contact"}))
+      << codes_text(o);
   EXPECT_DOUBLE_EQ(o.result.summary.contact_loss_s, 0.0);
   EXPECT_GT(o.result.summary.max_unloading_ratio, 1.0);  // the model's tension, flagged
   table_row("bilateral linear Hertz over the 20 mm dip", o, "not claimed (tension)");
@@ -393,8 +471,8 @@ TEST(HardCases, BilateralLinearHertzOverTheDipFlagsTensionNotLoss) {
 // 4): at 0.25 ms each run warns dt_above_policy naming the factor and the
 // feature; at the policy's step the dips converge.
 void warns_at_quarter_millisecond(const std::string& name, const json& doc, const char* feature_text,
-                                  double factor_min) {
-  const Outcome o = run(doc, kTwoSpanCutoff);
+                                  double factor_min, double cutoff_hz = kTwoSpanCutoff) {
+  const Outcome o = run(doc, cutoff_hz);
   expect_finite(o);
   EXPECT_TRUE(o.result.status.ok()) << o.result.status.message();
   EXPECT_EQ(o.codes, (std::set<std::string>{"dt_above_policy"})) << codes_text(o);
@@ -424,6 +502,42 @@ TEST(HardCasesTrack, Dip30mmOverOneMetreAt350WarnsAtQuarterMillisecond) {
   // Policy: 1 m / (150 x 97.2 m/s) = 6.9e-5 s, 0.25 ms is 3.6x that.
   warns_at_quarter_millisecond("dip 30 mm x 1 m, 350 km/h, 0.25 ms", dip_doc(350, 1.0, 0.030, 2.5e-4),
                                "30 mm peak to peak", 3.5);
+}
+
+// Issue 33: the planner's contact-loss time over this dip was +2.25 % off
+// the full model when the policy's step was 0.25 ms (its escalation ran at
+// 0.125 ms: 37.375 against 36.547 ms at 15.6 us, measured again
+// 2026-11-27). The track-aware policy gives 62.5 us; the planner ("auto":
+// linear Hertz, repeated with unilateral Hertz at half that step) against
+// the full model (unilateral Hertz at the policy's step / 4), both at the
+// policy's step as a study plans it.
+TEST(HardCasesTrack, PlannerContactLossTimeOverThe30mmDipWithinOnePercent) {
+  const json doc = dip_doc(350, 1.0, 0.030, 2.5e-4);
+  Scene scene = parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs", "hard case");
+  const DeckFrequencies f = deck_frequencies(*scene.structure);
+  const TimeStepChoice policy = choose_time_step(*scene.structure, scene.train, scene.speed_mps, scene.analysis.contact,
+                                                 f.f0_hz, f.f3_hz, {}, scene.irregularity.get());
+  EXPECT_DOUBLE_EQ(policy.dt_s, 6.25e-5) << policy.reason;
+  json automatic = with_dt(doc, policy.dt_s);
+  automatic["fidelity"] = "auto";
+  const Outcome p = planned(automatic, kTwoSpanCutoff);
+  const Result& planner = p.result;
+  const Outcome full = run(with_dt(doc, policy.dt_s / 4), kTwoSpanCutoff);
+  expect_finite(p);
+  expect_finite(full);
+  EXPECT_TRUE(planner.status.ok()) << planner.status.message();
+  EXPECT_TRUE(p.codes.empty()) << codes_text(p);
+  EXPECT_EQ(planner.summary.fidelity.contact_law, "hertz");  // escalated: the wheel leaves the rail
+  EXPECT_DOUBLE_EQ(planner.summary.dt_s, policy.dt_s / 2);
+  ASSERT_GT(full.result.summary.contact_loss_s, 0.0);
+  const double loss = planner.summary.contact_loss_s / full.result.summary.contact_loss_s - 1.0;
+  const double acc = rel(p.env.max_abs_acceleration_mps2, full.env.max_abs_acceleration_mps2);
+  // Measured 2026-11-27: loss -0.043 % (36.53125 against 36.546875 ms; one
+  // step of 31.25 us is 0.086 %), filtered deck acceleration +0.079 %.
+  EXPECT_LE(std::abs(loss), 1.3e-3);
+  EXPECT_LE(acc, 2.4e-3);
+  table_row("planner over the dip 30 mm x 1 m, 350 km/h (policy 62.5 us, Hertz at 31.25 us)", p,
+            fmt::format("vs Hertz at 15.6 us: contact loss {:+.3g} %, a_filt {:.3g} %", 100 * loss, 100 * acc));
 }
 
 TEST(HardCasesTrack, TenMillimetreStepDownThenUpWarns) {
@@ -459,6 +573,96 @@ TEST(HardCasesTrack, ShortWavelengthProfileWarns) {
   warns_at_quarter_millisecond("corrugation 0.5 mm x 0.3 m, 300 km/h, 0.25 ms",
                                with_irregularity(two_span_scene(300, 2.5e-4), {{"x_m", x}, {"r_m", r}}),
                                "mm peak to peak", 9.0);
+}
+
+// The issue's viaduct scenes: three simply supported 25 m spans with
+// ballasted track (jobs/examples/viaduct-ice3.json's structure), one ICE3
+// coach (the whole train takes 4-5x longer: measured by hand, see
+// docs/verification.md), Hertz, at the time-step policy's step for the
+// scene as a study plans it, against a quarter of it.
+json viaduct_scene(double speed_kmh, json irregularity) {
+  json doc = {{"structure",
+               {{"generator", "bridge-2d"},
+                {"spans_m", {25.0, 25.0, 25.0}},
+                {"deck", {{"EI_Nm2", 7.124e10}, {"mass_kg_per_m", 18000}}},
+                {"damping", {{"ratio", 0.02}}},
+                {"track", json::object()}}},
+              {"train", one_coach()},
+              {"speed_kmh", speed_kmh},
+              {"irregularity", std::move(irregularity)},
+              {"analysis", {{"dt_s", 2.5e-4}, {"hht_alpha", -0.05}, {"contact", {{"law", "hertz"}}}}}};
+  const Scene scene = parse_scene(doc, RAILVSI_SOURCE_DIR "/jobs", "hard case");
+  const DeckFrequencies f = deck_frequencies(*scene.structure);
+  const TimeStepChoice policy = choose_time_step(*scene.structure, scene.train, scene.speed_mps,
+                                                 scene.analysis.contact, f.f0_hz, f.f3_hz, {}, scene.irregularity.get());
+  doc["analysis"]["dt_s"] = policy.dt_s;
+  return doc;
+}
+
+// f0 = 5.0 Hz, f3 = 45 Hz for these spans (the example's EI).
+const double kViaductCutoff = ss_cutoff(5.0);
+
+json viaduct_dip(double speed_kmh) {
+  return viaduct_scene(speed_kmh, {{"defects", {{{"type", "dip"}, {"x_m", 37.0}, {"length_m", 1.0}, {"depth_m", 0.03}}}}});
+}
+
+TEST(HardCasesViaduct, TenMillimetreStepDownThenUpAt300WarnsAtThePolicysFloor) {
+  const json doc = viaduct_scene(300, {{"x_m", {-400.0, 37.0, 37.01, 39.0, 39.01, 400.0}},
+                                       {"r_m", {0.0, 0.0, -0.010, -0.010, 0.0, 0.0}}});
+  EXPECT_DOUBLE_EQ(doc["analysis"]["dt_s"].get<double>(), 2e-3 / 128);  // the ladder's floor
+  // A step's rise over 0.01 m needs 3.6 us at 83.3 m/s: the floor is 4.4x
+  // that. 36 s on a loaded machine (the floor's 200,000 steps).
+  warns_at_quarter_millisecond("viaduct, 10 mm step down, up 2 m later, 300 km/h, one coach, 15.6 us", doc,
+                               "10 mm peak to peak", 4.0, kViaductCutoff);
+}
+
+// The policy's step against a quarter of it: deck displacement, filtered
+// deck acceleration, car body and the contact-loss time (the wheel leaves
+// the rail after the dip: Q min 0 and dQ/Q 1 in both).
+struct DipConvergence {
+  double w, a, body, loss;
+};
+DipConvergence viaduct_dip_converges(const char* name, double speed_kmh, double policy_dt_s) {
+  const json doc = viaduct_dip(speed_kmh);
+  EXPECT_DOUBLE_EQ(doc["analysis"]["dt_s"].get<double>(), policy_dt_s);
+  const Outcome coarse = run(doc, kViaductCutoff);
+  const Outcome fine = run(with_dt(doc, policy_dt_s / 4), kViaductCutoff);
+  expect_finite(coarse);
+  expect_finite(fine);
+  EXPECT_TRUE(coarse.result.status.ok()) << coarse.result.status.message();
+  EXPECT_TRUE(fine.result.status.ok()) << fine.result.status.message();
+  EXPECT_TRUE(coarse.codes.empty()) << codes_text(coarse);
+  EXPECT_LE(coarse.result.summary.energy_residual, 1e-9);
+  EXPECT_GT(fine.result.summary.contact_loss_s, 0.0);
+  EXPECT_DOUBLE_EQ(coarse.result.summary.max_unloading_ratio, 1.0);
+  const Convergence c = compare(coarse, fine);
+  const double loss = rel(coarse.result.summary.contact_loss_s, fine.result.summary.contact_loss_s);
+  table_row(name, coarse,
+            fmt::format("{}, contact loss {:.3g} %", convergence_text(c, "dt/4"), 100 * loss));
+  return {c.displacement, c.acceleration, c.carbody, loss};
+}
+
+TEST(HardCasesViaduct, Dip30mmOverOneMetreAt350ConvergesAtThePolicysStep) {
+  // 1 m / (150 x 97.2 m/s) = 6.9e-5 s -> 62.5 us.
+  const DipConvergence c = viaduct_dip_converges("viaduct, dip 30 mm x 1 m, 350 km/h, one coach", 350, 6.25e-5);
+  // Measured 2026-11-27 (26 s for both runs on a loaded machine): w
+  // 7.7e-6, a_filt 1.04e-5, body 4.3e-4, contact loss 1.0e-3; 3x each.
+  EXPECT_LE(c.w, 2.3e-5);
+  EXPECT_LE(c.a, 3.1e-5);
+  EXPECT_LE(c.body, 1.3e-3);
+  EXPECT_LE(c.loss, 3.0e-3);
+}
+
+TEST(HardCasesViaduct, Dip30mmOverOneMetreAt400ConvergesAtThePolicysStep) {
+  // 1 m / (150 x 111.1 m/s) = 6.0e-5 s -> 31.25 us.
+  const DipConvergence c = viaduct_dip_converges("viaduct, dip 30 mm x 1 m, 400 km/h, one coach", 400, 3.125e-5);
+  // Measured 2026-11-27 (30 s): w 2.1e-5, a_filt 3.8e-4, body 1.0e-4,
+  // contact loss 6.0e-3 (steps of 31.25 us in a 20 ms loss); 3x each, the
+  // loss held to the 1 % the issue asks.
+  EXPECT_LE(c.w, 6.3e-5);
+  EXPECT_LE(c.a, 1.1e-3);
+  EXPECT_LE(c.body, 3.1e-4);
+  EXPECT_LE(c.loss, 0.01);
 }
 
 }  // namespace

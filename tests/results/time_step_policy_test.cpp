@@ -138,8 +138,13 @@ TEST(TimeStepPolicy, HertzContactFrequencyOfAnIce3Coach) {
   EXPECT_EQ(c.binding, "contact frequency");
   EXPECT_NEAR(c.required_dt_s, 1.0 / (10.0 * f_H), 1e-12);
   EXPECT_DOUBLE_EQ(c.dt_s, 2.5e-4);
-  // A rigid contact drops that bound: back to the code frequency.
-  EXPECT_EQ(choose_time_step(*beam_20m(), train, 200.0 / 3.6, rigid, 5.0, 45.0).binding, "code frequency");
+  // A rigid contact drops that bound and takes its own: 12 steps over each
+  // 0.25 m rail element at 55.6 m/s, 0.375 ms (the code frequency's 0.576
+  // ms is above it) -> 0.25 ms.
+  const TimeStepChoice r = choose_time_step(*beam_20m(), train, 200.0 / 3.6, rigid, 5.0, 45.0);
+  EXPECT_EQ(r.binding, "rigid contact");
+  EXPECT_NEAR(r.required_dt_s, 0.25 / (12.0 * 200.0 / 3.6), 1e-15);
+  EXPECT_DOUBLE_EQ(r.dt_s, 2.5e-4);
 }
 
 TEST(TimeStepPolicy, RejectsNegativeOrNonFiniteArguments) {
