@@ -113,7 +113,11 @@ std::string render_svg(const LinePlot& plot, int width_px, int height_px) {
     }
   if (plot.limit) y1 = std::max(y1, *plot.limit), y0 = std::min(y0, *plot.limit);
   if (!std::isfinite(x0)) x0 = 0.0, x1 = 1.0;
-  if (!(x1 > x0)) x1 = x0 + 1.0;
+  if (!(x1 > x0)) {  // one abscissa (a study at one speed): centred
+    const double pad = std::max(1.0, 0.05 * std::abs(x0));
+    x0 -= pad;
+    x1 += pad;
+  }
   if (!std::isfinite(y1) || !(y1 > y0)) y1 = y0 + 1.0;
   y1 += 0.05 * (y1 - y0);
   const auto X = [&](double x) { return left + (x - x0) / (x1 - x0) * w; };
@@ -169,15 +173,24 @@ std::string render_svg(const LinePlot& plot, int width_px, int height_px) {
   for (const PlotSeries& s : plot.series) {
     const char* colour = plot_colour(k++);
     std::string path;
-    bool pen_down = false;
+    // A point with no drawn neighbour (one speed, or between gaps) is a dot:
+    // a path of one point draws nothing.
+    std::vector<std::pair<double, double>> run;
+    const auto end_run = [&] {
+      if (run.size() == 1)
+        svg += fmt::format("<circle class=\"point\" cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"{}\"/>\n",
+                           num(X(run[0].first)), num(Y(run[0].second)), colour);
+      run.clear();
+    };
     for (const auto& [x, y] : decimated(s.points, x0, x1, w)) {
       if (!std::isfinite(x) || !std::isfinite(y)) {
-        pen_down = false;
+        end_run();
         continue;
       }
-      path += fmt::format("{}{} {} ", pen_down ? "L" : "M", num(X(x)), num(Y(y)));
-      pen_down = true;
+      path += fmt::format("{}{} {} ", run.empty() ? "M" : "L", num(X(x)), num(Y(y)));
+      run.emplace_back(x, y);
     }
+    end_run();
     if (!path.empty())
       svg += fmt::format("<path class=\"series\" d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n",
                          path, colour);
