@@ -21,6 +21,7 @@
 #include "envelopes/job_envelopes.hpp"
 #include "planning/cost_model.hpp"
 #include "planning/fidelity_ladder.hpp"
+#include "planning/rung_runner.hpp"
 #include "price/dt_self_check.hpp"
 #include "simulation/simulation.hpp"
 
@@ -120,8 +121,9 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
   report.policy_reason = policy.reason;
 
   std::vector<Task> tasks;
+  const double base_dt_s = options.base_dt_s > 0.0 ? options.base_dt_s : policy.dt_s;
   for (std::size_t r : rungs)
-    for (double f : options.dt_factors) tasks.push_back({r, policy.dt_s * f});
+    for (double f : options.dt_factors) tasks.push_back({r, base_dt_s * f});
   std::vector<PriceRow> rows(tasks.size());
 
   OnceCache<double, StructureOperator> operators, modal_operators, hybrid_operators;
@@ -197,11 +199,13 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
       if (!(rung.structure != StructureBackend::kFiniteElements && rung.model == LoadModel::kInteraction))
         row.cpu_predicted_s =
             predict_cost(cost_inputs(s, rung.structure == StructureBackend::kModal, row.modes.value_or(0))).total_cpu_s();
-      RungResources resources;
-      resources.structure_operator = [&] { return op.value; };
-      resources.modal_basis = [&] { return basis.value; };
+      // The run as a worker runs a job (run_at_rung), on what was built above.
+      const ScenePlan plan = ladder_plan(rung, basis.value ? basis.value->max_frequency_hz() : s.analysis.modal_cutoff_hz);
+      RungModels models;
+      models.fe_operator = [&](const Scene&, const std::shared_ptr<const HybridBasis>&) { return op.value; };
+      models.modal_basis = [&](double) { return basis.value; };
       double cpu_s = 0.0, wall_s = 0.0;
-      const Result result = measured([&] { return rung.run(s, resources); }, cpu_s, wall_s);
+      const Result result = measured([&] { return run_at_rung(s, plan, models); }, cpu_s, wall_s);
       row.cpu_s = cpu_s + row.setup_cpu_s;
       row.wall_s = wall_s + op.wall_s + basis.wall_s + hybrid.wall_s;
       row.steps = result.summary.steps;

@@ -3,7 +3,9 @@
 // fidelity ladder that applies to the scene, each at every step of the dt
 // ladder (the time-step policy's dt x 4, x 2, x 1, / 2, / 4), run on a pool
 // of threads; the CPU and wall time of each run; the key quantities of each
-// against the reference run (price_analysis). The FE structure operator
+// against the reference run (price_analysis). Each run goes through the
+// rung runner (run_at_rung, on fidelity_ladder's ladder_plan), as a worker
+// runs a job. The FE structure operator
 // (factor of K_bar and rail flexibility) is built once per dt and shared by
 // the rungs; the modal basis once per price.
 #include <string>
@@ -21,6 +23,9 @@ struct PriceOptions {
   double f0_hz = 0.0, f3_hz = 0.0;
   int threads = 1;
   std::vector<double> dt_factors{4.0, 2.0, 1.0, 0.5, 0.25};
+  // The dt the factors multiply; 0: the time-step policy's (a stored job's
+  // own dt prices the rung and dt it ran at).
+  double base_dt_s = 0.0;
   // Modal rungs keep the modes up to this multiple of the code cut-off
   // max(30 Hz, 1.5 f0, f3) (the margin of the modal sweep benchmark).
   double modal_cutoff_factor = 1.2;

@@ -1,37 +1,24 @@
 #include "planning/fidelity_ladder.hpp"
 
-#include "analysis/modal_moving_forces.hpp"
-#include "simulation/simulation.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "solver/hybrid_basis.hpp"
 
 namespace railvsi {
 namespace {
 
-Result run_fe(const Scene& scene, const RungResources& resources) {
-  const Simulation simulation(scene, resources.structure_operator());
-  return simulation.run();
-}
-
-Result run_modal_moving_forces_rung(const Scene& scene, const RungResources& resources) {
-  return run_modal_moving_forces(scene, *resources.modal_basis());
-}
-
 // Cheapest first; the last rung that applies to a scene is its reference.
-// The modal and hybrid interaction rungs (the condensed direct method on
-// the structure's modes, or on the track in FE and the bridge's modes) run
-// on the operator of resources.structure_operator too: the caller builds
-// the modal or hybrid one for them.
+// The modal and hybrid interaction rungs run the condensed direct method on
+// the structure's modes, or on the track in FE and the bridge's modes.
 const std::vector<LadderRung> kLadder = {
-    {LoadModel::kMovingForces, StructureBackend::kModal, "none", run_modal_moving_forces_rung},
-    {LoadModel::kMovingForces, StructureBackend::kFiniteElements, "none", run_fe},
-    {LoadModel::kInteraction, StructureBackend::kModal, "linear-hertz", run_fe},
-    {LoadModel::kInteraction, StructureBackend::kModal, "hertz", run_fe},
-    {LoadModel::kInteraction, StructureBackend::kHybrid, "linear-hertz", run_fe},
-    {LoadModel::kInteraction, StructureBackend::kHybrid, "hertz", run_fe},
-    {LoadModel::kInteraction, StructureBackend::kFiniteElements, "rigid", run_fe},
-    {LoadModel::kInteraction, StructureBackend::kFiniteElements, "linear-hertz", run_fe},
-    {LoadModel::kInteraction, StructureBackend::kFiniteElements, "hertz", run_fe},
+    {LoadModel::kMovingForces, StructureBackend::kModal, "none"},
+    {LoadModel::kMovingForces, StructureBackend::kFiniteElements, "none"},
+    {LoadModel::kInteraction, StructureBackend::kModal, "linear-hertz"},
+    {LoadModel::kInteraction, StructureBackend::kModal, "hertz"},
+    {LoadModel::kInteraction, StructureBackend::kHybrid, "linear-hertz"},
+    {LoadModel::kInteraction, StructureBackend::kHybrid, "hertz"},
+    {LoadModel::kInteraction, StructureBackend::kFiniteElements, "rigid"},
+    {LoadModel::kInteraction, StructureBackend::kFiniteElements, "linear-hertz"},
+    {LoadModel::kInteraction, StructureBackend::kFiniteElements, "hertz"},
 };
 
 }  // namespace
@@ -65,6 +52,20 @@ Scene rung_scene(const LadderRung& rung, const Scene& scene, double dt_s) {
   s.analysis.contact.unilateral =
       rung.contact_law == "linear-hertz" ? std::optional<bool>(true) : std::optional<bool>();
   return s;
+}
+
+ScenePlan ladder_plan(const LadderRung& rung, double modal_cutoff_hz) {
+  ScenePlan plan;
+  plan.rung.model = rung.model_name();
+  plan.rung.structure = rung.structure_name();
+  plan.rung.contact_law = rung.contact_law;
+  // Not "planner": run_at_rung keeps the law and unilaterality rung_scene()
+  // put in the analysis.
+  plan.chosen_by = "price";
+  plan.reasons = {"a rung of the accuracy price"};
+  if (rung.structure != StructureBackend::kFiniteElements) plan.modal_cutoff_hz = modal_cutoff_hz;
+  plan.impact_repeats_on_fe = false;
+  return plan;
 }
 
 }  // namespace railvsi

@@ -74,7 +74,7 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
   // On the hybrid structure a lost contact sends the run (escalated or
   // not) to FE.
   const auto on_fe_after_impact = [&](Result last, const Scene& ran, const Rung& rung) {
-    if (plan.rung.structure != "hybrid" || !last.status.ok()) return last;
+    if (plan.rung.structure != "hybrid" || !plan.impact_repeats_on_fe || !last.status.ok()) return last;
     const auto impact = impact_reason(last.summary);
     if (!impact) return last;
     Scene fe = ran;

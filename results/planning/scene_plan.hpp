@@ -24,6 +24,9 @@ struct ScenePlan {
   std::optional<double> escalation_dt_factor;  // the escalated run's dt / the plan's; absent: 1
   std::vector<std::string> reasons;
   int modes_below_cutoff = -1;  // as the planner counted them ("auto"), else -1
+  // A hybrid run whose wheel lost contact is repeated on FE (rung_runner);
+  // false for the price, which measures the hybrid rung itself.
+  bool impact_repeats_on_fe = true;
 };
 
 // The analysis options on the plan's structure: interaction on the modes

@@ -113,9 +113,15 @@ std::string render_svg(const LinePlot& plot, int width_px, int height_px) {
     }
   if (plot.limit) y1 = std::max(y1, *plot.limit), y0 = std::min(y0, *plot.limit);
   if (!std::isfinite(x0)) x0 = 0.0, x1 = 1.0;
-  if (!(x1 > x0)) x1 = x0 + 1.0;
+  if (!(x1 > x0)) {  // one abscissa (a study at one speed): centred
+    const double pad = std::max(1.0, 0.05 * std::abs(x0));
+    x0 -= pad;
+    x1 += pad;
+  }
   if (!std::isfinite(y1) || !(y1 > y0)) y1 = y0 + 1.0;
-  y1 += 0.05 * (y1 - y0);
+  // Room above the data for the marks' labels: a governing peak drawn under
+  // a label hid it (the HSLM example's i=1 at 410 km/h).
+  y1 += (plot.x_mark_labels.empty() ? 0.05 : 0.12) * (y1 - y0);
   const auto X = [&](double x) { return left + (x - x0) / (x1 - x0) * w; };
   const auto Y = [&](double y) { return top + h - (y - y0) / (y1 - y0) * h; };
 
@@ -156,8 +162,11 @@ std::string render_svg(const LinePlot& plot, int width_px, int height_px) {
         "stroke-dasharray=\"2 3\"/>\n",
         num(X(m)), num(top), num(top + h));
     if (i < plot.x_mark_labels.size())
-      svg += fmt::format("<text class=\"tick mark-label\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
-                         num(X(m)), num(top + 10), html_escape(plot.x_mark_labels[i]));
+      // Kept inside the frame: a label centred on a mark at its edge crossed it.
+      svg += fmt::format("<text class=\"tick mark-label\" x=\"{}\" y=\"{}\" text-anchor=\"{}\">{}</text>\n",
+                         num(X(m) - left < 15 ? X(m) + 2 : left + w - X(m) < 15 ? X(m) - 2 : X(m)), num(top + 10),
+                         X(m) - left < 15 ? "start" : left + w - X(m) < 15 ? "end" : "middle",
+                         html_escape(plot.x_mark_labels[i]));
   }
   if (plot.limit)
     svg += fmt::format(
@@ -169,15 +178,24 @@ std::string render_svg(const LinePlot& plot, int width_px, int height_px) {
   for (const PlotSeries& s : plot.series) {
     const char* colour = plot_colour(k++);
     std::string path;
-    bool pen_down = false;
+    // A point with no drawn neighbour (one speed, or between gaps) is a dot:
+    // a path of one point draws nothing.
+    std::vector<std::pair<double, double>> run;
+    const auto end_run = [&] {
+      if (run.size() == 1)
+        svg += fmt::format("<circle class=\"point\" cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"{}\"/>\n",
+                           num(X(run[0].first)), num(Y(run[0].second)), colour);
+      run.clear();
+    };
     for (const auto& [x, y] : decimated(s.points, x0, x1, w)) {
       if (!std::isfinite(x) || !std::isfinite(y)) {
-        pen_down = false;
+        end_run();
         continue;
       }
-      path += fmt::format("{}{} {} ", pen_down ? "L" : "M", num(X(x)), num(Y(y)));
-      pen_down = true;
+      path += fmt::format("{}{} {} ", run.empty() ? "M" : "L", num(X(x)), num(Y(y)));
+      run.emplace_back(x, y);
     }
+    end_run();
     if (!path.empty())
       svg += fmt::format("<path class=\"series\" d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n",
                          path, colour);

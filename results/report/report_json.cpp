@@ -55,9 +55,8 @@ json rows_json(const std::vector<ReportRow>& rows) {
   return out;
 }
 
-}  // namespace
-
-json report_json(const ComplianceReport& r) {
+// The checks, each with its table per train and all its cases.
+json checks_json(const ComplianceReport& r) {
   json checks = json::array();
   for (const CheckResult& c : r.checks) {
     json cases = json::array();
@@ -84,22 +83,38 @@ json report_json(const ComplianceReport& r) {
                       {"per_train", trains},
                       {"all_cases", cases}});
   }
-  json check_figures = json::array();
-  for (const ReportFigure& f : r.check_figures) check_figures.push_back(figure_json(f));
+  return checks;
+}
+
+json governing_json(const ComplianceReport& r) {
   json governing = json::array();
   for (const GoverningCase& g : r.governing_cases) {
     json figures = json::array();
     for (const ReportFigure& f : g.figures) figures.push_back(figure_json(f));
     governing.push_back({{"heading", g.heading}, {"status", g.status}, {"figures", figures}});
   }
+  return governing;
+}
+
+json figures_json(const std::vector<ReportFigure>& figures) {
+  json out = json::array();
+  for (const ReportFigure& f : figures) out.push_back(figure_json(f));
+  return out;
+}
+
+}  // namespace
+
+json report_json(const ComplianceReport& r) {
+  const json checks = checks_json(r);
+  const json check_figures = figures_json(r.check_figures);
+  const json governing = governing_json(r);
   json rungs = json::array();
   for (const RungGroup& g : r.rungs) rungs.push_back({{"rung", g.rung}, {"dt", g.dt}, {"jobs", g.jobs}});
   json issues = json::array();
   for (const JobIssue& i : r.issues) issues.push_back({{"job", i.job}, {"state", i.state}, {"detail", i.detail}});
   json trains = json::array();
   for (const LibraryTrain& t : r.trains) trains.push_back({{"name", t.name}, {"source", t.source}});
-  json response = json::array();
-  for (const ReportFigure& f : r.response_figures) response.push_back(figure_json(f));
+  const json response = figures_json(r.response_figures);
   json phi_dyn = json::array();
   for (const PhiDynRow& p : r.phi_dyn)
     phi_dyn.push_back({{"train", p.train},
@@ -110,8 +125,7 @@ json report_json(const ComplianceReport& r) {
                        {"dynamic", optional_number(p.dynamic_value)},
                        {"speed_kmh", p.speed_kmh},
                        {"phi_dyn", optional_number(p.phi_dyn)}});
-  json phi_dyn_figures = json::array();
-  for (const ReportFigure& f : r.phi_dyn_figures) phi_dyn_figures.push_back(figure_json(f));
+  const json phi_dyn_figures = figures_json(r.phi_dyn_figures);
   json modes = json::array();
   for (const ModeRow& m : r.modes) modes.push_back({{"mode", m.number}, {"frequency_hz", m.frequency_hz}, {"role", m.role}});
   return {{"study", {{"name", r.study_name}, {"id", r.study_id}}},
@@ -134,6 +148,21 @@ json report_json(const ComplianceReport& r) {
           {"issues", issues},
           {"trains", trains},
           {"notes", r.notes}};
+}
+
+json line_report_json(const ComplianceReport& line, const std::vector<LineBridge>& bridges) {
+  json out = report_json(line);
+  json structures = json::array();
+  for (const LineBridge& b : bridges)
+    structures.push_back({{"name", b.name},
+                          {"overall", verdict_name(b.report.overall)},
+                          {"checks", checks_json(b.report)},
+                          {"check_figures", figures_json(b.report.check_figures)},
+                          {"governing_cases", governing_json(b.report)},
+                          {"model", rows_json(b.report.model)},
+                          {"notes", b.report.notes}});
+  out["structures"] = structures;
+  return out;
 }
 
 }  // namespace railvsi

@@ -19,7 +19,9 @@ const char* const kReportPrintStyle = R"css(
 .title-block th { width: 28%; }
 .sign td { height: 22pt; }
 nav.contents ol { margin: 4pt 0 0 0; padding: 0; list-style: none; }
-nav.contents li { margin: 1pt 0; }
+nav.contents li { margin: 1pt 0; display: flex; max-width: 120mm; }
+nav.contents li .entry { flex: 1; }
+nav.contents li .page { min-width: 3em; text-align: right; }
 section.check { break-inside: auto; }
 table.per-train td.verdict-cell { white-space: nowrap; }
 .informative { background: #e8eef8; color: #1d3d6b; }
@@ -73,8 +75,42 @@ std::string title_block_html(const ComplianceReport& r) {
 
 std::string contents_html(const std::vector<std::pair<std::string, std::string>>& sections) {
   std::string out = "<nav class=\"contents\"><h2 class=\"first\" id=\"contents\">Contents</h2>\n<ol>\n";
-  for (const auto& [id, title] : sections) out += "<li data-section=\"" + esc(id) + "\">" + esc(title) + "</li>\n";
+  for (const auto& [id, title] : sections)
+    out += "<li data-section=\"" + esc(id) + "\"><span class=\"entry\">" + esc(title) +
+           "</span><span class=\"page\" data-page-of=\"" + esc(id) + "\"></span></li>\n";
   return out + "</ol>\n<p class=\"small\">Page numbers are printed at the foot of each page.</p></nav>\n";
+}
+
+namespace {
+
+std::string unescape(std::string s) {
+  for (const auto& [from, to] : {std::pair{"&lt;", "<"}, std::pair{"&gt;", ">"}, std::pair{"&quot;", "\""},
+                                 std::pair{"&#39;", "'"}, std::pair{"&amp;", "&"}})
+    for (std::size_t at = 0; (at = s.find(from, at)) != std::string::npos; at += std::string_view(to).size())
+      s.replace(at, std::string_view(from).size(), to);
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> contents_entries(const std::string& html) {
+  static const std::regex entry(R"re(<li data-section="([^"]*)"><span class="entry">([^<]*)</span>)re");
+  std::vector<std::pair<std::string, std::string>> out;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), entry); it != std::sregex_iterator(); ++it)
+    out.emplace_back(unescape((*it)[1]), unescape((*it)[2]));
+  return out;
+}
+
+std::string with_contents_pages(const std::string& html, const std::map<std::string, int>& pages) {
+  std::string out = html;
+  for (const auto& [id, page] : pages) {
+    const std::string open = "<span class=\"page\" data-page-of=\"" + esc(id) + "\">";
+    const std::size_t at = out.find(open);
+    if (at == std::string::npos) continue;
+    const std::size_t end = out.find("</span>", at + open.size());
+    out.replace(at + open.size(), end - at - open.size(), std::to_string(page));
+  }
+  return out;
 }
 
 std::string check_section_html(const CheckResult& c, const ReportFigure* plot) {

@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "cli/report_pdf.hpp"
 #include "cli/service_store.hpp"
 #include "cli/verdict_exit.hpp"
 #include "core/terminal_text.hpp"
@@ -25,6 +26,7 @@
 #include "query/line_table.hpp"
 #include "report/compliance_report.hpp"
 #include "report/report_json.hpp"
+#include "report/report_sections.hpp"
 #include "store/store_check.hpp"
 
 namespace railvsi::cli {
@@ -67,6 +69,12 @@ ReportCommand::ReportCommand(CLI::App& app) {
                       "figures with the stored value and plotted peak of each governing case), on standard output "
                       "unless --out is given")
       ->check(CLI::IsMember({"html", "json"}));
+  report_->add_option("--pdf", args_.pdf,
+                      "Print the HTML report to this A4 PDF with headless Chromium, the contents' page numbers "
+                      "filled in (printed twice: headings are found with pdftotext); the HTML is written only "
+                      "with --out")
+      ->check(CLI::Validator(
+          [](const std::string& v) { return v.empty() ? std::string("an empty file name") : std::string(); }, "FILE"));
   report_->add_flag("--fail-on-exceeded", args_.fail_on_exceeded, kFailOnExceededHelp);
   report_->footer(verdict_exit_footer(false));
 }
@@ -130,6 +138,16 @@ int report_command(const ReportArgs& args) {
       std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';
       return kExitInvalidInput;
     }
+  if (!args.pdf.empty()) {
+    std::optional<std::string> why;
+    if (args.format == "json") why = "--pdf prints the HTML report: it does not go with --format json";
+    if (!why) why = pdf_tools_missing();
+    if (!why) why = unusable_out(args.pdf);
+    if (why) {
+      std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';
+      return kExitInvalidInput;
+    }
+  }
   auto opened = open_study(args.db, args.study_id);
   if (!opened) return kExitInvalidInput;
   const auto& db = opened->db;
@@ -142,11 +160,13 @@ int report_command(const ReportArgs& args) {
   options.histories = args.histories;
   ComplianceReport report;
   std::string html;
-  if (scheduler::study_structure_names(*db, *id).empty()) {
+  std::vector<LineBridge> bridges;
+  const bool line = !scheduler::study_structure_names(*db, *id).empty();
+  if (!line) {
     report = scheduler::build_compliance_report(*db, *id, options);
   } else {
     // A line study: the line summary and a section per bridge, each judged over its own jobs.
-    const auto bridges =
+    bridges =
         scheduler::line_bridges(*db, *id, scheduler::study_results(*db, {*id, {}, {}, {}, {}, {}}), options);
     const std::vector<scheduler::JobResult> none;
     options.jobs = &none;  // the study's name, id and inputs only
@@ -157,12 +177,32 @@ int report_command(const ReportArgs& args) {
     html = render_line_html(report, bridges);
   }
   const bool json = args.format == "json";
-  const std::string text = json ? report_json(report).dump(2) + "\n" : html.empty() ? render_html(report) : html;
+  std::string text = json ? (line ? line_report_json(report, bridges) : report_json(report)).dump(2) + "\n"
+                     : html.empty() ? render_html(report)
+                                    : html;
   if (json && args.out.empty()) {
     std::cout << text;
     return args.fail_on_exceeded ? verdict_exit_code(report.overall) : kExitOk;
   }
 
+  if (!args.pdf.empty()) {
+    PdfPrint printed;
+    try {
+      printed = print_report_pdf(text);
+    } catch (const std::exception& e) {
+      std::cerr << "error: cannot print " << args.pdf << ": " << scheduler::terminal_safe(e.what())
+                << "; nothing was written\n";
+      return kExitRuntimeFailure;
+    }
+    if (const auto why = write_whole(args.pdf, printed.pdf)) {
+      std::cerr << "error: cannot write " << args.pdf << " (" << *why << "); nothing was written\n";
+      return kExitRuntimeFailure;
+    }
+    std::cout << fmt::format("report: {} ({} pages, contents numbered in {} prints; {})\n", args.pdf,
+                             printed.page_count, printed.passes, verdict_name(report.overall));
+    if (args.out.empty()) return args.fail_on_exceeded ? verdict_exit_code(report.overall) : kExitOk;
+    text = with_contents_pages(text, printed.pages);  // the HTML as printed
+  }
   const std::filesystem::path out = args.out.empty() ? "report-" + id->substr(0, 12) + ".html" : args.out;
   if (const auto why = unusable_out(out)) {  // the default name, or the path changed while the report was built
     std::cerr << "error: " << scheduler::terminal_safe(*why) << '\n';

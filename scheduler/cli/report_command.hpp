@@ -17,6 +17,7 @@ struct ReportArgs {
   bool histories = true;    // re-simulate the governing cases
   bool fail_on_exceeded = false;
   std::string format = "html";  // or "json": the content as data, on standard output without --out
+  std::string pdf;              // also print the HTML report to this PDF (headless Chromium, two passes)
 };
 
 class ReportCommand final : public CommandGroup {

@@ -211,6 +211,35 @@ TEST_F(LineStudyFiles, ABridgeOfALineHasTheValuesOfItsOwnStudyToTheBitAndTheLine
   const std::string text = read_text(html);
   EXPECT_NE(text.find("Line summary"), std::string::npos);
   for (const char* name : {"2.1 A", "2.2 B", "2.3 C"}) EXPECT_NE(text.find(name), std::string::npos) << name;
+
+  // The JSON report has, like the HTML, the checks of each bridge with a
+  // table per train: B's deck acceleration per train is the largest value
+  // of that train in B's own study (read with vsi query).
+  const VsiResult report_json = vsi({"report", "--db", line_db, "--study", line, "--no-histories", "--format", "json"}, "rj");
+  ASSERT_EQ(report_json.exit_code, 0) << report_json.err;
+  const json structures = json::parse(report_json.out).at("structures");
+  ASSERT_EQ(structures.size(), 3u);
+  EXPECT_EQ(structures[0]["name"], "A");
+  EXPECT_EQ(structures[2]["name"], "C");
+  const json& b = structures[1];
+  EXPECT_EQ(b["name"], "B");
+  std::map<std::string, double> largest_of_train;
+  for (const json& j : own_jobs) {
+    double& m = largest_of_train[j["train"].get<std::string>()];
+    m = std::max(m, j["envelopes"]["deck_acceleration_mps2"]["all"].get<double>());
+  }
+  ASSERT_EQ(largest_of_train.size(), 2u);
+  int tables = 0;
+  for (const json& c : b["checks"]) {
+    if (c["id"] != "deck_acceleration") continue;
+    EXPECT_EQ(c["governing"]["value"].get<double>(), largest);
+    for (const json& t : c["per_train"]) {
+      ++tables;
+      EXPECT_EQ(t["governing"]["value"].get<double>(), largest_of_train.at(t["train"].get<std::string>())) << t.dump();
+      EXPECT_EQ(t["cases"], 5);  // 5 speeds
+    }
+  }
+  EXPECT_EQ(tables, 2) << b.dump();
 }
 
 TEST_F(LineStudyFiles, AShardedLineMergesIntoTheAnswersOfAnUnshardedRun) {
