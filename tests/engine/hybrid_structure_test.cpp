@@ -67,6 +67,17 @@ Scene viaduct_scene() {
   return s;
 }
 
+// Two 12 m spans of hexahedra with track, with more than 400 interior DOFs
+// (past the dense path of a cut-off); damped as Rayleigh on the deck.
+std::shared_ptr<const StructureModel> two_span_deck_3d() {
+  Deck3dOptions d;
+  d.spans_m = {12.0, 12.0};
+  d.approach_m = 12.0;
+  d.exit_m = 6.0;
+  d.mesh = Deck3dMesh{{12, 12}, 3, 2};
+  return make_deck_3d(d).model;
+}
+
 TEST(HybridStructure, PartitionsTheViaductIntoTrackInterfaceAndModes) {
   const Scene s = viaduct_scene();
   const HybridBasis basis(s.structure, HybridBasisOptions{0.0, 0, true});
@@ -162,12 +173,7 @@ TEST(HybridStructure, OnADeck3dWithEveryBridgeModeKeptEqualsTheFiniteElementRun)
 // Lanczos, checked against kMaxBlockLanczosResidual); the same modes from the
 // dense eigensolver (every mode kept) are the reference.
 TEST(HybridStructure, InteriorModesToACutoffEqualTheDenseSolversAndPassTheResidualCheck) {
-  Deck3dOptions d;
-  d.spans_m = {12.0, 12.0};
-  d.approach_m = 12.0;
-  d.exit_m = 6.0;
-  d.mesh = Deck3dMesh{{12, 12}, 3, 2};
-  const auto structure = make_deck_3d(d).model;
+  const auto structure = two_span_deck_3d();
   const HybridBasis dense(structure, HybridBasisOptions{0.0, 0, true});
   const HybridBasis cut(structure, HybridBasisOptions{150.0, 0, false});
   ASSERT_GT(hybrid_partition(*structure).interior_dofs, 400);  // past the dense path of the cut-off
@@ -195,12 +201,7 @@ TEST(HybridStructure, InteriorModesToACutoffEqualTheDenseSolversAndPassTheResidu
 // K's reductions, which must equal C's own products; a C that is not
 // Rayleigh on the bridge's interior takes its own products.
 TEST(HybridStructure, ARayleighDampedInteriorReducesCFromMAndKAsItsOwnProducts) {
-  Deck3dOptions d;
-  d.spans_m = {12.0, 12.0};
-  d.approach_m = 12.0;
-  d.exit_m = 6.0;
-  d.mesh = Deck3dMesh{{12, 12}, 3, 2};
-  const auto structure = make_deck_3d(d).model;
+  const auto structure = two_span_deck_3d();
   HybridBasisOptions o{150.0, 0, false};
   const HybridBasis shortcut(structure, o);
   o.rayleigh_shortcut = false;
