@@ -42,6 +42,22 @@ std::vector<std::string> schema_of(Database& db) {
   return entries;
 }
 
+// Claims and completes every queued job as done with `envelopes`; how many.
+std::size_t complete_every_job(Database& db, const std::vector<EnvelopeRow>& envelopes) {
+  JobQueue queue(db, "test:worker");
+  std::size_t completed = 0;
+  JobOutcome o;
+  o.status = "ok";
+  o.ok = true;
+  o.fidelity = "{}";
+  o.envelopes = envelopes;
+  while (auto job = queue.claim()) {
+    EXPECT_TRUE(queue.complete(*job, o));
+    ++completed;
+  }
+  return completed;
+}
+
 TEST_F(StoreMigration, ANewStoreGetsInOneStepTheSchemaOfEveryMigrationInTurn) {
   Database fresh((dir_ / "fresh.sqlite").string());
   migrate(fresh);
@@ -197,17 +213,7 @@ TEST_F(StoreMigration, NineKeysTheEnvelopesByTheJobsNumberAndKeepsThemByJobId) {
   ASSERT_EQ(insert_jobs(db, {more.jobs.front()}, 3, 0.0), 1u);
   EXPECT_EQ(count_rows(db, "SELECT seq FROM jobs WHERE id = '" + more.jobs.front().id + "'"),
             static_cast<std::int64_t>(plan.jobs.size()) + 1);
-  JobQueue queue(db, "test:worker");
-  std::size_t completed = 0;
-  while (auto job = queue.claim()) {
-    JobOutcome o;
-    o.status = "ok";
-    o.ok = true;
-    o.fidelity = "{}";
-    o.envelopes = {{"deck_acceleration_mps2", "", 2.0}};
-    EXPECT_TRUE(queue.complete(*job, o));
-    ++completed;
-  }
+  const std::size_t completed = complete_every_job(db, {{"deck_acceleration_mps2", "", 2.0}});
   EXPECT_EQ(completed, plan.jobs.size() - 2 + 1);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE job_id = '" + more.jobs.front().id + "' AND value = 2.0"), 1);
   const std::vector<std::string> before = check_store(db).problems;
@@ -353,17 +359,8 @@ TEST_F(StoreMigration, ThirteenKeepsEveryEnvelopeToTheBitAndTheViewWritesThrough
   db.prepare("UPDATE jobs SET state = 'queued' WHERE id = ?").bind(1, plan.jobs[0].id).run();
   // A completion after the upgrade stores its rows under the keys there are
   // and a new one; vsi check finds nothing amiss with them.
-  JobQueue queue(db, "test:worker");
-  std::size_t completed = 0;
-  while (auto job = queue.claim()) {
-    JobOutcome o;
-    o.status = "ok";
-    o.ok = true;
-    o.fidelity = "{}";
-    o.envelopes = {{"deck_acceleration_mps2", "", 0.1}, {"carbody_acceleration_mps2", "car1", std::nullopt}};
-    EXPECT_TRUE(queue.complete(*job, o));
-    ++completed;
-  }
+  const std::size_t completed = complete_every_job(
+      db, {{"deck_acceleration_mps2", "", 0.1}, {"carbody_acceleration_mps2", "car1", std::nullopt}});
   ASSERT_GT(completed, 0u);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelope_keys"), 8);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE quantity = 'carbody_acceleration_mps2' AND value IS NULL"),
