@@ -98,7 +98,7 @@ double StaticInfluence::unit_deflection(int k, double x_m) const {
   const double share = 1.0 / static_cast<double>(rail_lines_.size());
   double w = 0.0;
   for (int r : rail_lines_) {
-    const auto row = structure_.rails()[static_cast<std::size_t>(r)].locate(x_m);
+    const auto row = structure_.rails()[static_cast<std::size_t>(r)].locate_weights(x_m);
     if (!row) continue;
     for (int i = 0; i < 4; ++i)
       if (row->dof[i] >= 0) w += share * row->weight[i] * g[row->dof[i]];

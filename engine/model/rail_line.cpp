@@ -31,7 +31,11 @@ RailLine RailLine::from_nodes(std::string name, std::vector<double> x_m,
   return line;
 }
 
-std::optional<RailContactRow> RailLine::locate(double x) const {
+std::optional<RailContactRow> RailLine::locate(double x) const { return locate(x, true); }
+
+std::optional<RailContactRow> RailLine::locate_weights(double x) const { return locate(x, false); }
+
+std::optional<RailContactRow> RailLine::locate(double x, bool derivatives) const {
   if (x_m.size() < 2 || !covers(x)) return std::nullopt;
   // First node strictly greater than x; the element starts one before it.
   const auto it = std::upper_bound(x_m.begin(), x_m.end(), x);
@@ -41,14 +45,16 @@ std::optional<RailContactRow> RailLine::locate(double x) const {
   const double h = x_m[j] - x_m[i];
   const double xi = (x - x_m[i]) / h;
   const auto w = hermite_weights(xi, h);
-  const auto w1 = hermite_slopes(xi, h);
-  const auto w2 = hermite_curvatures(xi, h);
   RailContactRow row;
   row.element = static_cast<int>(i);
   row.dof = element_dofs[i];
+  for (int k = 0; k < 4; ++k)
+    if (row.dof[k] >= 0) row.weight[k] = w[k];
+  if (!derivatives) return row;
+  const auto w1 = hermite_slopes(xi, h);
+  const auto w2 = hermite_curvatures(xi, h);
   for (int k = 0; k < 4; ++k) {
     if (row.dof[k] < 0) continue;
-    row.weight[k] = w[k];
     row.slope[k] = w1[k];
     row.curvature[k] = w2[k];
   }

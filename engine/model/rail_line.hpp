@@ -38,6 +38,13 @@ struct RailLine {
   bool covers(double x) const { return x >= x_m.front() && x <= x_m.back(); }
   // Empty when x lies outside the modelled track (the wheel is on a rigid path).
   std::optional<RailContactRow> locate(double x) const;
+  // The same row with its weights alone (slope and curvature left zero): for
+  // callers that read the displacement only (static influence lines), which
+  // evaluate it millions of times.
+  std::optional<RailContactRow> locate_weights(double x) const;
+
+ private:
+  std::optional<RailContactRow> locate(double x, bool derivatives) const;
 };
 
 // Cubic Hermite shape functions on an element of length h at xi in [0,1]:

@@ -54,7 +54,7 @@ DeckPoint SectionInfluence::on_deck(int rail, double x_m) const {
 }
 
 double SectionInfluence::unit_form_value(int form, int rail, double x_m) const {
-  const auto row = structure_.rails()[static_cast<std::size_t>(rail)].locate(x_m);
+  const auto row = structure_.rails()[static_cast<std::size_t>(rail)].locate_weights(x_m);
   if (!row) return 0.0;
   return form_value_at(static_cast<std::size_t>(form), *row, on_deck(rail, x_m));
 }
@@ -66,7 +66,7 @@ double SectionInfluence::unit_form_value(int form, double x_m) const {
 }
 
 void SectionInfluence::add_form_values(int rail, double x_m, double scale, std::vector<double>& values) const {
-  const auto row = structure_.rails()[static_cast<std::size_t>(rail)].locate(x_m);
+  const auto row = structure_.rails()[static_cast<std::size_t>(rail)].locate_weights(x_m);
   if (!row) return;
   const DeckPoint at = on_deck(rail, x_m);
   for (std::size_t f = 0; f < forms_.forms.size(); ++f) values[f] += scale * form_value_at(f, *row, at);

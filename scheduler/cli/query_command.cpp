@@ -1,5 +1,6 @@
 #include <iostream>
 #include <optional>
+#include <utility>
 
 #include "cli/commands.hpp"
 #include "cli/service_commands.hpp"
@@ -32,7 +33,7 @@ int write_query(const ServiceArgs& args, std::ostream& out_text, std::ostream& e
     return kExitInvalidInput;
   }
   const scheduler::StudyInfo info = scheduler::study_info(*db, *id);
-  const auto jobs = scheduler::study_results(*db, filter);
+  auto jobs = scheduler::study_results(*db, filter);
   if (args.line) {
     if (scheduler::study_structure_names(*db, *id).empty()) {
       std::cerr << "error: --line: the study " << id->substr(0, 12) << " has one structure (no \"structures\")\n";
@@ -40,7 +41,7 @@ int write_query(const ServiceArgs& args, std::ostream& out_text, std::ostream& e
     }
     scheduler::ComplianceOptions options;
     options.histories = false;
-    const auto bridges = scheduler::line_bridges(*db, *id, jobs, options);
+    const auto bridges = scheduler::line_bridges(*db, *id, std::move(jobs), options);
     if (args.format == "csv") std::cout << scheduler::format_line_csv(bridges);
     else if (args.format == "json") std::cout << scheduler::format_line_json(bridges).dump(2) << '\n';
     else std::cout << scheduler::format_line_table(bridges);

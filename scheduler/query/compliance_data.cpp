@@ -510,6 +510,10 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     static_note = std::string("Static influence lines could not be computed: ") + e.what();
   }
   std::vector<double> lm71_deflection_m(structure.outputs().size(), 0.0);
+  // The trains' static envelopes below, for phi'dyn: when every job has one
+  // structure (no bounds of it), theirs is this one.
+  KnownStatics known;
+  if (influence && variants.size() == 1) known.influence = &*influence;
   if (influence) {
     // Each output point against the limit of its own span: the check is on
     // the utilisation deflection / (L/600), and the note gives millimetres.
@@ -589,8 +593,10 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     };
     for (const std::string& t : train_order) {
       const std::vector<MovingForce> axles = axle_loads(scenes.at(t).train);
-      const StaticSectionEnvelope section_stat =
-          forms.available() ? influence->section_envelope(axles) : StaticSectionEnvelope{};
+      // (Without forms it says why, with no values.)
+      const StaticSectionEnvelope section_stat = influence->section_envelope(axles);
+      TrainStatics* statics = known.influence ? &known.trains[t] : nullptr;
+      if (statics) statics->sections = section_stat;
       std::optional<double> ratio;
       const JobResult* gov_job = nullptr;
       std::string gov_point;
@@ -616,6 +622,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       for (std::size_t k = 0; k < structure.outputs().size(); ++k) {
         const std::string& point = structure.outputs()[k].name;
         const double y_stat = influence->train_envelope(static_cast<int>(k), axles).max_deflection_m;
+        if (statics) statics->max_deflection_m.push_back(y_stat);
         const Dynamic y = dynamic_max(t, "deck_displacement_m", point);
         missing = missing || !y.all;
         if (y.value >= 0.0 && y_stat > 0.0 && lm71_deflection_m[k] > 0.0)
@@ -646,7 +653,8 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   // 6.4.6.5), as a table beside the check above.
   try {
     std::vector<std::string> unused;
-    const std::vector<DynamicIncrement> increments = dynamic_increments(db, jobs, unused);
+    const std::vector<DynamicIncrement> increments =
+        dynamic_increments(db, jobs, unused, known.influence ? &known : nullptr);
     for (const DynamicIncrement& d : increments) {
       const auto [unit, scale] = display_unit(d.quantity);
       PhiDynRow row{d.train, d.quantity, d.location, unit, d.static_value * scale, std::nullopt, d.governing_speed_kmh,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -21,19 +22,21 @@ bool has_speed(const CheckCase* g) { return g && std::isfinite(g->speed_kmh) && 
 
 }  // namespace
 
-std::vector<LineBridge> line_bridges(Database& db, const std::string& study_id, const std::vector<JobResult>& jobs,
+std::vector<LineBridge> line_bridges(Database& db, const std::string& study_id, std::vector<JobResult> jobs,
                                      ComplianceOptions options) {
   std::vector<std::string> names;
   std::map<std::string, std::vector<JobResult>> of_bridge;
-  for (const JobResult& j : jobs) {
+  for (JobResult& j : jobs) {
     if (j.structure.empty()) continue;
     auto [it, fresh] = of_bridge.try_emplace(j.structure);
     if (fresh) names.push_back(j.structure);
-    it->second.push_back(j);
+    it->second.push_back(std::move(j));
   }
+  jobs = {};
   std::vector<LineBridge> out;
   for (const std::string& name : names) {
-    options.jobs = &of_bridge.at(name);
+    auto bridge = of_bridge.extract(name);
+    options.jobs = &bridge.mapped();
     out.push_back({name, build_compliance_report(db, study_id, options)});
   }
   return out;

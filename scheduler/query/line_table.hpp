@@ -17,8 +17,9 @@ namespace railvsi::scheduler {
 
 // The bridges of `jobs` (study_results of a line study) in the study's
 // order, each with the compliance report of its jobs; `options.jobs` is
-// ignored. Empty when no job names a bridge.
-std::vector<LineBridge> line_bridges(Database& db, const std::string& study_id, const std::vector<JobResult>& jobs,
+// ignored. Empty when no job names a bridge. Takes the jobs, and lets each
+// bridge's go once it is judged.
+std::vector<LineBridge> line_bridges(Database& db, const std::string& study_id, std::vector<JobResult> jobs,
                                      ComplianceOptions options);
 
 // vsi query --line: a text table, a CSV (one line per bridge and check:

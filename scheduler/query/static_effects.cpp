@@ -24,7 +24,7 @@ std::vector<std::pair<double, double>> DynamicIncrement::phi_dyn_by_speed() cons
 }
 
 std::vector<DynamicIncrement> dynamic_increments(Database& db, const std::vector<JobResult>& jobs,
-                                                 std::vector<std::string>& notes) {
+                                                 std::vector<std::string>& notes, const KnownStatics* known) {
   std::vector<DynamicIncrement> out;
   std::vector<std::string> trains;
   std::map<std::string, std::vector<const JobResult*>> by_train;
@@ -34,13 +34,21 @@ std::vector<DynamicIncrement> dynamic_increments(Database& db, const std::vector
   }
   if (trains.empty()) return out;
   // Every job of a study shares its structure: one influence pass.
-  const Scene first = load_job_scene(db, by_train[trains.front()].front()->id);
-  const StructureModel& structure = *first.structure;
-  const StaticInfluence influence(structure, first.analysis.contact.rail_lines);
+  std::optional<Scene> first;
+  std::optional<StaticInfluence> own;
+  if (!known || !known->influence) {
+    first.emplace(load_job_scene(db, by_train[trains.front()].front()->id));
+    own.emplace(*first->structure, first->analysis.contact.rail_lines);
+  }
+  const StaticInfluence& influence = own ? *own : *known->influence;
+  const StructureModel& structure = influence.structure();
   if (!influence.section_forms().available())
     notes.push_back("section forces: " + influence.section_forms().unavailable);
   for (const std::string& t : trains) {
-    const std::vector<MovingForce> axles = axle_loads(load_job_scene(db, by_train[t].front()->id).train);
+    const auto it = known ? known->trains.find(t) : std::map<std::string, TrainStatics>::const_iterator{};
+    const TrainStatics* given = known && it != known->trains.end() ? &it->second : nullptr;
+    const std::vector<MovingForce> axles =
+        given ? std::vector<MovingForce>{} : axle_loads(load_job_scene(db, by_train[t].front()->id).train);
     const auto add = [&](const char* quantity, const std::string& location, double static_value) {
       DynamicIncrement d{t, quantity, location, static_value, std::nullopt, 0.0, 0, {}};
       std::map<double, double> by_speed;
@@ -65,8 +73,8 @@ std::vector<DynamicIncrement> dynamic_increments(Database& db, const std::vector
     const auto& points = structure.outputs();
     for (std::size_t k = 0; k < points.size(); ++k)
       add("deck_displacement_m", points[k].name,
-          influence.train_envelope(static_cast<int>(k), axles).max_deflection_m);
-    const StaticSectionEnvelope e = influence.section_envelope(axles);
+          given ? given->max_deflection_m.at(k) : influence.train_envelope(static_cast<int>(k), axles).max_deflection_m);
+    const StaticSectionEnvelope e = given ? given->sections : influence.section_envelope(axles);
     if (!e.unavailable.empty()) continue;
     for (std::size_t k = 0; k < points.size(); ++k) {
       if (e.max_abs_bending_moment_Nm[k]) add("bending_moment_Nm", points[k].name, *e.max_abs_bending_moment_Nm[k]);

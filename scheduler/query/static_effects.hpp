@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/static_influence.hpp"
 #include "model/train.hpp"
 #include "query/study_results.hpp"
 #include "simulation/scene.hpp"
@@ -42,12 +43,24 @@ struct DynamicIncrement {
   std::vector<std::pair<double, double>> phi_dyn_by_speed() const;
 };
 
+// A train's static envelopes on the jobs' structure, as the compliance
+// checks computed them: phi'dyn takes them instead of computing them again.
+struct TrainStatics {
+  std::vector<double> max_deflection_m;  // per output point (train_envelope)
+  StaticSectionEnvelope sections;        // section_envelope
+};
+struct KnownStatics {
+  const StaticInfluence* influence = nullptr;  // on the structure every job shares
+  std::map<std::string, TrainStatics> trains;  // by train name
+};
+
 // One entry per train x load effect x location, trains in the order of the
 // jobs. `notes` gets why a load effect has no static value (e.g. section
 // forces of a structure without a beam deck). Throws what loading a stored
-// scene throws.
+// scene throws. `known` (optional): the influence of the structure all
+// `jobs` share and the envelopes of some trains on it, used as they are.
 std::vector<DynamicIncrement> dynamic_increments(Database& db, const std::vector<JobResult>& jobs,
-                                                 std::vector<std::string>& notes);
+                                                 std::vector<std::string>& notes, const KnownStatics* known = nullptr);
 
 nlohmann::ordered_json dynamic_increments_json(const std::vector<DynamicIncrement>& increments,
                                                const std::vector<std::string>& notes);

@@ -97,7 +97,7 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
   // Fidelity records (keyed by content) before the jobs rows that refer to them.
   target.exec("INSERT OR IGNORE INTO main.fidelity_records (id, record) SELECT id, record FROM src.fidelity_records "
               "WHERE id IN (SELECT fidelity_id FROM src.jobs WHERE id IN temp.merge_take)");
-  target.exec("DELETE FROM main.job_envelopes WHERE job_seq IN (SELECT seq FROM main.jobs WHERE id IN temp.merge_take)");
+  target.exec("DELETE FROM main.envelope_values WHERE job_seq IN (SELECT seq FROM main.jobs WHERE id IN temp.merge_take)");
   target.exec(fmt::format("UPDATE main.jobs SET ({}) = (SELECT {} FROM src.jobs s WHERE s.id = main.jobs.id) "
                           "WHERE id IN temp.merge_take",
                           joined(rest), joined(from_source)));
@@ -112,10 +112,15 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
   // A taken job's scene, new to the target (after its jobs row: it refers to it).
   target.exec("INSERT OR IGNORE INTO main.job_scenes (job_id, scene) SELECT job_id, scene FROM src.job_scenes "
               "WHERE job_id IN temp.merge_take");
-  target.exec("INSERT INTO main.job_envelopes (job_seq, quantity, location, value) "
-              "SELECT m.seq, e.quantity, e.location, e.value FROM src.job_envelopes e "
+  // The envelopes by the target's keys of their quantity and location
+  // (a set by table, not row by row through the view's trigger).
+  target.exec("INSERT OR IGNORE INTO main.envelope_keys (quantity, location) "
+              "SELECT quantity, location FROM src.envelope_keys ORDER BY key");
+  target.exec("INSERT INTO main.envelope_values (job_seq, key, value) "
+              "SELECT m.seq, mk.key, e.value FROM src.envelope_values e JOIN src.envelope_keys sk ON sk.key = e.key "
+              "JOIN main.envelope_keys mk ON mk.quantity = sk.quantity AND mk.location = sk.location "
               "JOIN src.jobs s ON s.seq = e.job_seq JOIN main.jobs m ON m.id = s.id WHERE s.id IN temp.merge_take "
-              "ORDER BY m.seq");
+              "ORDER BY m.seq, mk.key");
   target.prepare("INSERT OR IGNORE INTO main.study_jobs (study_id, job_id, position) "
                  "SELECT study_id, job_id, position FROM src.study_jobs WHERE study_id = ?")
       .bind(1, study)

@@ -125,20 +125,6 @@ CREATE VIEW job_records AS
   SELECT j.*, s.scene, f.record AS fidelity
   FROM jobs j LEFT JOIN job_scenes s ON s.job_id = j.id LEFT JOIN fidelity_records f ON f.id = j.fidelity_id;
 CREATE UNIQUE INDEX jobs_seq ON jobs (seq);
-CREATE TABLE job_envelopes (
-  job_seq        INTEGER NOT NULL REFERENCES jobs (seq),
-  quantity       TEXT NOT NULL,       -- e.g. deck_acceleration_mps2 (unit in the name)
-  location       TEXT NOT NULL,       -- output point, wheel or vehicle name; '' for the whole job
-  value          REAL,                -- NULL when the run could not produce it (never NaN)
-  error_estimate REAL,                -- (value - verified) / verified; NULL: not verified
-  PRIMARY KEY (job_seq, quantity, location)
-) WITHOUT ROWID;
-CREATE VIEW envelopes AS
-  SELECT j.id AS job_id, e.quantity, e.location, e.value, e.error_estimate
-  FROM job_envelopes e JOIN jobs j ON j.seq = e.job_seq;
-CREATE VIEW study_envelopes AS
-  SELECT sj.study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
-  FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id JOIN job_envelopes e ON e.job_seq = j.seq;
 CREATE TABLE study_structures (
   study_id  TEXT NOT NULL REFERENCES studies (id),
   job_id    TEXT NOT NULL REFERENCES jobs (id),
@@ -146,6 +132,43 @@ CREATE TABLE study_structures (
   position  INTEGER NOT NULL,         -- the bridge's place in the study's structures
   PRIMARY KEY (study_id, job_id, structure)
 ) WITHOUT ROWID;
+CREATE TABLE envelope_keys (
+  key      INTEGER PRIMARY KEY,       -- what a job's rows hold instead of the two names
+  quantity TEXT NOT NULL,             -- e.g. deck_acceleration_mps2 (unit in the name)
+  location TEXT NOT NULL,             -- output point, wheel or vehicle name; '' for the whole job
+  UNIQUE (quantity, location)
+);
+CREATE TABLE envelope_values (
+  job_seq        INTEGER NOT NULL REFERENCES jobs (seq),
+  key            INTEGER NOT NULL REFERENCES envelope_keys (key),
+  value          REAL,                -- NULL when the run could not produce it (never NaN)
+  error_estimate REAL,                -- (value - verified) / verified; NULL: not verified
+  PRIMARY KEY (job_seq, key)
+) WITHOUT ROWID;
+CREATE VIEW job_envelopes AS
+  SELECT v.job_seq, k.quantity, k.location, v.value, v.error_estimate
+  FROM envelope_values v JOIN envelope_keys k ON k.key = v.key;
+CREATE TRIGGER job_envelopes_insert INSTEAD OF INSERT ON job_envelopes BEGIN
+  INSERT OR IGNORE INTO envelope_keys (quantity, location) VALUES (NEW.quantity, NEW.location);
+  INSERT INTO envelope_values (job_seq, key, value, error_estimate)
+    SELECT NEW.job_seq, key, NEW.value, NEW.error_estimate FROM envelope_keys
+    WHERE quantity = NEW.quantity AND location = NEW.location;
+END;
+CREATE TRIGGER job_envelopes_update INSTEAD OF UPDATE ON job_envelopes BEGIN
+  UPDATE envelope_values SET value = NEW.value, error_estimate = NEW.error_estimate
+    WHERE job_seq = OLD.job_seq
+      AND key = (SELECT key FROM envelope_keys WHERE quantity = OLD.quantity AND location = OLD.location);
+END;
+CREATE TRIGGER job_envelopes_delete INSTEAD OF DELETE ON job_envelopes BEGIN
+  DELETE FROM envelope_values WHERE job_seq = OLD.job_seq
+    AND key = (SELECT key FROM envelope_keys WHERE quantity = OLD.quantity AND location = OLD.location);
+END;
+CREATE VIEW envelopes AS
+  SELECT j.id AS job_id, e.quantity, e.location, e.value, e.error_estimate
+  FROM job_envelopes e JOIN jobs j ON j.seq = e.job_seq;
+CREATE VIEW study_envelopes AS
+  SELECT sj.study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
+  FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id JOIN job_envelopes e ON e.job_seq = j.seq;
 )sql";
   return kSql;
 }

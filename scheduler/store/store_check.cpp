@@ -34,6 +34,8 @@ const Invariant kInvariants[] = {
      "WHERE j.state != 'done')",
      "jobs with envelopes that are not done"},
     {"SELECT count(*) FROM jobs WHERE seq IS NULL", "jobs without a number (jobs.seq: their envelopes could not be stored)"},
+    {"SELECT count(*) FROM envelope_values v WHERE NOT EXISTS (SELECT 1 FROM envelope_keys k WHERE k.key = v.key)",
+     "envelope values of no known quantity and location (envelope_keys)"},
     {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM study_jobs sj WHERE sj.job_id = j.id) "
      "AND NOT EXISTS (SELECT 1 FROM verification_jobs v WHERE v.verify_job_id = j.id)",
      "jobs of no study (nor verifying one)"},

@@ -3,7 +3,12 @@
 // sees them (view job_records), unchanged to the byte. 9: the envelopes are
 // keyed by the job's number; view envelopes gives them by job id as before.
 // 12: records and price rows take the schema's spelling of the load model.
+// 13: the envelopes are stored by a small key of quantity and location;
+// view job_envelopes gives (and takes) them as the table did.
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -35,6 +40,22 @@ std::vector<std::string> schema_of(Database& db) {
   while (v.step()) entries.push_back("migration " + std::to_string(v.int64(0)) + ": " + v.text(1));
   entries.push_back("user_version " + std::to_string(count_rows(db, "PRAGMA user_version")));
   return entries;
+}
+
+// Claims and completes every queued job as done with `envelopes`; how many.
+std::size_t complete_every_job(Database& db, const std::vector<EnvelopeRow>& envelopes) {
+  JobQueue queue(db, "test:worker");
+  std::size_t completed = 0;
+  JobOutcome o;
+  o.status = "ok";
+  o.ok = true;
+  o.fidelity = "{}";
+  o.envelopes = envelopes;
+  while (auto job = queue.claim()) {
+    EXPECT_TRUE(queue.complete(*job, o));
+    ++completed;
+  }
+  return completed;
 }
 
 TEST_F(StoreMigration, ANewStoreGetsInOneStepTheSchemaOfEveryMigrationInTurn) {
@@ -192,17 +213,7 @@ TEST_F(StoreMigration, NineKeysTheEnvelopesByTheJobsNumberAndKeepsThemByJobId) {
   ASSERT_EQ(insert_jobs(db, {more.jobs.front()}, 3, 0.0), 1u);
   EXPECT_EQ(count_rows(db, "SELECT seq FROM jobs WHERE id = '" + more.jobs.front().id + "'"),
             static_cast<std::int64_t>(plan.jobs.size()) + 1);
-  JobQueue queue(db, "test:worker");
-  std::size_t completed = 0;
-  while (auto job = queue.claim()) {
-    JobOutcome o;
-    o.status = "ok";
-    o.ok = true;
-    o.fidelity = "{}";
-    o.envelopes = {{"deck_acceleration_mps2", "", 2.0}};
-    EXPECT_TRUE(queue.complete(*job, o));
-    ++completed;
-  }
+  const std::size_t completed = complete_every_job(db, {{"deck_acceleration_mps2", "", 2.0}});
   EXPECT_EQ(completed, plan.jobs.size() - 2 + 1);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE job_id = '" + more.jobs.front().id + "' AND value = 2.0"), 1);
   const std::vector<std::string> before = check_store(db).problems;
@@ -262,6 +273,116 @@ TEST_F(StoreMigration, TwelveSpellsTheLoadModelAsTheSchemaDoesInRecordsAndPriceR
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM price_rows WHERE model = 'moving_forces'"), 1);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM price_rows WHERE model = 'interaction'"), 1);
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM price_rows WHERE model = 'moving-forces'"), 0);
+}
+
+TEST_F(StoreMigration, ThirteenKeepsEveryEnvelopeToTheBitAndTheViewWritesThrough) {
+  const StudyPlan plan = expand_study(tiny_study(), dir_, (dir_ / "s.json").string());
+  ASSERT_GE(plan.jobs.size(), 3u);
+  // Values a run may store: signed zeros, integers, subnormals, the largest
+  // double, NULL; each job a different order of quantities.
+  const std::vector<std::optional<double>> values = {0.1, -0.0, 0.0, 3.0, 5e-324, std::numeric_limits<double>::max(),
+                                                     -1.25e-7, std::nullopt, 123456789.123456789};
+  struct Row {
+    std::string job_id, quantity, location;
+    std::optional<double> value, estimate;
+  };
+  std::vector<Row> written;
+  {
+    // A version-12 store: envelopes one row per quantity and location, one verified.
+    Database db((dir_ / "old.sqlite").string());
+    migrate(db, 12);
+    ASSERT_EQ(insert_jobs(db, plan.jobs, 3, 0.0), plan.jobs.size());
+    Statement e = db.prepare("INSERT INTO job_envelopes (job_seq, quantity, location, value, error_estimate) "
+                             "VALUES ((SELECT seq FROM jobs WHERE id = ?), ?, ?, ?, ?)");
+    const std::vector<std::pair<std::string, std::string>> names = {
+        {"deck_acceleration_mps2", ""}, {"deck_acceleration_mps2", "x=7.5"}, {"shear_force_N", "x=7.5"},
+        {"support_reaction_N", "support1"}, {"support_reaction_N", "support2"}, {"newton_iterations", ""}};
+    for (std::size_t k = 0; k < 3; ++k)
+      for (std::size_t n = 0; n < names.size(); ++n) {
+        const auto& [q, l] = names[(n + k) % names.size()];
+        Row r{plan.jobs[k].id, q, l, values[(n + 2 * k) % values.size()], std::nullopt};
+        if (k == 1 && n % 2 == 0) r.estimate = -0.0125 * static_cast<double>(n + 1);
+        e.bind(1, r.job_id).bind(2, r.quantity).bind(3, r.location);
+        if (r.value) e.bind(4, *r.value); else e.bind_null(4);
+        if (r.estimate) e.bind(5, *r.estimate); else e.bind_null(5);
+        e.run();
+        written.push_back(r);
+      }
+    // What the version-12 store gives back (SQLite's own storage of a REAL,
+    // e.g. of a negative zero) is what the upgrade must keep.
+    Statement back = db.prepare("SELECT value, error_estimate FROM envelopes WHERE job_id = ? AND quantity = ? AND location = ?");
+    for (Row& r : written) {
+      back.bind(1, r.job_id).bind(2, r.quantity).bind(3, r.location);
+      ASSERT_TRUE(back.step());
+      r.value = back.optional_real(0);
+      r.estimate = back.optional_real(1);
+      back.reset();
+    }
+    for (std::size_t k = 0; k < 3; ++k)
+      db.prepare("UPDATE jobs SET state = 'done' WHERE id = ?").bind(1, plan.jobs[k].id).run();
+  }
+  Database db((dir_ / "old.sqlite").string());
+  migrate(db);
+  EXPECT_EQ(count_rows(db, "PRAGMA user_version"), kStoreSchemaVersion);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelope_keys"), 6);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelope_values"), static_cast<std::int64_t>(written.size()));
+  const auto bits = [](const std::optional<double>& v) {
+    return v ? std::optional(std::bit_cast<std::uint64_t>(*v)) : std::nullopt;
+  };
+  // Every row by job id through the view envelopes, to the bit (the sign of
+  // zero included), NULLs as NULL.
+  Statement s = db.prepare("SELECT value, error_estimate FROM envelopes WHERE job_id = ? AND quantity = ? AND location = ?");
+  for (const Row& r : written) {
+    s.bind(1, r.job_id).bind(2, r.quantity).bind(3, r.location);
+    ASSERT_TRUE(s.step()) << r.quantity << " " << r.location;
+    EXPECT_EQ(bits(s.optional_real(0)), bits(r.value)) << r.quantity << " " << r.location;
+    EXPECT_EQ(bits(s.optional_real(1)), bits(r.estimate)) << r.quantity << " " << r.location;
+    EXPECT_FALSE(s.step());
+    s.reset();
+  }
+  // The view takes writes as the table did: an estimate set, a row added
+  // under a new key, a row deleted; a duplicate is refused.
+  db.prepare("UPDATE job_envelopes SET error_estimate = 0.5 WHERE job_seq = (SELECT seq FROM jobs WHERE id = ?) "
+             "AND quantity = 'shear_force_N' AND location = 'x=7.5'").bind(1, plan.jobs[2].id).run();
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE error_estimate = 0.5"), 1);
+  db.prepare("INSERT INTO job_envelopes (job_seq, quantity, location, value) "
+             "VALUES ((SELECT seq FROM jobs WHERE id = ?), 'bending_moment_Nm', 'x=7.5', 2.5)").bind(1, plan.jobs[2].id).run();
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelope_keys"), 7);
+  EXPECT_THROW(db.prepare("INSERT INTO job_envelopes (job_seq, quantity, location, value) "
+                          "VALUES ((SELECT seq FROM jobs WHERE id = ?), 'bending_moment_Nm', 'x=7.5', 3.5)")
+                   .bind(1, plan.jobs[2].id).run(),
+               SqliteError);
+  db.prepare("DELETE FROM job_envelopes WHERE job_seq = (SELECT seq FROM jobs WHERE id = ?)").bind(1, plan.jobs[0].id).run();
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE job_id = '" + plan.jobs[0].id + "'"), 0);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelope_values"), static_cast<std::int64_t>(written.size()) - 6 + 1);
+  // Job 0, its rows gone, runs again.
+  db.prepare("UPDATE jobs SET state = 'queued' WHERE id = ?").bind(1, plan.jobs[0].id).run();
+  // A completion after the upgrade stores its rows under the keys there are
+  // and a new one; vsi check finds nothing amiss with them.
+  const std::size_t completed = complete_every_job(
+      db, {{"deck_acceleration_mps2", "", 0.1}, {"carbody_acceleration_mps2", "car1", std::nullopt}});
+  ASSERT_GT(completed, 0u);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelope_keys"), 8);
+  EXPECT_EQ(count_rows(db, "SELECT count(*) FROM envelopes WHERE quantity = 'carbody_acceleration_mps2' AND value IS NULL"),
+            static_cast<std::int64_t>(completed));
+  Statement z = db.prepare("SELECT value FROM envelopes WHERE quantity = 'deck_acceleration_mps2' AND location = '' "
+                           "AND job_id NOT IN (?, ?)");
+  z.bind(1, plan.jobs[1].id).bind(2, plan.jobs[2].id);  // they keep their rows of before
+  std::size_t zeros = 0;
+  while (z.step()) {
+    EXPECT_EQ(bits(z.optional_real(0)), bits(0.1));
+    ++zeros;
+  }
+  EXPECT_EQ(zeros, completed);
+  for (const std::string& p : check_store(db).problems) EXPECT_EQ(p.find("envelope"), std::string::npos) << p;
+  // vsi's connections enforce the key; a row of another writer may lack it.
+  EXPECT_THROW(db.exec("INSERT INTO envelope_values (job_seq, key, value) VALUES (1, 999, 1.0)"), SqliteError);
+  db.exec("PRAGMA foreign_keys = OFF");
+  db.exec("INSERT INTO envelope_values (job_seq, key, value) VALUES (1, 999, 1.0)");
+  const std::vector<std::string> after = check_store(db).problems;
+  EXPECT_EQ(std::count_if(after.begin(), after.end(),
+                          [](const std::string& p) { return p.find("no known quantity") != std::string::npos; }),
+            1);
 }
 
 }  // namespace
