@@ -141,9 +141,10 @@ ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const H
 // interior's diagonal (columns scaled), then checked on every entry.
 std::optional<std::pair<double, double>> interior_rayleigh(const Blocks& C, const Blocks& M, const Blocks& K,
                                                            double tolerance) {
+  if (C.II.rows() == 0) return std::nullopt;  // no interior: nothing to save
   const Eigen::VectorXd c = C.II.diagonal(), m = M.II.diagonal(), k = K.II.diagonal();
   const double m_scale = m.cwiseAbs().maxCoeff(), k_scale = k.cwiseAbs().maxCoeff();
-  if (c.size() == 0 || !(m_scale > 0.0) || !(k_scale > 0.0)) return std::nullopt;
+  if (!(m_scale > 0.0) || !(k_scale > 0.0)) return std::nullopt;
   Eigen::MatrixX2d A(c.size(), 2);
   A.col(0) = m / m_scale;
   A.col(1) = k / k_scale;
