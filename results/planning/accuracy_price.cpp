@@ -11,8 +11,7 @@
 #include <mutex>
 #include <thread>
 
-#include "planning/time_step_warnings.hpp"
-#include "planning/wheel_value_warnings.hpp"
+#include "planning/run_planning_warnings.hpp"
 #include "solver/modal_basis.hpp"
 #include "planning/effects_planner.hpp"
 #include "solver/hybrid_basis.hpp"
@@ -209,12 +208,10 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
       row.cpu_s = cpu_s + row.setup_cpu_s;
       row.wall_s = wall_s + op.wall_s + basis.wall_s + hybrid.wall_s;
       row.steps = result.summary.steps;
-      // The run's health warnings, and those of its dt against the policy
-      // (as vsi simulate adds them; the exact modal rung's dt only samples).
+      // The run's health warnings, and the planning layer's, as vsi
+      // simulate adds them.
       std::vector<RunWarning> warnings = result.summary.warnings;
-      if (result.summary.fidelity.solver_path != "modal-exact")
-        for (RunWarning& w : time_step_warnings(s, report.cutoff_hz)) warnings.push_back(std::move(w));
-      for (RunWarning& w : wheel_value_warnings(s, result.summary, report.cutoff_hz)) warnings.push_back(std::move(w));
+      for (RunWarning& w : run_planning_warnings(s, result.summary, report.cutoff_hz)) warnings.push_back(std::move(w));
       for (const RunWarning& w : warnings)
         if (std::find(row.warnings.begin(), row.warnings.end(), w.code) == row.warnings.end())
           row.warnings.push_back(w.code);

@@ -13,8 +13,7 @@
 #include "io/input_file.hpp"
 #include "io/json_document.hpp"
 #include "io/scene_loader.hpp"
-#include "planning/time_step_warnings.hpp"
-#include "planning/wheel_value_warnings.hpp"
+#include "planning/run_planning_warnings.hpp"
 #include "price/dt_self_check.hpp"
 #include "simulation/simulation.hpp"
 #include "planning/deck_frequencies.hpp"
@@ -107,12 +106,7 @@ int run_scene(Scene scene, const std::string& file_for_errors, std::optional<dou
   if (result.summary.dt_s > 0.0) scene.analysis.dt_s = result.summary.dt_s;
   // The time-step checks judge the contact law that ran (the planner's for "auto").
   const Scene ran = scene_as_run(scene, result.summary);
-  // The FE rungs' policy bounds HHT's period error; the modal rung's step
-  // only samples the load and the output: its own rule, as in a study.
-  for (RunWarning& w : result.summary.fidelity.solver_path != "modal-exact" ? time_step_warnings(ran, cutoff)
-                                                                             : modal_time_step_warnings(ran, cutoff))
-    extra.push_back(std::move(w));
-  for (RunWarning& w : wheel_value_warnings(ran, result.summary, cutoff)) extra.push_back(std::move(w));
+  for (RunWarning& w : run_planning_warnings(ran, result.summary, cutoff)) extra.push_back(std::move(w));
   for (RunWarning& w : extra) result.summary.warnings.push_back(std::move(w));
   const RunFrame frame = run_frame(scene, cutoff);
   if (histories_dir) write_run_histories(result.histories, frame, *histories_dir);

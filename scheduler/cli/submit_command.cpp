@@ -70,7 +70,6 @@ scheduler::WorkSummary work(const ServiceArgs& args, const WorkerIdentity* ident
   options.db_file = args.db;
   options.threads = args.threads;
   options.lease_s = args.lease_s;
-  options.cache_budget_bytes = cache_budget_bytes(args);
   options.db_retry_s = args.db_retry_s;
   options.max_batch_jobs = static_cast<std::size_t>(args.batch);
   options.worker_prefix = identity ? identity->prefix : scheduler::worker_name_prefix();

@@ -19,7 +19,7 @@
 #include "envelopes/envelope_rows.hpp"
 #include "envelopes/job_envelopes.hpp"
 #include "planning/time_step_warnings.hpp"
-#include "planning/wheel_value_warnings.hpp"
+#include "planning/run_planning_warnings.hpp"
 #include "study/structure_key.hpp"
 #include "workers/cached_operator.hpp"
 #include "summary/summary_json.hpp"
@@ -304,8 +304,7 @@ JobOutcome run_job(const ClaimedJob& job, FactorizationCache& cache, ImportedStr
     out.factorization_s = lookup.factorization_s;
     out.evictions = lookup.evictions;
     const Scene ran = scene_as_run(scene, result.summary);
-    for (RunWarning& w : time_step_warnings(ran, job.cutoff_hz)) result.summary.warnings.push_back(std::move(w));
-    for (RunWarning& w : wheel_value_warnings(ran, result.summary, job.cutoff_hz))
+    for (RunWarning& w : run_planning_warnings(ran, result.summary, job.cutoff_hz))
       result.summary.warnings.push_back(std::move(w));
     const RunSummary& s = result.summary;
     out.setup_s = s.setup_s + lookup.factorization_s;
