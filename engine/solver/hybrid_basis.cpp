@@ -13,11 +13,19 @@
 #include "core/input_error.hpp"
 #include "core/thread_cpu_time.hpp"
 #include "solver/dense_products.hpp"
+#include "solver/lanczos_slices.hpp"
 #include "solver/modal_analysis.hpp"
 #include "solver/shift_invert_factor.hpp"
 
 namespace railvsi {
 namespace {
+
+// Up to this many interior DOFs the modes below a cut-off are counted
+// before they are computed (interior_modes): one more factor, cheap below
+// it (0.6 s of the 50,000-DOF deck's 47,328; 9 s at seed scale).
+constexpr Eigen::Index kCountFirstInteriorDofs = 60000;
+// Below this many, the interior's modes come in slices of 50, else 100.
+constexpr Eigen::Index kNarrowSliceInteriorDofs = 10000;
 
 enum class Part : char { kTrack, kInterface, kInterior };
 
@@ -110,8 +118,15 @@ ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const H
     return r;
   }
   ModalOptions mo;
-  if (o.modes > 0) {
-    mo.modes = std::min<int>(o.modes, static_cast<int>(n) - 1);
+  // A small interior asked for its modes up to a cut-off: counted first
+  // (one L D L' factor at the cut-off, cheap at this size), then exactly
+  // that many asked. A slice of the usual 100 modes reaches far past the
+  // cut-off there, into a band it converges slowly in.
+  const Eigen::Index counted = o.modes == 0 && n <= kCountFirstInteriorDofs
+                                   ? count_modes_below(K, M, o.max_frequency_hz)
+                                   : Eigen::Index{-1};
+  if (o.modes > 0 || counted > 0) {
+    mo.modes = std::min<int>(o.modes > 0 ? o.modes : static_cast<int>(counted), static_cast<int>(n) - 1);
   } else {
     // Every mode up to the cut-off, the count certified by a Sturm count.
     mo.modes = 0;
@@ -120,8 +135,11 @@ ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const H
   // The bridge without its track has no band of nearly equal modes: one
   // slice takes the usual 60-100 modes with one factor (measured on the
   // 20,000-DOF deck to 221 Hz, 78 modes: 2 factors and 3.1 s against 5 and
-  // 5.2 s in slices of 30).
-  mo.slice_modes = 100;
+  // 5.2 s in slices of 30). A small interior's factor is cheap and its
+  // Lanczos basis's orthogonalization is not: slices of 50 (6,042-DOF deck
+  // to 221 Hz, 84 modes: 0.96 s against 4.0 s in slices of 100;
+  // tests/bench/hybrid_bench --cost, 2026-11-27).
+  mo.slice_modes = n < kNarrowSliceInteriorDofs ? 50 : 100;
   // Block Lanczos: the factor (10^8 nonzeros at seed scale) read once per
   // 16 vectors (interior modes 76.1 -> 56.3 s at seed scale, docs/performance.md).
   mo.lanczos_block = 16;
