@@ -260,7 +260,7 @@ class Model:
         for n in range(len(self.xyz)):
             on_plane = abs(y[n]) < 1e-9
             end = abs(x[n]) < 1e-9 or abs(x[n] - SPAN) < 1e-9
-            if self.bearing == "patch":  # diagnostic: w = 0 under the whole end diaphragm
+            if self.bearing.startswith("patch"):  # diagnostic: w = 0 under the whole end diaphragm
                 dx = SPAN / GENERATOR_NX
                 if soffit_of(z[n]) and (x[n] < dx + 1e-9 or x[n] > SPAN - dx - 1e-9):
                     fixed.add(3 * n + 2)
@@ -269,7 +269,7 @@ class Model:
                 fixed.update([3 * n + 1] if self.symmetric else [3 * n, 3 * n + 2])
             if end and soffit:  # the bearing line (every node on it lies under the bottom slab)
                 fixed.add(3 * n + 2)
-                if on_plane and self.bearing != "no-lateral":
+                if on_plane and not self.bearing.endswith("no-lateral"):
                     fixed.add(3 * n + 1)  # lateral bearing at the soffit centre, both ends
                     if abs(x[n]) < 1e-9:
                         fixed.add(3 * n)  # longitudinal bearing, first end
@@ -358,7 +358,7 @@ def solve(r, n_intermediate, bearing="line"):
         start = time.time()
         m = Model(r, n_intermediate, symmetric, bearing)
         hz, shapes = m.modes(6, 1.0 if symmetric else 5.0)
-        out["dofs_half"] = out.get("dofs_half", 0) + len(m.free)
+        out["dofs_two_halves"] = out.get("dofs_two_halves", 0) + len(m.free)
         found = None
         for q in range(len(hz)):
             c, rigid, twist = m.section_motion(shapes[:, q], 0.5 * SPAN, zc)
@@ -419,6 +419,7 @@ def check(test_cpp):
 
 
 def main():
+    global GENERATOR_NX
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--levels", default="1,2,3")
     ap.add_argument("--diaphragms", default="0,3")
@@ -427,11 +428,10 @@ def main():
                     help="the generator mesh's nx, which sets the diaphragms' length and place (50: box_options())")
     ap.add_argument("--check", metavar="TEST_CPP",
                     help="compare level 1 with the numbers typed in this C++ test (kReferenceLevel1*); exit 1 if not reproduced")
-    ap.add_argument("--bearing", default="line", choices=["line", "patch", "no-lateral"],
+    ap.add_argument("--bearing", default="line", choices=["line", "patch", "no-lateral", "patch-no-lateral"],
                     help="line: the generator's (default); patch: w = 0 under the end diaphragms; no-lateral: "
                          "without the lateral bearings (diagnostics)")
     args = ap.parse_args()
-    global GENERATOR_NX
     GENERATOR_NX = args.generator_nx
     if args.check:
         return check(args.check)
@@ -448,7 +448,7 @@ def main():
         report.append(entry)
         if not args.json:
             for row in rows:
-                print(f"diaphragms {n} level {row['level']}: {row['dofs_half']} DOFs (two halves), "
+                print(f"diaphragms {n} level {row['level']}: {row['dofs_two_halves']} DOFs (two halves), "
                       f"bending {row.get('bending_hz', float('nan')):.4f} Hz, torsion {row.get('torsion_hz', float('nan')):.4f} Hz, "
                       f"{row['seconds']:.1f} s; sym {['%.3f' % f for f in row['symmetric_hz']]}, "
                       f"antisym {['%.3f' % f for f in row['antisymmetric_hz']]}", flush=True)
