@@ -41,15 +41,20 @@ Deck3dOptions box_options() {
 // on pads), not its code: 20-node serendipity bricks, 3 x 3 x 3 Gauss,
 // consistent mass, half the section by symmetry; run 2026-11-27. Level 1
 // (elements about 1 m along x, 2 across the half void, 1 through each
-// plate, 2 up the web; 11,609 DOFs over the two halves) has about the
-// product's node spacing at the bearings (0.5 m along x). Its own
-// discretisation error, level 1 against 2 (r = 2: every count doubled): bending
-// -0.40 %, torsion -1.9 % (-0.46 % and -0.86 % with the diaphragms). It has
-// no mesh-converged value: levels 2 and 3 go on falling (torsion 19.063,
-// 18.688 Hz) because the bearings are nodal constraints (w on a line, v and u
-// at a point), which a finer 3D mesh makes softer - in both codes; see
-// docs/verification.md. ctest box_girder_reference_reproduces re-runs level 1
-// and checks these numbers.
+// plate, 2 up the web; 11,609 DOFs over the two halves) has the product's
+// element size at the bearings (0.5 m along x, the bottom slab in one).
+// Its own error estimate, level 1 against level 2 (every count doubled):
+// bending -0.40 %, torsion -1.9 % (-0.46 % and -0.86 % with the
+// diaphragms), in torsion almost all from the section's discretisation (a
+// bearing patch shows the same -1.7 %). Beyond that the bearings matter: the bearing (w = 0 on the soffit edge line, v and u at a
+// node) is singular in a 3D solid, so neither code has a mesh-converged
+// torsion frequency - both lose about 1 % each time the elements at the
+// bearing are halved (reference levels 1, 2, 3: 19.430, 19.063, 18.688 Hz;
+// with a finite bearing patch the reference converges). At the same
+// element size at the bearing the codes agree within about 1 % (also at
+// 0.25 m: 19.197 Hz against 19.035); docs/verification.md has the study.
+// ctest box_girder_reference_reproduces re-runs level 1 and checks these
+// numbers.
 struct ReferenceHz {
   double bending, torsion;
 };

@@ -24,18 +24,29 @@ Why it is independent: a different discretisation written separately -
 20-node serendipity hexahedra (quadratic), full 3 x 3 x 3 Gauss integration,
 consistent mass (the product: 8-node hexahedra with Wilson's incompatible
 modes, 2 x 2 x 2 Gauss, lumped mass), on its own mesh, refined uniformly
-(r = 1, 2, 3: every region's element count times r) with a Richardson
-estimate of the converged frequency, so that the reference carries its own
-discretisation error bar. It uses the section's symmetry about y = 0: the
-vertical bending modes are solved on half the section with v = 0 on the
-plane of symmetry, the torsion (and lateral) modes with u = w = 0 there; each
-half carries one rail. Modes are identified by their shape at midspan (the
-rigid section motion fitted by least squares, as the C++ test does), not by
-their index.
+(level r: every region's element count times r). It uses the section's
+symmetry about y = 0: the vertical bending modes are solved on half the
+section with v = 0 on the plane of symmetry, the torsion (and lateral) modes
+with u = w = 0 there; each half carries one rail. Modes are identified by
+their shape at midspan (the rigid section motion fitted by least squares, as
+the C++ test does), not by their index.
+
+What it found (2026-11-27, docs/verification.md): levels 1, 2, 3 do not
+converge (torsion 19.430, 19.063, 18.688 Hz), because the specified bearings
+are singular in a 3D solid (a line or a point has no stiffness in the
+continuum limit): the frequencies fall with the element size at the bearing,
+in this model and in the product alike. With --bearing patch-no-lateral (w = 0
+over the end diaphragms' soffit, no lateral point) the model converges.
+Level 1 has the product's element size at the bearing (0.5 m along x); the
+C++ test compares at that level.
 
 Usage: box_girder_reference.py [--levels 1,2,3] [--diaphragms 0,3] [--json]
+                               [--bearing line] [--generator-nx 50]
+       box_girder_reference.py --check tests/engine/deck_3d_box_test.cpp
 Prints, per variant and level, the DOFs and the first bending and torsion
-frequencies, then the Richardson estimate when three levels are given.
+frequencies, and a Richardson estimate when three levels are given (only
+meaningful for a bearing patch). --check re-runs level 1 and compares it with
+the numbers typed in the C++ test (ctest box_girder_reference_reproduces).
 """
 import argparse
 import itertools
