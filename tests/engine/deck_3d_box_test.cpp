@@ -60,6 +60,9 @@ struct ReferenceHz {
 };
 constexpr ReferenceHz kReferenceLevel1{6.4818, 19.4303};            // box_options()
 constexpr ReferenceHz kReferenceLevel1Diaphragms{6.2085, 22.8244};  // with 3 intermediate diaphragms
+// --generator-nx 100: the diaphragms of a 100-element span (0.25 m), and so
+// elements of 0.25 m at the bearings.
+constexpr ReferenceHz kReferenceLevel1Nx100{6.4502, 19.0347};
 
 // The section written out differently from the generator: the outer
 // rectangle of the box below the top slab, less the void, plus the top slab.
@@ -297,6 +300,30 @@ TEST(Deck3dBox, IntermediateDiaphragmsRaiseTheTorsionFrequencyTowardsStVenant) {
   const double drop = *with.bending_hz / *without.bending_hz;
   EXPECT_GT(drop, rayleigh) << drop << " against " << rayleigh;
   EXPECT_NEAR(drop, rayleigh, 0.01) << drop << " against " << rayleigh;
+}
+
+// Halving the elements at the bearings (nx 50 -> 100; the one-element
+// diaphragms halve with them) lowers the torsion frequency in both codes by
+// nearly the same factor: the product's mesh dependence is the bearing's (a
+// line and points in a 3D solid), not an error of its elements.
+TEST(Deck3dBox, TorsionFollowsTheReferenceWhenTheBearingElementsHalve) {
+  Deck3dOptions o = box_options();
+  o.mesh = Deck3dMesh{{100}, 16, 6};
+  const BoxModes fine = find_box_modes(o);
+  const BoxModes& coarse = box_modes();
+  ASSERT_TRUE(fine.torsion_hz && fine.bending_hz && coarse.torsion_hz);
+  std::printf("[box] 100 x 16 x 6: torsion %.4f Hz, bending %.4f Hz\n", *fine.torsion_hz, *fine.bending_hz);
+  // Measured +0.85 % (19.197 against 19.035 Hz), tolerance 1.7 %, 2.0x that;
+  // bending +0.24 % (6.4655 against 6.4502), tolerance 0.5 %, 2.1x that.
+  EXPECT_NEAR(*fine.torsion_hz / kReferenceLevel1Nx100.torsion, 1.0, 0.017)
+      << *fine.torsion_hz << " Hz against " << kReferenceLevel1Nx100.torsion;
+  EXPECT_NEAR(*fine.bending_hz / kReferenceLevel1Nx100.bending, 1.0, 0.005)
+      << *fine.bending_hz << " Hz against " << kReferenceLevel1Nx100.bending;
+  // The drop: product 0.9770 (19.197 / 19.649), reference 0.9797 (19.035 /
+  // 19.430); measured 0.27 % apart, tolerance 0.55 %, 2.0x that.
+  const double product_drop = *fine.torsion_hz / *coarse.torsion_hz;
+  const double reference_drop = kReferenceLevel1Nx100.torsion / kReferenceLevel1.torsion;
+  EXPECT_NEAR(product_drop / reference_drop, 1.0, 0.0055) << product_drop << " against " << reference_drop;
 }
 
 TEST(Deck3dBox, RejectsABoxWithoutAVoidOrAWeb) {

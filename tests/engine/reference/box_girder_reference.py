@@ -414,7 +414,10 @@ def check(test_cpp):
     """Re-run level 1 and compare with the constants typed in the C++ test."""
     text = open(test_cpp, encoding="utf-8").read()
     failed = 0
-    for name, n in (("kReferenceLevel1", 0), ("kReferenceLevel1Diaphragms", 3)):
+    global GENERATOR_NX
+    for name, n, nx in (("kReferenceLevel1", 0, 50), ("kReferenceLevel1Diaphragms", 3, 50),
+                        ("kReferenceLevel1Nx100", 0, 100)):
+        GENERATOR_NX = nx
         match = re.search(name + r"\{([0-9.eE+-]+),\s*([0-9.eE+-]+)\}", text)
         if not match:
             print(f"{test_cpp}: no {name}{{bending, torsion}}")
