@@ -99,6 +99,19 @@ TEST_F(RealTrains, Shinkansen300HasSixteenCarsOfWuAndYang) {
   expect_figures("Shinkansen300", 64, 395.0, 16 * (41750.0 + 6080.0 + 7120.0));
 }
 
+// EN 1991-2 Annex D Type 4 (as transcribed by pacril): 30 axles of 170 kN;
+// first to last axle 18.65 + 21.85 + 8 x 18.7 + 21.85 + 18.65 = 230.6 m.
+TEST_F(RealTrains, EnD4TgvAHasTheAxlesLengthAndLoadOfEnAnnexDType4) {
+  expect_figures("EN-D4-TGV-A", 30, 230.6, 30 * 170.0e3 / kG);
+}
+
+// EN 1991-2 Annex D Type 3 (as transcribed by pacril): 8 power-car axles of
+// 200 kN, 13 coaches of 4 axles of 150 kN; first to last axle
+// 2 x 16.46 + 13 x 26.4 + 2 x 2.0 = 376.12 m.
+TEST_F(RealTrains, EnD3Ice1HasTheAxlesLengthAndLoadOfEnAnnexDType3) {
+  expect_figures("EN-D3-ICE1", 60, 376.12, (8 * 200.0e3 + 52 * 150.0e3) / kG);
+}
+
 // Cross-checks against a second source: the dimensions of the real cars, as
 // published for the trains in service (typed from the pages docs/trains.md
 // names under "Cross-checks"), against the axle offsets of the standard's or
@@ -151,6 +164,32 @@ TEST_F(RealTrains, AveS100HasTheAxleArrangementAndUnitLengthOfTheS100) {
   EXPECT_NEAR(x[26] - x[0], 200.150, kOffsetTol_m);
 }
 
+// TGV Atlantique (fr.wikipedia "TGV Atlantique"): axle arrangement
+// Bo'Bo'-11x2'-Bo'Bo', 15 two-axle bogies (4 under the power cars, 11 under
+// the 10 articulated trailers). The axles pair into bogies of the standard's
+// 3.0 m wheelbase, each bogie farther than that from the next (3.3 m at least).
+TEST_F(RealTrains, EnD4TgvAHasTheAxleArrangementOfTheTgvAtlantique) {
+  const std::vector<double> x = axle_offsets_m(inspect_train("EN-D4-TGV-A"));
+  ASSERT_EQ(x.size(), 2U * (2 + 11 + 2));
+  for (std::size_t i = 0; i < x.size(); i += 2) {
+    EXPECT_NEAR(x[i + 1] - x[i], 3.0, kOffsetTol_m) << "bogie of axles " << i + 1 << ", " << i + 2;
+    if (i + 2 < x.size()) {
+      EXPECT_GT(x[i + 2] - x[i + 1], 3.0) << "axles " << i + 2 << ", " << i + 3 << " are two bogies";
+    }
+  }
+}
+
+// ICE 1 (dieter-beinhorn.de, bahnspezl.de "Baureihe 401"): 410.70 m with 14
+// coaches and two power cars of 20.560 m, so a coach pitch of
+// (410.70 - 2 x 20.56) / 14 m. Measured 1.4e-3 m off 26.40 m; tolerance the
+// rounding of the published 410.7 m (0.05 m) over 14 coaches, 3.6e-3 m.
+TEST_F(RealTrains, EnD3Ice1HasTheCoachPitchOfTheIce1) {
+  const std::vector<double> x = axle_offsets_m(inspect_train("EN-D3-ICE1"));
+  ASSERT_EQ(x.size(), 8U + 13 * 4);
+  const double pitch_m = (410.70 - 2 * 20.56) / 14;
+  for (std::size_t i = 4; i + 4 < 56; i += 4) EXPECT_NEAR(x[i + 4] - x[i], pitch_m, 0.05 / 14) << "axle " << i + 1;
+}
+
 TEST_F(RealTrains, TextReportShowsTheLayoutMassAndSources) {
   const VsiRun run = vsi("inspect '" + (kTrains / "ICE2.json").string() + "'");
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -181,12 +220,12 @@ TEST_F(RealTrains, SetHslRealStandsForItsTrainsInOrder) {
     EXPECT_EQ(t["model"], "moving_forces") << t["name"];
   }
   // jobs/trains/sets/hsl-real.json, in its order, after the study's own.
-  EXPECT_EQ(names, (std::vector<std::string>{"HSLM-A1", "ICE2", "Talgo350", "AVE-S100", "AVE-S103", "Eurostar", "KHST",
-                                             "Shinkansen300"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"HSLM-A1", "ICE2", "Talgo350", "AVE-S100", "EN-D3-ICE1", "EN-D4-TGV-A",
+                                             "AVE-S103", "Eurostar", "KHST", "Shinkansen300"}));
   // The service expands it too: one job per train and speed.
   const VsiRun submitted = vsi("submit '" + file.string() + "' --db '" + (dir_ / "r.sqlite").string() + "'");
   ASSERT_EQ(submitted.exit_code, 0) << submitted.err;
-  EXPECT_NE(submitted.out.find(": 8 jobs, 8 new"), std::string::npos) << submitted.out;
+  EXPECT_NE(submitted.out.find(": 10 jobs, 10 new"), std::string::npos) << submitted.out;
 }
 
 TEST_F(RealTrains, UnknownSetIsAnInputErrorAtItsPlaceInTheStudy) {
