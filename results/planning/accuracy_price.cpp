@@ -193,11 +193,9 @@ PriceReport price_scene(const Scene& scene, const PriceOptions& options) {
       }
       if (basis.value) row.modes = basis.value->num_modes();
       row.setup_cpu_s = op.cpu_s + basis.cpu_s + hybrid.cpu_s;
-      // The cost model has no fit for interaction on the modes or the
-      // hybrid structure: no prediction.
-      if (!(rung.structure != StructureBackend::kFiniteElements && rung.model == LoadModel::kInteraction))
-        row.cpu_predicted_s =
-            predict_cost(cost_inputs(s, rung.structure == StructureBackend::kModal, row.modes.value_or(0))).total_cpu_s();
+      // The cost model has no fit for interaction on the modes: no prediction.
+      if (!(rung.structure == StructureBackend::kModal && rung.model == LoadModel::kInteraction))
+        row.cpu_predicted_s = predict_cost(cost_inputs(s, rung.structure, row.modes.value_or(0))).total_cpu_s();
       // The run as a worker runs a job (run_at_rung), on what was built above.
       const ScenePlan plan = ladder_plan(rung, basis.value ? basis.value->max_frequency_hz() : s.analysis.modal_cutoff_hz);
       RungModels models;

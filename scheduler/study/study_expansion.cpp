@@ -13,6 +13,7 @@
 #include "io/schema_validator.hpp"
 #include "io/train_sets.hpp"
 #include "simulation/simulation.hpp"
+#include "solver/hybrid_operator.hpp"
 #include "study/canonical_json.hpp"
 #include "envelopes/code_filter.hpp"
 #include "planning/time_step_policy.hpp"
@@ -156,6 +157,7 @@ struct TrainFacts {
   Scene first_scene;
   EffectsPlan plan;             // the rung of this train's jobs
   int modes = 0;                // the exact modal rung: the modes of its basis
+  int hybrid_modes = 0;         // the hybrid rung: the bridge modes its dry run kept
   nlohmann::json fidelity;      // what the job scenes say of it (null: the study's own)
   std::vector<double> speeds_kmh;
 };
@@ -404,6 +406,8 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
         const std::string key = operator_key(f.structure_hash, dry.analysis, f.rail_flexibility);
         auto& op = operators[key];
         if (!op) op = options.operators ? options.operators(dry, key) : make_structure_operator(dry);
+        if (const auto* hybrid = dynamic_cast<const HybridOperator*>(op.get()))
+          f.hybrid_modes = hybrid->basis().num_modes();
         const Simulation setup(dry, op);
       }
     } catch (const InputError& e) {
@@ -505,6 +509,7 @@ StudyPlan expand_study(const json& given, const std::filesystem::path& study_dir
         job.cutoff_hz = f.cutoff_hz;
         job.rung = f.plan.rung.name();
         job.modes = f.modes;
+        job.hybrid_modes = f.hybrid_modes;
         plan.jobs.push_back(std::move(job));
       }
     }

@@ -38,6 +38,9 @@ struct JobSpec {
   // (0 otherwise, and for a job read back from a store); stored as
   // jobs.planned_modes.
   int modes = 0;
+  // The hybrid rung: the bridge modes the dry run's hybrid structure kept,
+  // for the cost estimate (not stored; 0 for a job read back).
+  int hybrid_modes = 0;
   // The bridges of a line study (StudyPlan::structures) this job runs for,
   // by index: one, or several when the same structure is listed under
   // several names. Empty for a study of one structure.

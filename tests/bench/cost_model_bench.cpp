@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
       Scene s = base;
       s.analysis.dt_s = dt_s;
       const double run_s = least_cpu_s(reps, [&] { (void)run_modal_moving_forces(s, *basis); });
-      const CostInputs in = cost_inputs(s, true, basis->num_modes());
+      const CostInputs in = cost_inputs(s, StructureBackend::kModal, basis->num_modes());
       const CostPrediction p = predict_cost(in);
       const double ratio = (basis_s + run_s) / p.total_cpu_s();
       within = within && ratio >= kBandLow && ratio <= kBandHigh;

@@ -10,7 +10,8 @@
 //   OPENBLAS_NUM_THREADS=1 build/tests/bench/hybrid_bench [DOFS ...] [--cutoffs 30,60,100] [--dip] [--partition]
 // default DOFS 6000 20000; --fe-cache DIR keeps each FE reference run's
 // values in DIR and reads them from there the next time (the FE run of the
-// 20,000-DOF deck takes minutes); --duration-s T simulates T seconds only
+// 20,000-DOF deck takes minutes); --cost runs the hybrid structure only and
+// prints its parts against the cost model's prediction; --duration-s T simulates T seconds only
 // (the seed-scale deck: 0.5 s is the paper's 2,000 steps); --partition prints how the hybrid structure
 // would split each deck (track, interface, interior DOFs) and runs nothing.
 #include <cmath>
@@ -34,6 +35,7 @@
 #include "simulation/simulation.hpp"
 #include "solver/hybrid_operator.hpp"
 #include "solver/structure_backend.hpp"
+#include "planning/cost_model.hpp"
 #include "planning/deck_frequencies.hpp"
 
 namespace railvsi {
@@ -189,13 +191,54 @@ void compare(int dofs, bool dip, const std::vector<double>& cutoffs, const std::
   }
 }
 
+// The cost model's hybrid terms against the measured parts, without the FE
+// run: the reduction once per structure (HybridBasisSummary's parts), the
+// rest of the setup (the reduced operator's factor, rail flexibility,
+// statics) and the loop.
+void cost(int dofs, const std::vector<double>& cutoffs, double duration_s) {
+  Scene s = deck_scene(dofs, false, duration_s);
+  const HybridPartition part = hybrid_partition(*s.structure);
+  std::printf("\n## cost: 3D deck, %d DOFs (track %d, interface %d, interior %d; %zu rail DOFs), %ld steps\n",
+              s.structure->num_dofs(), part.track_dofs, part.interface_dofs, part.interior_dofs,
+              s.structure->rail_dofs().size(), planned_steps(s));
+  std::printf("| cut-off | modes | constraint modes | interior modes | reduction | structure setup (pred.) | per-dt setup "
+              "(pred.) | loop (pred.) | total / predicted |\n|---|---|---|---|---|---|---|---|---|\n");
+  for (double cutoff : cutoffs) {
+    s.analysis.structure_backend = StructureBackend::kHybrid;
+    s.analysis.modal_cutoff_hz = cutoff;
+    const double t0 = bench::thread_cpu_s();
+    const std::shared_ptr<const StructureOperator> op = make_structure_operator(s);
+    const Simulation sim(s, op);
+    const double t1 = bench::thread_cpu_s();
+    const Result r = sim.run();
+    const double t2 = bench::thread_cpu_s();
+    const auto* hybrid = dynamic_cast<const HybridOperator*>(op.get());
+    if (!hybrid || !r.status.ok()) {
+      std::printf("| %.0f Hz | the hybrid run failed: %s |\n", cutoff, r.status.message().c_str());
+      continue;
+    }
+    const HybridBasisSummary& h = hybrid->basis().summary();
+    const double structure_s = h.constraint_modes_cpu_s + h.interior_modes_cpu_s + h.reduction_cpu_s;
+    const CostPrediction p = predict_cost(cost_inputs(s, StructureBackend::kHybrid, hybrid->basis().num_modes()));
+    std::printf("| %.0f Hz | %d | %.2f s | %.2f s | %.2f s | %.2f (%.2f) s | %.2f (%.2f) s | %.2f (%.2f) s | %.2f |\n",
+                cutoff, hybrid->basis().num_modes(), h.constraint_modes_cpu_s, h.interior_modes_cpu_s,
+                h.reduction_cpu_s, structure_s, p.structure_setup_cpu_s, t1 - t0 - structure_s,
+                p.setup_cpu_s - p.structure_setup_cpu_s, t2 - t1, p.loop_cpu_s, (t2 - t0) / p.total_cpu_s());
+    std::printf("  (interior modes: %d more factors, %.2f s of factoring; largest residual %.2e%s)\n", h.factorizations,
+                h.interior_factor_cpu_s, h.interior_max_residual,
+                h.interior_single_vector_fallback ? ", block Lanczos failed its check: computed again one vector at a time"
+                                                  : "");
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 }  // namespace railvsi
 
 int main(int argc, char** argv) {
   std::vector<int> dofs;
   std::vector<double> cutoffs{30.0, 60.0, 100.0};
-  bool dip = false, partition_only = false;
+  bool dip = false, partition_only = false, cost_only = false;
   std::string cache_dir;
   double duration_s = 0.0;
   for (int i = 1; i < argc; ++i) {
@@ -206,6 +249,8 @@ int main(int argc, char** argv) {
       cache_dir = argv[++i];
     } else if (a == "--partition") {
       partition_only = true;
+    } else if (a == "--cost") {
+      cost_only = true;
     } else if (a == "--dip") {
       dip = true;
     } else if (a == "--cutoffs" && i + 1 < argc) {
@@ -217,6 +262,10 @@ int main(int argc, char** argv) {
     }
   }
   if (dofs.empty()) dofs = {6000, 20000};
-  for (int n : dofs) partition_only ? railvsi::partition(n) : railvsi::compare(n, dip, cutoffs, cache_dir, duration_s);
+  for (int n : dofs) {
+    if (partition_only) railvsi::partition(n);
+    else if (cost_only) railvsi::cost(n, cutoffs, duration_s);
+    else railvsi::compare(n, dip, cutoffs, cache_dir, duration_s);
+  }
   return 0;
 }

@@ -6,7 +6,11 @@
 #include <gtest/gtest.h>
 
 #include "scheduler_test_support.hpp"
+#include "generators/deck_3d.hpp"
+#include "io/file_set_writer.hpp"
+#include "io/structure_export.hpp"
 #include "study/structure_key.hpp"
+#include "study/study_cost.hpp"
 #include "study/study_plan.hpp"
 #include "workers/factorization_cache.hpp"
 #include "workers/job_runner.hpp"
@@ -78,6 +82,47 @@ TEST_F(HybridReductionSharing, TwoStepsOfOneStructureComputeTheReductionOnce) {
       EXPECT_EQ(*b.envelopes[i].value, *alone.envelopes[i].value);  // the same bits
     }
   }
+}
+
+// The study's cost estimate prices the hybrid reduction once per
+// structure, as the workers compute it: a study holding the jobs of both
+// steps costs the reduction less than the two studies apart, and each
+// job knows the bridge modes its dry run kept. On a small 3D deck: a beam
+// deck under a track has no interior for the modes to replace.
+TEST_F(HybridReductionSharing, TheStudyEstimateCountsTheReductionOncePerStructure) {
+  Deck3dOptions d;
+  d.spans_m = {25.0};
+  d.target_dofs = 3000;
+  d.approach_m = 30.0;
+  const Deck3d deck = make_deck_3d(d);
+  write_files_together(dir_ / "deck", structure_files(*deck.model));
+  const auto study_at = [&](double dt_s) {
+    json doc = hybrid_study(dt_s);
+    doc["structure"] = {{"import", structure_import_json(*deck.model)}};
+    doc.erase("outputs");  // the map lists the deck's
+    doc["analysis"]["contact"]["rail_lines"] = {0, 1};
+    return scheduler::expand_study(doc, dir_ / "deck", (dir_ / "deck" / "s.json").string());
+  };
+  const scheduler::StudyPlan coarse = study_at(1.0e-3), fine = study_at(5.0e-4);
+  ASSERT_EQ(coarse.jobs.size(), 1u);
+  ASSERT_EQ(fine.jobs.size(), 1u);
+  EXPECT_EQ(coarse.jobs.front().rung, "interaction/hybrid");
+  EXPECT_GT(coarse.jobs.front().hybrid_modes, 0);
+  EXPECT_EQ(coarse.jobs.front().hybrid_modes, fine.jobs.front().hybrid_modes);
+  scheduler::StudyPlan both = coarse;
+  both.jobs.push_back(fine.jobs.front());
+  const scheduler::StudyCostEstimate a = scheduler::estimate_study_cost(coarse),
+                                     b = scheduler::estimate_study_cost(fine),
+                                     ab = scheduler::estimate_study_cost(both);
+  EXPECT_EQ(ab.setups, 2u);
+  ASSERT_GT(a.setup_cpu_s, 0.0);
+  ASSERT_GT(b.setup_cpu_s, 0.0);
+  // What the second step adds is only its operator's setup: a whole
+  // setup less the reduction, which is most of it on a 3D deck.
+  const double added_s = ab.setup_cpu_s - a.setup_cpu_s;
+  EXPECT_GT(added_s, 0.0);
+  EXPECT_LT(added_s, 0.5 * b.setup_cpu_s) << added_s << " s against a whole setup of " << b.setup_cpu_s << " s";
+  EXPECT_NEAR(ab.cpu_s, a.cpu_s + b.cpu_s - (b.setup_cpu_s - added_s), 1e-12 * ab.cpu_s);
 }
 
 TEST(StructurePart, OfAKeyWithoutOneIsTheWholeKey) {
