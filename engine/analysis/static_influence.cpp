@@ -51,6 +51,34 @@ double positive_gauss(const std::function<double(double)>& f, double a, double b
   return h * (std::max(f(c - s), 0.0) + std::max(f(c + s), 0.0));
 }
 
+// The axles that may stand on the rails, [lo_m, hi_m], when the first is at
+// front_x: for axles sorted by offset a range of them, found by bisection
+// (a train is far longer than a short span). The others are off the
+// modelled track and add an exact zero to every sum, so leaving them out
+// changes no bit; unsorted axles are all taken.
+class AxleWindow {
+ public:
+  AxleWindow(const std::vector<MovingForce>& axles, double lo_m, double hi_m)
+      : axles_(axles), lo_m_(lo_m - kPad_m), hi_m_(hi_m + kPad_m),
+        sorted_(std::is_sorted(axles.begin(), axles.end(),
+                               [](const MovingForce& a, const MovingForce& b) { return a.offset_m < b.offset_m; })) {}
+  std::pair<std::size_t, std::size_t> at(double front_x) const {
+    if (!sorted_) return {0, axles_.size()};
+    const auto first = std::lower_bound(axles_.begin(), axles_.end(), front_x - hi_m_,
+                                        [](const MovingForce& a, double v) { return a.offset_m < v; });
+    const auto last = std::upper_bound(first, axles_.end(), front_x - lo_m_,
+                                       [](double v, const MovingForce& a) { return v < a.offset_m; });
+    return {static_cast<std::size_t>(first - axles_.begin()), static_cast<std::size_t>(last - axles_.begin())};
+  }
+
+ private:
+  // A margin against rounding at the ends: extra axles add zeros.
+  static constexpr double kPad_m = 1.0;
+  const std::vector<MovingForce>& axles_;
+  double lo_m_, hi_m_;
+  bool sorted_;
+};
+
 }  // namespace
 
 StaticInfluence::StaticInfluence(const StructureModel& structure, std::vector<int> rail_lines)
@@ -117,11 +145,14 @@ StaticSectionEnvelope StaticInfluence::section_envelope(const std::vector<Moving
   for (const MovingForce& a : axles) length = std::max(length, a.offset_m);
   // Every form at once for the train with its first axle at x.
   std::vector<double> values(forms.forms.size());
+  const AxleWindow window(axles, tracks_start_m(), tracks_end_m());
   const auto all_forms = [&](double front_x) -> const std::vector<double>& {
     std::fill(values.begin(), values.end(), 0.0);
     const double share = 1.0 / static_cast<double>(rail_lines_.size());
+    const auto [first, last] = window.at(front_x);
     for (int r : rail_lines_)
-      for (const MovingForce& a : axles) sections_->add_form_values(r, front_x - a.offset_m, share * a.load_N, values);
+      for (std::size_t i = first; i < last; ++i)
+        sections_->add_form_values(r, front_x - axles[i].offset_m, share * axles[i].load_N, values);
     return values;
   };
   // The quantities: the larger magnitude of the two sides of a section,
@@ -187,6 +218,20 @@ StaticSectionEnvelope StaticInfluence::section_envelope(const std::vector<Moving
   return out;
 }
 
+double StaticInfluence::tracks_start_m() const {
+  double x = std::numeric_limits<double>::infinity();
+  for (int r : rail_lines_)
+    if (const auto& rail = structure_.rails()[static_cast<std::size_t>(r)]; rail.x_m.size() >= 2) x = std::min(x, rail.x_m.front());
+  return x;
+}
+
+double StaticInfluence::tracks_end_m() const {
+  double x = -std::numeric_limits<double>::infinity();
+  for (int r : rail_lines_)
+    if (const auto& rail = structure_.rails()[static_cast<std::size_t>(r)]; rail.x_m.size() >= 2) x = std::max(x, rail.x_m.back());
+  return x;
+}
+
 double StaticInfluence::rails_start_m() const { return grid_x_m_.front(); }
 double StaticInfluence::rails_end_m() const { return grid_x_m_.back(); }
 
@@ -207,9 +252,11 @@ double StaticInfluence::positive_area_to(const std::function<double(double)>& h,
 StaticEnvelope StaticInfluence::train_envelope(int k, const std::vector<MovingForce>& axles) const {
   double length = 0.0;
   for (const MovingForce& a : axles) length = std::max(length, a.offset_m);
+  const AxleWindow window(axles, tracks_start_m(), tracks_end_m());
   const auto magnitude = [&](double front_x) {
     double w = 0.0;
-    for (const MovingForce& a : axles) w += a.load_N * unit_deflection(k, front_x - a.offset_m);
+    const auto [first, last] = window.at(front_x);
+    for (std::size_t i = first; i < last; ++i) w += axles[i].load_N * unit_deflection(k, front_x - axles[i].offset_m);
     return std::abs(w);
   };
   const double step = (grid_x_m_[1] - grid_x_m_[0]);

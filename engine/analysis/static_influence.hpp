@@ -103,6 +103,9 @@ class StaticInfluence {
                             const LoadModel71& lm) const;
   double rails_start_m() const;
   double rails_end_m() const;
+  // Where any of the rail lines starts and where the last one ends.
+  double tracks_start_m() const;
+  double tracks_end_m() const;
 
   const StructureModel& structure_;
   std::vector<int> rail_lines_;

@@ -97,7 +97,7 @@ double LinearForm::state_value(const Vector& u_s, const Vector& v_s, const Vecto
 }
 
 DeckPoint deck_point(const RailLine& deck, double x_m) {
-  const auto row = deck.locate(x_m);
+  const auto row = deck.locate_weights(x_m);  // its element alone: no slopes or curvatures
   if (!row) return {};
   const auto e = static_cast<std::size_t>(row->element);
   const double h = deck.x_m[e + 1] - deck.x_m[e];

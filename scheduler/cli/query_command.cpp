@@ -33,7 +33,6 @@ int write_query(const ServiceArgs& args, std::ostream& out_text, std::ostream& e
     return kExitInvalidInput;
   }
   const scheduler::StudyInfo info = scheduler::study_info(*db, *id);
-  auto jobs = scheduler::study_results(*db, filter);
   if (args.line) {
     if (scheduler::study_structure_names(*db, *id).empty()) {
       std::cerr << "error: --line: the study " << id->substr(0, 12) << " has one structure (no \"structures\")\n";
@@ -41,7 +40,12 @@ int write_query(const ServiceArgs& args, std::ostream& out_text, std::ostream& e
     }
     scheduler::ComplianceOptions options;
     options.histories = false;
-    const auto bridges = scheduler::line_bridges(*db, *id, std::move(jobs), options);
+    options.checks_only = true;
+    // Without filters the study is read bridge by bridge; a filter judges the jobs it keeps.
+    const bool whole = !filter.train && !filter.speed_min_kmh && !filter.speed_max_kmh && !filter.irregularity &&
+                       !filter.structure;
+    const auto bridges = whole ? scheduler::line_bridges(*db, *id, options)
+                               : scheduler::line_bridges(*db, *id, scheduler::study_results(*db, filter), options);
     if (args.format == "csv") std::cout << scheduler::format_line_csv(bridges);
     else if (args.format == "json") std::cout << scheduler::format_line_json(bridges).dump(2) << '\n';
     else std::cout << scheduler::format_line_table(bridges);
@@ -50,6 +54,7 @@ int write_query(const ServiceArgs& args, std::ostream& out_text, std::ostream& e
     for (const LineBridge& b : bridges) all.insert(all.end(), b.report.checks.begin(), b.report.checks.end());
     return verdict_exit_code(overall_verdict(all));
   }
+  const auto jobs = scheduler::study_results(*db, filter);
   // The verdicts of vsi report's checks, over the jobs shown.
   std::optional<ComplianceReport> judged;
   std::string not_judged;

@@ -166,8 +166,7 @@ int report_command(const ReportArgs& args) {
     report = scheduler::build_compliance_report(*db, *id, options);
   } else {
     // A line study: the line summary and a section per bridge, each judged over its own jobs.
-    bridges =
-        scheduler::line_bridges(*db, *id, scheduler::study_results(*db, {*id, {}, {}, {}, {}, {}}), options);
+    bridges = scheduler::line_bridges(*db, *id, options);
     const std::vector<scheduler::JobResult> none;
     options.jobs = &none;  // the study's name, id and inputs only
     report = scheduler::build_compliance_report(*db, *id, options);

@@ -362,8 +362,9 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
     if (!by_train.count(j.train)) train_order.push_back(j.train);
     by_train[j.train].push_back(&j);
   }
-  const auto infos = train_infos(study);
+  const auto infos = options.checks_only ? std::map<std::string, TrainInfo>{} : train_infos(study);
   for (const std::string& t : train_order) {
+    if (options.checks_only) break;
     const auto it = infos.find(t);
     report.trains.push_back({t, it == infos.end() ? std::string("given in the study document") : it->second.source});
   }
@@ -402,83 +403,85 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   for (const JobResult& j : jobs) max_speed_kmh = std::max(max_speed_kmh, j.speed_kmh);
   for (const JobResult& j : jobs) min_speed_kmh = std::min(min_speed_kmh, j.speed_kmh);
 
-  // Model summary.
-  report.model.push_back({"structure", sinfo.source});
-  if (variants.size() > 1 || (variants.size() == 1 && variants.front() != "nominal")) {
-    std::string list;
-    for (const std::string& v : variants) list += (list.empty() ? "" : "; ") + v;
-    report.model.push_back({"bounds of the structure (EN 1991-2 6.4.6.3)",
-                            list + ". The values below are those of the " +
-                                (std::find(variants.begin(), variants.end(), "nominal") != variants.end()
-                                     ? std::string("nominal structure")
-                                     : "first bound") +
-                                "; each job records its bound."});
-  }
-  if (!spans.empty()) {
-    std::string s;
-    for (double x : spans) s += (s.empty() ? "" : ", ") + fmt::format("{:g}", x);
-    report.model.push_back({"spans [m]", s + (continuous ? " (continuous)" : " (simply supported)") +
-                                             (freq.supports.from_modes ? ", supports read from the deck modes "
-                                                                         "(the model gives none)"
-                                                                       : "")});
-  }
-  if (scene_structure.contains("deck")) {
-    const json& deck = scene_structure.at("deck");
-    for (const char* key : {"EI_Nm2", "first_frequency_hz", "mass_kg_per_m"})
-      if (deck.contains(key)) report.model.push_back({std::string("deck ") + key, deck.at(key).dump()});
-  }
-  report.model.push_back({"degrees of freedom",
-                          fmt::format("{} (deck {}, track {})", structure.num_dofs(), sinfo.deck_dofs, sinfo.track_dofs)});
-  report.model.push_back({"damping", sinfo.damping_ratio ? fmt::format("{:.3g} % ({})", *sinfo.damping_ratio * 100,
-                                                                       sinfo.damping_source)
-                                                         : sinfo.damping_source});
-  report.model.push_back({"f0, first deck bending frequency", freq.f0_hz > 0 ? fmt::format("{:.4g} Hz", freq.f0_hz) : "not found"});
-  report.model.push_back({"f3, third mode of the member", freq.f3_hz > 0 ? fmt::format("{:.4g} Hz", freq.f3_hz)
-                                                                   : fmt::format("not found among the {} lowest modes",
-                                                                                 freq.modes_searched)});
-  report.model.push_back({"deck acceleration cut-off max(30 Hz, 1.5 f0, f3) (EN 1990 A2.4.4.2.1)",
-                          fmt::format("{:.4g} Hz", cutoff)});
-  if (L_phi > 0.0)
-    report.model.push_back({"determinant length L_Phi (" + std::string(kDeterminantLengthClause) + ", unverified)",
-                            fmt::format("{:.4g} m", L_phi)});
-  if (Phi > 0.0)
-    report.model.push_back({std::string(phi2 ? "Phi2" : "Phi3") + " (" + kPhiClause + ")" +
-                                ((phi2 ? kPhi2Verified : kPhi3Verified) ? "" : ", unverified"),
-                            fmt::format("{:.4g}", Phi)});
-  report.model.push_back({"LM71 classification factor alpha (EN 1991-2 6.3.2(3))", fmt::format("{:g}", alpha)});
-  report.model.push_back({"output points", std::to_string(structure.outputs().size())});
-
-  // Rungs and time steps.
-  // Grouped by model and the step the answers ran at; the reason shown is
-  // the first job's (the binding bound may differ between speeds of one
-  // group), with its planned step when it escalated to a finer one.
-  std::map<std::pair<std::string, double>, std::pair<std::string, int>> rungs;
-  for (const JobResult& j : jobs) {
-    auto& [reason, n] = rungs[{fidelity_text(j), j.ran_dt_s}];
-    if (n++ == 0)
-      reason = j.ran_dt_s == j.dt_s ? j.dt_reason
-                                    : fmt::format("escalated from its planned {:g} s: {}", j.dt_s, j.dt_reason);
-  }
-  for (const auto& [key, value] : rungs)
-    report.rungs.push_back({key.first, fmt::format("{:g} s (first job: {})", key.second, value.first), value.second});
-
-  // Jobs without a clean result.
-  {
-    Statement s = db.prepare("SELECT warnings FROM jobs WHERE id = ?");
-    for (const JobResult& j : jobs) {
-      std::string detail = j.error;
-      if (s.reset(), s.bind(1, j.id).step() && !s.is_null(0)) {
-        const json w = json::parse(s.text(0), nullptr, false);
-        if (w.is_array())
-          for (const json& item : w) detail += (detail.empty() ? "" : "; ") + item.value("code", std::string()) + ": " +
-                                               item.value("message", std::string());
-      }
-      const bool clean = j.state == "done" && (j.status.empty() || j.status == "ok") && detail.empty();
-      if (!clean) report.issues.push_back({case_label(j), j.state + (j.status.empty() ? "" : " (" + j.status + ")"), detail});
+  if (!options.checks_only) {
+    // Model summary.
+    report.model.push_back({"structure", sinfo.source});
+    if (variants.size() > 1 || (variants.size() == 1 && variants.front() != "nominal")) {
+      std::string list;
+      for (const std::string& v : variants) list += (list.empty() ? "" : "; ") + v;
+      report.model.push_back({"bounds of the structure (EN 1991-2 6.4.6.3)",
+                              list + ". The values below are those of the " +
+                                  (std::find(variants.begin(), variants.end(), "nominal") != variants.end()
+                                       ? std::string("nominal structure")
+                                       : "first bound") +
+                                  "; each job records its bound."});
     }
-  }
+    if (!spans.empty()) {
+      std::string s;
+      for (double x : spans) s += (s.empty() ? "" : ", ") + fmt::format("{:g}", x);
+      report.model.push_back({"spans [m]", s + (continuous ? " (continuous)" : " (simply supported)") +
+                                               (freq.supports.from_modes ? ", supports read from the deck modes "
+                                                                           "(the model gives none)"
+                                                                         : "")});
+    }
+    if (scene_structure.contains("deck")) {
+      const json& deck = scene_structure.at("deck");
+      for (const char* key : {"EI_Nm2", "first_frequency_hz", "mass_kg_per_m"})
+        if (deck.contains(key)) report.model.push_back({std::string("deck ") + key, deck.at(key).dump()});
+    }
+    report.model.push_back({"degrees of freedom",
+                            fmt::format("{} (deck {}, track {})", structure.num_dofs(), sinfo.deck_dofs, sinfo.track_dofs)});
+    report.model.push_back({"damping", sinfo.damping_ratio ? fmt::format("{:.3g} % ({})", *sinfo.damping_ratio * 100,
+                                                                         sinfo.damping_source)
+                                                           : sinfo.damping_source});
+    report.model.push_back({"f0, first deck bending frequency", freq.f0_hz > 0 ? fmt::format("{:.4g} Hz", freq.f0_hz) : "not found"});
+    report.model.push_back({"f3, third mode of the member", freq.f3_hz > 0 ? fmt::format("{:.4g} Hz", freq.f3_hz)
+                                                                     : fmt::format("not found among the {} lowest modes",
+                                                                                   freq.modes_searched)});
+    report.model.push_back({"deck acceleration cut-off max(30 Hz, 1.5 f0, f3) (EN 1990 A2.4.4.2.1)",
+                            fmt::format("{:.4g} Hz", cutoff)});
+    if (L_phi > 0.0)
+      report.model.push_back({"determinant length L_Phi (" + std::string(kDeterminantLengthClause) + ", unverified)",
+                              fmt::format("{:.4g} m", L_phi)});
+    if (Phi > 0.0)
+      report.model.push_back({std::string(phi2 ? "Phi2" : "Phi3") + " (" + kPhiClause + ")" +
+                                  ((phi2 ? kPhi2Verified : kPhi3Verified) ? "" : ", unverified"),
+                              fmt::format("{:.4g}", Phi)});
+    report.model.push_back({"LM71 classification factor alpha (EN 1991-2 6.3.2(3))", fmt::format("{:g}", alpha)});
+    report.model.push_back({"output points", std::to_string(structure.outputs().size())});
 
-  add_price_figures(db, study_id, report);
+    // Rungs and time steps.
+    // Grouped by model and the step the answers ran at; the reason shown is
+    // the first job's (the binding bound may differ between speeds of one
+    // group), with its planned step when it escalated to a finer one.
+    std::map<std::pair<std::string, double>, std::pair<std::string, int>> rungs;
+    for (const JobResult& j : jobs) {
+      auto& [reason, n] = rungs[{fidelity_text(j), j.ran_dt_s}];
+      if (n++ == 0)
+        reason = j.ran_dt_s == j.dt_s ? j.dt_reason
+                                      : fmt::format("escalated from its planned {:g} s: {}", j.dt_s, j.dt_reason);
+    }
+    for (const auto& [key, value] : rungs)
+      report.rungs.push_back({key.first, fmt::format("{:g} s (first job: {})", key.second, value.first), value.second});
+
+    // Jobs without a clean result.
+    {
+      Statement s = db.prepare("SELECT warnings FROM jobs WHERE id = ?");
+      for (const JobResult& j : jobs) {
+        std::string detail = j.error;
+        if (s.reset(), s.bind(1, j.id).step() && !s.is_null(0)) {
+          const json w = json::parse(s.text(0), nullptr, false);
+          if (w.is_array())
+            for (const json& item : w) detail += (detail.empty() ? "" : "; ") + item.value("code", std::string()) + ": " +
+                                                 item.value("message", std::string());
+        }
+        const bool clean = j.state == "done" && (j.status.empty() || j.status == "ok") && detail.empty();
+        if (!clean) report.issues.push_back({case_label(j), j.state + (j.status.empty() ? "" : " (" + j.status + ")"), detail});
+      }
+    }
+
+    add_price_figures(db, study_id, report);
+  }
 
   // Checks on stored quantities: the table of rules (compliance/stored_checks).
   {
@@ -651,7 +654,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   if (!static_note.empty()) report.notes.push_back(static_note);
   // phi'dyn of each load effect per train and location (EN 1991-2
   // 6.4.6.5), as a table beside the check above.
-  try {
+  if (!options.checks_only) try {
     std::vector<std::string> unused;
     const std::vector<DynamicIncrement> increments =
         dynamic_increments(db, jobs, unused, known.influence ? &known : nullptr);
@@ -675,6 +678,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       if (c.id != "dynamic_enhancement") verdicts.push_back(c);
     report.overall = overall_verdict(verdicts);
   }
+  if (options.checks_only) return report;
 
   // Response against speed for each check on stored quantities.
   std::set<std::string> profiles;

@@ -21,6 +21,10 @@ struct ComplianceOptions {
   // The jobs to judge, already read (vsi query's, after its filters);
   // all of the study's jobs, read here, when null.
   const std::vector<JobResult>* jobs = nullptr;
+  // Only the checks and the overall verdict (vsi query --line): no trains,
+  // model, rungs, issues, prices, phi'dyn table, figures, modes or
+  // histories. The checks are those of the whole report, to the bit.
+  bool checks_only = false;
 };
 
 // Throws std::runtime_error when the study is not in the database, and

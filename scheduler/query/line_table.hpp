@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "query/bridge_results.hpp"
 #include "query/compliance_data.hpp"
 #include "query/study_results.hpp"
 #include "report/line_summary.hpp"
@@ -21,6 +22,11 @@ namespace railvsi::scheduler {
 // bridge's go once it is judged.
 std::vector<LineBridge> line_bridges(Database& db, const std::string& study_id, std::vector<JobResult> jobs,
                                      ComplianceOptions options);
+// The same over all of the study's jobs, read bridge by bridge
+// (BridgeReader): one bridge's jobs in memory at a time. With
+// options.checks_only each bridge's report holds its checks and verdict
+// only, read from what they judge (BridgeFields::kVerdicts).
+std::vector<LineBridge> line_bridges(Database& db, const std::string& study_id, ComplianceOptions options);
 
 // vsi query --line: a text table, a CSV (one line per bridge and check:
 // structure,check,verdict,value,limit,unit,train,speed_kmh,location) and

@@ -36,6 +36,54 @@ void bind_filter(Statement& s, const QueryFilter& f) {
 
 }  // namespace
 
+std::optional<bool> TrainKinds::operator()(const std::string& type, const std::string& text) {
+  const auto [it, fresh] = known_.try_emplace(type + ":" + text);
+  if (fresh) {
+    try {
+      const nlohmann::json train = type == "text" ? nlohmann::json(text) : nlohmann::json::parse(text);
+      it->second = parse_train_reference(train).is_moving_forces();
+    } catch (const std::exception&) {  // a library train no longer there: not known
+      it->second = std::nullopt;
+    }
+  }
+  return it->second;
+}
+
+std::string job_result_columns(std::string_view scene, std::string_view fidelity) {
+  return fmt::format(
+      "j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, j.error, j.dt_s, j.dt_reason, "
+      "j.cutoff_hz, j.wall_s, j.loop_s, {1}, j.warnings, "
+      "CASE WHEN json_extract({0}, '$.irregularity.seed') IS NOT NULL "
+      "THEN json_remove(json_extract({0}, '$.irregularity'), '$.seed') END, "
+      "json_extract({0}, '$.irregularity.spectrum'), json_extract({0}, '$.structure.variant'), "
+      "json_extract({1}, '$.dt_s'), json_type({0}, '$.train'), json_extract({0}, '$.train')",
+      scene, fidelity);
+}
+
+JobResult read_job_result(Statement& s, TrainKinds& axle_forces) {
+  JobResult r;
+  r.id = s.text(0);
+  r.train = s.text(1);
+  r.speed_kmh = s.real(2);
+  r.irregularity = s.text(3);
+  r.state = s.text(4);
+  r.status = s.text(5);
+  r.error = s.text(6);
+  r.dt_s = s.real(7);
+  r.dt_reason = s.text(8);
+  r.cutoff_hz = s.real(9);
+  r.wall_s = s.optional_real(10);
+  r.loop_s = s.optional_real(11);
+  r.fidelity = s.text(12);
+  r.warnings = s.text(13);
+  r.profile_family = s.text(14);
+  if (!r.profile_family.empty()) r.family_label = s.text(15);
+  if (!s.is_null(16)) r.variant = variant_label(nlohmann::json::parse(s.text(16)));
+  r.ran_dt_s = s.optional_real(17).value_or(r.dt_s);
+  r.axle_forces = axle_forces(s.text(18), s.text(19));
+  return r;
+}
+
 std::optional<double> JobResult::value(const std::string& quantity, const std::string& location) const {
   const auto q = envelopes.find(quantity);
   if (q == envelopes.end()) return std::nullopt;
@@ -78,53 +126,14 @@ std::vector<std::string> study_structure_names(Database& db, const std::string& 
 std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
   std::vector<JobResult> jobs;
   std::unordered_map<std::string, std::vector<std::size_t>> index;  // a job on two bridges is two rows
-  // Whether a scene's train is axle forces, read once per train.
-  std::unordered_map<std::string, std::optional<bool>> trains;
-  const auto axle_forces = [&trains](const std::string& type, const std::string& text) -> std::optional<bool> {
-    const auto [it, fresh] = trains.try_emplace(type + ":" + text);
-    if (fresh) {
-      try {
-        const nlohmann::json train = type == "text" ? nlohmann::json(text) : nlohmann::json::parse(text);
-        it->second = parse_train_reference(train).is_moving_forces();
-      } catch (const std::exception&) {  // a library train no longer there: not known
-        it->second = std::nullopt;
-      }
-    }
-    return it->second;
-  };
-  Statement s = db.prepare(fmt::format(
-      "SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, j.error, j.dt_s, j.dt_reason, "
-      "j.cutoff_hz, j.wall_s, j.loop_s, j.fidelity, j.warnings, "
-      "CASE WHEN json_extract(j.scene, '$.irregularity.seed') IS NOT NULL "
-      "THEN json_remove(json_extract(j.scene, '$.irregularity'), '$.seed') END, "
-      "json_extract(j.scene, '$.irregularity.spectrum'), json_extract(j.scene, '$.structure.variant'), "
-      "json_extract(j.fidelity, '$.dt_s'), json_type(j.scene, '$.train'), json_extract(j.scene, '$.train'), "
-      "ss.structure FROM study_jobs sj {} JOIN job_records j ON j.id = sj.job_id "
-      "WHERE {} ORDER BY coalesce(ss.position, 0), sj.position",
-      kStructureJoin, kFilter));
+  TrainKinds axle_forces;
+  Statement s = db.prepare(fmt::format("SELECT {}, ss.structure FROM study_jobs sj {} JOIN job_records j ON j.id = sj.job_id "
+                                       "WHERE {} ORDER BY coalesce(ss.position, 0), sj.position",
+                                       job_result_columns("j.scene", "j.fidelity"), kStructureJoin, kFilter));
   bind_filter(s, filter);
   while (s.step()) {
-    JobResult r;
-    r.id = s.text(0);
-    r.train = s.text(1);
-    r.speed_kmh = s.real(2);
-    r.irregularity = s.text(3);
-    r.state = s.text(4);
-    r.status = s.text(5);
-    r.error = s.text(6);
-    r.dt_s = s.real(7);
-    r.dt_reason = s.text(8);
-    r.cutoff_hz = s.real(9);
-    r.wall_s = s.optional_real(10);
-    r.loop_s = s.optional_real(11);
-    r.fidelity = s.text(12);
-    r.warnings = s.text(13);
-    r.profile_family = s.text(14);
-    if (!r.profile_family.empty()) r.family_label = s.text(15);
-    if (!s.is_null(16)) r.variant = variant_label(nlohmann::json::parse(s.text(16)));
-    r.ran_dt_s = s.optional_real(17).value_or(r.dt_s);
-    r.axle_forces = axle_forces(s.text(18), s.text(19));
-    r.structure = s.text(20);
+    JobResult r = read_job_result(s, axle_forces);
+    r.structure = s.text(kJobResultColumns);
     index[r.id].push_back(jobs.size());
     jobs.push_back(std::move(r));
   }

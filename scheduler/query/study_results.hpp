@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -80,6 +81,22 @@ StudyInfo study_info(Database& db, const std::string& study_id);
 // of one structure.
 std::vector<std::string> study_structure_names(Database& db, const std::string& study_id);
 std::vector<JobResult> study_results(Database& db, const QueryFilter& filter);
+
+// Whether a scene's train (json_type and text of its "train") is axle
+// forces, parsed once per train; nullopt when it can no longer be read.
+class TrainKinds {
+ public:
+  std::optional<bool> operator()(const std::string& type, const std::string& text);
+
+ private:
+  std::map<std::string, std::optional<bool>> known_;
+};
+// The columns study_results reads of a job (alias j of jobs, with its scene
+// and fidelity record given as SQL expressions), kJobResultColumns of them,
+// and the JobResult of a row that starts with them (no envelopes, no structure).
+constexpr int kJobResultColumns = 20;
+std::string job_result_columns(std::string_view scene, std::string_view fidelity);
+JobResult read_job_result(Statement& s, TrainKinds& axle_forces);
 // A stored job's scene, loaded as the worker loaded it (job_scenes.scene).
 // Throws std::runtime_error when the job is not in the database.
 Scene load_job_scene(Database& db, const std::string& job_id);

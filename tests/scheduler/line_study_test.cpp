@@ -8,8 +8,10 @@
 #include <map>
 #include <regex>
 #include <set>
+#include <tuple>
 
 #include "core/input_error.hpp"
+#include "query/bridge_results.hpp"
 #include "scheduler_test_support.hpp"
 #include "study/study_plan.hpp"
 
@@ -261,6 +263,73 @@ TEST_F(LineStudyFiles, AShardedLineMergesIntoTheAnswersOfAnUnshardedRun) {
     ASSERT_EQ(a.exit_code, 0) << a.err;
     EXPECT_NE(a.out.find("\nC,"), std::string::npos) << what << "\n" << a.out;  // every bridge, by name
     EXPECT_EQ(a.out, b.out) << what;
+  }
+}
+
+// The line table reads the study bridge by bridge (BridgeReader), each
+// bridge's jobs as `--structure NAME` reads them with study_results; a
+// filter that keeps every job judges them through study_results instead.
+TEST_F(LineStudyFiles, ReadBridgeByBridgeTheLineIsWhatTheWholeStudyReadAtOnceGives) {
+  const std::string db = (dir_ / "line.sqlite").string();
+  ASSERT_EQ(vsi({"run", write_json("line.json", line_study()).string(), "--db", db}, "run").exit_code, 0);
+  const std::string id = study_id(db);
+  for (const char* format : {"table", "csv", "json"}) {
+    const VsiResult bridge_by_bridge = vsi({"query", "--db", db, "--study", id, "--line", "--format", format}, "a");
+    // --speed-min at the study's lowest speed keeps every job.
+    const VsiResult at_once =
+        vsi({"query", "--db", db, "--study", id, "--line", "--format", format, "--speed-min", "0.1"}, "b");
+    ASSERT_EQ(bridge_by_bridge.exit_code, 0) << bridge_by_bridge.err;
+    ASSERT_EQ(at_once.exit_code, 0) << at_once.err;
+    EXPECT_NE(bridge_by_bridge.out.find("C"), std::string::npos) << bridge_by_bridge.out;
+    EXPECT_EQ(bridge_by_bridge.out, at_once.out) << format;
+  }
+
+  scheduler::Database d(db, scheduler::OpenMode::kReadOnly);
+  const std::vector<std::string> names = scheduler::study_structure_names(d, id);
+  ASSERT_EQ(names, (std::vector<std::string>{"A", "B", "C"}));
+  for (const auto fields : {scheduler::BridgeFields::kAll, scheduler::BridgeFields::kVerdicts}) {
+    scheduler::BridgeReader reader(d, id, fields);
+    std::string name;
+    std::vector<scheduler::JobResult> jobs;
+    for (const std::string& expected : names) {
+      ASSERT_TRUE(reader.next(name, jobs));
+      EXPECT_EQ(name, expected);
+      const auto own = scheduler::study_results(d, {id, {}, {}, {}, {}, expected});
+      ASSERT_EQ(jobs.size(), own.size()) << name;
+      ASSERT_EQ(jobs.size(), 10u) << name;  // 2 trains x 5 speeds; C shares A's jobs
+      for (std::size_t k = 0; k < jobs.size(); ++k) {
+        const auto& a = jobs[k];
+        const auto& b = own[k];
+        EXPECT_EQ(a.id, b.id);
+        EXPECT_EQ(a.structure, b.structure);
+        EXPECT_EQ(std::tie(a.train, a.speed_kmh, a.irregularity, a.variant, a.state, a.status, a.error),
+                  std::tie(b.train, b.speed_kmh, b.irregularity, b.variant, b.state, b.status, b.error));
+        ASSERT_TRUE(a.axle_forces.has_value());
+        EXPECT_EQ(a.axle_forces, b.axle_forces);
+        EXPECT_EQ(a.dt_s, b.dt_s);
+        EXPECT_EQ(a.cutoff_hz, b.cutoff_hz);
+        if (fields == scheduler::BridgeFields::kAll) {
+          EXPECT_EQ(a.envelopes, b.envelopes);
+          EXPECT_EQ(a.error_estimates, b.error_estimates);
+          EXPECT_EQ(std::tie(a.fidelity, a.warnings, a.ran_dt_s, a.wall_s, a.loop_s, a.dt_reason),
+                    std::tie(b.fidelity, b.warnings, b.ran_dt_s, b.wall_s, b.loop_s, b.dt_reason));
+          EXPECT_FALSE(a.fidelity.empty());
+        } else {
+          // Only the quantities the checks judge, each with the stored value.
+          EXPECT_FALSE(a.envelopes.empty());
+          for (const auto& [quantity, at] : a.envelopes) {
+            EXPECT_TRUE(quantity == "deck_displacement_m" || quantity == "deck_acceleration_mps2" ||
+                        quantity == "bending_moment_Nm")
+                << quantity;
+            EXPECT_EQ(at, b.envelopes.at(quantity)) << quantity;
+          }
+          EXPECT_TRUE(a.envelopes.count("deck_acceleration_mps2"));
+          EXPECT_FALSE(a.envelopes.count("shear_force_N"));
+        }
+      }
+    }
+    EXPECT_FALSE(reader.next(name, jobs));
+    EXPECT_TRUE(jobs.empty());
   }
 }
 
