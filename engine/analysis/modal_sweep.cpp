@@ -361,12 +361,19 @@ template <int L>
       kept->resize(np);
       for (auto& k : *kept) k.resize(static_cast<std::size_t>(lanes[l].n_steps) + 1);
     }
-    if (sections_ && forms_fold_) {
-      ws.forms[static_cast<std::size_t>(l)].resize(n_forms);
-      for (auto& k : ws.forms[static_cast<std::size_t>(l)]) k.resize(static_cast<std::size_t>(lanes[l].n_steps) + 1);
-    }
     ws.kink_splits[static_cast<std::size_t>(l)].clear();
   }
+  // The forms' samples of a chunk of steps: sample `step` of lane l and
+  // form f at window_of[f * L + l][step - window_base]; an idle lane's go
+  // to a row never read. Refined at the end of each chunk (refine_window).
+  constexpr long kChunkSteps = 64;
+  constexpr auto kWindow = static_cast<std::size_t>(kChunkSteps) + 2;
+  ws.form_window.assign((n_forms * lanes_n + 1) * kWindow, 0.0);
+  std::vector<double*> window_of(n_forms * lanes_n, ws.form_window.data() + n_forms * lanes_n * kWindow);
+  for (std::size_t f = 0; f < n_forms; ++f)
+    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
+      window_of[f * lanes_n + l] = ws.form_window.data() + (l * n_forms + f) * kWindow;
+  long window_base = -1;  // the sample at the window's start
   const int stride = std::max(1, history_stride);
   if (histories) {
     Histories& h = *histories;
@@ -491,9 +498,10 @@ template <int L>
       }
       return;
     }
+    const auto at = static_cast<std::size_t>(step - window_base);
     for (std::size_t f = 0; f < nf; ++f) {
-      for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
-        if (all || running(step, l)) ws.forms[l][f][static_cast<std::size_t>(step)] = lane_of(values[f], l);
+      // Every lane's (one that has ended writes what is never read).
+      for (std::size_t l = 0; l < lanes_n; ++l) window_of[f * lanes_n + l][at] = lane_of(values[f], l);
       if (all) {
         raise_max_abs(max_abs_form[f], values[f]);
         max_form[f] = max_form[f] < values[f] ? values[f] : max_form[f];
@@ -572,6 +580,46 @@ template <int L>
     }
   };
 
+  // The forms' peaks between samples, refined chunk by chunk: each segment
+  // of a lane's samples between two kinks, over the middle samples whose
+  // neighbours are both recorded (up to sample `upto`), with the largest
+  // |value| so far. A vertex refine_max_abs skips against it is below it,
+  // so below the run's; the maximum of the run's largest |value| and of
+  // these is the bits of refining the whole run against the run's largest.
+  std::vector<double> form_refined(n_forms * lanes_n, 0.0);
+  std::array<long, L> next_middle{};
+  std::array<std::size_t, L> split_at{};
+  next_middle.fill(1);
+  const bool refine_forms = fold_forms && kinks;
+  const auto refine_window = [&](long upto) {
+    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l) {
+      const long last_middle = std::min(upto, last_step[l]) - 1;
+      const std::vector<long>& splits = ws.kink_splits[l];
+      std::size_t& k = split_at[l];
+      long i = next_middle[l];
+      while (true) {
+        // Past the pairs that end at or before i. The last pair's second
+        // sample may still move on (a kink in the next step): it is kept.
+        while (k + 1 < splits.size() && i >= splits[k]) {
+          i = std::max(i, splits[k + 1] + 1);
+          if (k + 2 >= splits.size()) break;
+          k += 2;
+        }
+        if (i > last_middle) break;
+        const long segment_end = k + 1 < splits.size() && i < splits[k] ? splits[k] : last_middle + 1;
+        const long to = std::min(last_middle, segment_end - 1);
+        for (std::size_t f = 0; f < n_forms; ++f) {
+          const double* h = window_of[f * lanes_n + l] + (i - 1 - window_base);
+          double& best = form_refined[f * lanes_n + l];
+          best = std::max(best, refine_max_abs(h, static_cast<std::size_t>(to - i + 3), 1,
+                                               lane_of(max_abs_form[f], l), code));
+        }
+        i = to + 1;
+      }
+      next_middle[l] = i;
+    }
+  };
+
   // Start from the static modal response under the loads at t = 0, as the
   // FE rung starts from the static equilibrium.
   for (std::size_t l = 0; l < lanes_n; ++l)
@@ -584,7 +632,6 @@ template <int L>
   // do not wait for each other, while the recurrence that follows is one
   // chain per lane. Each value is the same expression as when it is
   // evaluated in its step.
-  constexpr long kChunkSteps = 64;
   const std::size_t row = padded_width * lanes_n;
   ws.chunk.assign(static_cast<std::size_t>(kChunkSteps) * row, 0.0);
   for (long first = 0; first < steps; first += kChunkSteps) {
@@ -738,6 +785,12 @@ template <int L>
         }
       }
     }
+    if (fold_forms) {
+      if (refine_forms) refine_window(end);
+      // The next chunk's window starts with this one's last two samples.
+      for (double* w : window_of) std::copy(w + (end - 1 - window_base), w + (end + 1 - window_base), w);
+      window_base = end - 1;
+    }
     // The chunk is refilled next: the last loads move out of it.
     std::copy(reinterpret_cast<const double*>(p), reinterpret_cast<const double*>(p) + row, ws.p.data());
     p = reinterpret_cast<V*>(ws.p.data());
@@ -752,23 +805,15 @@ template <int L>
       // refined as the deck's peaks (a parabola across a kink would follow
       // neither side). A form read signed (a reaction) is refined only
       // where its largest value is also its largest |value|.
-      const std::vector<long>& splits = ws.kink_splits[static_cast<std::size_t>(l)];
+      // (Refined chunk by chunk above.)
       for (std::size_t f = 0; f < n_forms; ++f) {
         const auto lane = static_cast<std::size_t>(l);
-        double m = lane_of(form_signed_[f] ? max_form[f] : max_abs_form[f], lane);
+        const double m = lane_of(form_signed_[f] ? max_form[f] : max_abs_form[f], lane);
         if (!kinks || (form_signed_[f] && m < lane_of(max_abs_form[f], lane))) {
           ws.form_values[f] = m;
           continue;
         }
-        const double* h = ws.forms[lane][f].data();
-        std::size_t start = 0;
-        for (std::size_t k = 0; k + 1 < splits.size() && static_cast<std::size_t>(splits[k]) < samples; k += 2) {
-          const auto end = static_cast<std::size_t>(splits[k]);
-          if (end > start) m = refine_max_abs(h + start, end - start + 1, 1, m, code);
-          start = static_cast<std::size_t>(splits[k + 1]);
-        }
-        if (start + 1 < samples) m = refine_max_abs(h + start, samples - start, 1, m, code);
-        ws.form_values[f] = m;
+        ws.form_values[f] = std::max(m, form_refined[f * lanes_n + lane]);
       }
       o.sections->update(ws.form_values);
     }
