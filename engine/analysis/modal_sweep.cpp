@@ -374,6 +374,20 @@ template <int L>
     for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
       window_of[f * lanes_n + l] = ws.form_window.data() + (l * n_forms + f) * kWindow;
   long window_base = -1;  // the sample at the window's start
+  // Per form and lane, the largest |sample| and |difference of two
+  // consecutive samples| of this chunk and of the one before (its last two
+  // samples start the window), and the last sample: a parabola's vertex
+  // through samples below h apart with middle |sample| y1 above both
+  // neighbours' rises at most |y2 - y0| / 8 <= h / 4 above y1 (its
+  // curvature |a| >= |b|, the vertex y1 + b^2 / (4 |a|)), so a window
+  // whose largest |sample| + h / 4 stays below the largest |value| so far
+  // holds no vertex that can raise the peak and is not scanned.
+  std::vector<double> window_stats(5 * n_forms * lanes_n, 0.0);
+  V* window_max = reinterpret_cast<V*>(window_stats.data());
+  V* window_step = window_max + n_forms;
+  V* before_max = window_step + n_forms;
+  V* before_step = before_max + n_forms;
+  V* last_value = before_step + n_forms;
   const int stride = std::max(1, history_stride);
   if (histories) {
     Histories& h = *histories;
@@ -502,6 +516,9 @@ template <int L>
     for (std::size_t f = 0; f < nf; ++f) {
       // Every lane's (one that has ended writes what is never read).
       for (std::size_t l = 0; l < lanes_n; ++l) window_of[f * lanes_n + l][at] = lane_of(values[f], l);
+      raise_max_abs(window_max[f], values[f]);
+      raise_max_abs(window_step[f], values[f] - last_value[f]);
+      last_value[f] = values[f];
       if (all) {
         raise_max_abs(max_abs_form[f], values[f]);
         max_form[f] = max_form[f] < values[f] ? values[f] : max_form[f];
@@ -591,12 +608,22 @@ template <int L>
   std::array<std::size_t, L> split_at{};
   next_middle.fill(1);
   const bool refine_forms = fold_forms && kinks;
+  std::vector<char> scan(n_forms, 1);
   const auto refine_window = [&](long upto) {
     for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l) {
       const long last_middle = std::min(upto, last_step[l]) - 1;
       const std::vector<long>& splits = ws.kink_splits[l];
       std::size_t& k = split_at[l];
       long i = next_middle[l];
+      // Which forms' windows may hold a vertex above the largest |value|.
+      bool any = false;
+      for (std::size_t f = 0; f < n_forms; ++f) {
+        const double h = std::max(lane_of(window_step[f], l), lane_of(before_step[f], l));
+        const double top = std::max(lane_of(window_max[f], l), lane_of(before_max[f], l)) + 0.25 * h;
+        scan[f] = !(top * (1.0 + 1e-12) < lane_of(max_abs_form[f], l));
+        any = any || scan[f];
+      }
+      // The cursor moves on whether or not a window is scanned.
       while (true) {
         // Past the pairs that end at or before i. The last pair's second
         // sample may still move on (a kink in the next step): it is kept.
@@ -608,7 +635,8 @@ template <int L>
         if (i > last_middle) break;
         const long segment_end = k + 1 < splits.size() && i < splits[k] ? splits[k] : last_middle + 1;
         const long to = std::min(last_middle, segment_end - 1);
-        for (std::size_t f = 0; f < n_forms; ++f) {
+        for (std::size_t f = 0; any && f < n_forms; ++f) {
+          if (!scan[f]) continue;
           const double* h = window_of[f * lanes_n + l] + (i - 1 - window_base);
           double& best = form_refined[f * lanes_n + l];
           best = std::max(best, refine_max_abs(h, static_cast<std::size_t>(to - i + 3), 1,
@@ -787,6 +815,11 @@ template <int L>
     }
     if (fold_forms) {
       if (refine_forms) refine_window(end);
+      for (std::size_t f = 0; f < n_forms; ++f) {
+        before_max[f] = window_max[f];
+        before_step[f] = window_step[f];
+        window_max[f] = window_step[f] = V{};
+      }
       // The next chunk's window starts with this one's last two samples.
       for (double* w : window_of) std::copy(w + (end - 1 - window_base), w + (end + 1 - window_base), w);
       window_base = end - 1;
