@@ -443,6 +443,14 @@ template <int L>
       displacement_of[i * lanes_n + l] = ws.displacement[l][i].data();
       acceleration_of[i * lanes_n + l] = ws.acceleration[l][i].data();
     }
+  // The deck's displacement and acceleration (2 i, 2 i + 1 of output i)
+  // are refined chunk by chunk too, as the forms (refine_window below).
+  std::vector<double> deck_stats(5 * 2 * np * lanes_n, 0.0);
+  V* deck_window_max = reinterpret_cast<V*>(deck_stats.data());
+  V* deck_window_step = deck_window_max + 2 * np;
+  V* deck_before_max = deck_window_step + 2 * np;
+  V* deck_before_step = deck_before_max + 2 * np;
+  V* deck_last = deck_before_step + 2 * np;
   const bool corrected = n_corrected_ > 0;
   const std::size_t corrected_u = n + n_forms;
   V speed2{};
@@ -463,6 +471,12 @@ template <int L>
         u += p[corrected_u + i];
         a += speed2 * p[corrected_u + np + i];
       }
+      raise_max_abs(deck_window_max[2 * i], u);
+      raise_max_abs(deck_window_max[2 * i + 1], a);
+      raise_max_abs(deck_window_step[2 * i], u - deck_last[2 * i]);
+      raise_max_abs(deck_window_step[2 * i + 1], a - deck_last[2 * i + 1]);
+      deck_last[2 * i] = u;
+      deck_last[2 * i + 1] = a;
       if (all) {
         raise_max_abs(max_u[i], u);
         raise_max_abs(max_a[i], a);
@@ -647,6 +661,30 @@ template <int L>
       next_middle[l] = i;
     }
   };
+  std::vector<double> deck_refined(2 * np * lanes_n, 0.0);
+  std::array<long, L> deck_next_middle{};
+  deck_next_middle.fill(1);
+  const auto refine_deck = [&](long upto) {
+    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l) {
+      const long i = deck_next_middle[l], last_middle = std::min(upto, last_step[l]) - 1;
+      if (i > last_middle) continue;
+      for (std::size_t j = 0; j < 2 * np; ++j) {
+        const double largest = lane_of(j % 2 == 0 ? max_u[j / 2] : max_a[j / 2], l);
+        const double h = std::max(lane_of(deck_window_step[j], l), lane_of(deck_before_step[j], l));
+        const double top = std::max(lane_of(deck_window_max[j], l), lane_of(deck_before_max[j], l)) + 0.25 * h;
+        if (top * (1.0 + 1e-12) < largest) continue;
+        const double* kept = (j % 2 == 0 ? ws.displacement : ws.acceleration)[l][j / 2].data() + (i - 1);
+        double& best = deck_refined[j * lanes_n + l];
+        best = std::max(best, refine_max_abs(kept, static_cast<std::size_t>(last_middle - i + 3), 1, largest, code));
+      }
+      deck_next_middle[l] = last_middle + 1;
+    }
+    for (std::size_t j = 0; j < 2 * np; ++j) {
+      deck_before_max[j] = deck_window_max[j];
+      deck_before_step[j] = deck_window_step[j];
+      deck_window_max[j] = deck_window_step[j] = V{};
+    }
+  };
 
   // Start from the static modal response under the loads at t = 0, as the
   // FE rung starts from the static equilibrium.
@@ -813,6 +851,7 @@ template <int L>
         }
       }
     }
+    refine_deck(end);
     if (fold_forms) {
       if (refine_forms) refine_window(end);
       for (std::size_t f = 0; f < n_forms; ++f) {
@@ -832,7 +871,6 @@ template <int L>
     ModalSweepRun& o = out[l];
     o.steps = last_step[static_cast<std::size_t>(l)];
     // The peaks from the kept samples, each refined between its samples.
-    const auto samples = static_cast<std::size_t>(o.steps) + 1;
     if (fold_forms) {
       // A form's samples between two kinks are smooth: each such segment is
       // refined as the deck's peaks (a parabola across a kink would follow
@@ -853,11 +891,10 @@ template <int L>
     o.max_abs_displacement_m.resize(np);
     o.max_abs_acceleration_mps2.resize(np);
     const auto lane = static_cast<std::size_t>(l);
+    // (Refined chunk by chunk above.)
     for (std::size_t i = 0; i < np; ++i) {
-      o.max_abs_displacement_m[i] =
-          refine_max_abs(ws.displacement[lane][i].data(), samples, 1, lane_of(max_u[i], lane), code);
-      o.max_abs_acceleration_mps2[i] =
-          refine_max_abs(ws.acceleration[lane][i].data(), samples, 1, lane_of(max_a[i], lane), code);
+      o.max_abs_displacement_m[i] = std::max(lane_of(max_u[i], lane), deck_refined[2 * i * lanes_n + lane]);
+      o.max_abs_acceleration_mps2[i] = std::max(lane_of(max_a[i], lane), deck_refined[(2 * i + 1) * lanes_n + lane]);
     }
   }
 }
