@@ -361,12 +361,33 @@ template <int L>
       kept->resize(np);
       for (auto& k : *kept) k.resize(static_cast<std::size_t>(lanes[l].n_steps) + 1);
     }
-    if (sections_ && forms_fold_) {
-      ws.forms[static_cast<std::size_t>(l)].resize(n_forms);
-      for (auto& k : ws.forms[static_cast<std::size_t>(l)]) k.resize(static_cast<std::size_t>(lanes[l].n_steps) + 1);
-    }
     ws.kink_splits[static_cast<std::size_t>(l)].clear();
   }
+  // The forms' samples of a chunk of steps: sample `step` of lane l and
+  // form f at window_of[f * L + l][step - window_base]; an idle lane's go
+  // to a row never read. Refined at the end of each chunk (refine_window).
+  constexpr long kChunkSteps = 64;
+  constexpr auto kWindow = static_cast<std::size_t>(kChunkSteps) + 2;
+  ws.form_window.assign((n_forms * lanes_n + 1) * kWindow, 0.0);
+  std::vector<double*> window_of(n_forms * lanes_n, ws.form_window.data() + n_forms * lanes_n * kWindow);
+  for (std::size_t f = 0; f < n_forms; ++f)
+    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
+      window_of[f * lanes_n + l] = ws.form_window.data() + (l * n_forms + f) * kWindow;
+  long window_base = -1;  // the sample at the window's start
+  // Per form and lane, the largest |sample| and |difference of two
+  // consecutive samples| of this chunk and of the one before (its last two
+  // samples start the window), and the last sample: a parabola's vertex
+  // through samples below h apart with middle |sample| y1 above both
+  // neighbours' rises at most |y2 - y0| / 8 <= h / 4 above y1 (its
+  // curvature |a| >= |b|, the vertex y1 + b^2 / (4 |a|)), so a window
+  // whose largest |sample| + h / 4 stays below the largest |value| so far
+  // holds no vertex that can raise the peak and is not scanned.
+  std::vector<double> window_stats(5 * n_forms * lanes_n, 0.0);
+  V* window_max = reinterpret_cast<V*>(window_stats.data());
+  V* window_step = window_max + n_forms;
+  V* before_max = window_step + n_forms;
+  V* before_step = before_max + n_forms;
+  V* last_value = before_step + n_forms;
   const int stride = std::max(1, history_stride);
   if (histories) {
     Histories& h = *histories;
@@ -422,6 +443,14 @@ template <int L>
       displacement_of[i * lanes_n + l] = ws.displacement[l][i].data();
       acceleration_of[i * lanes_n + l] = ws.acceleration[l][i].data();
     }
+  // The deck's displacement and acceleration (2 i, 2 i + 1 of output i)
+  // are refined chunk by chunk too, as the forms (refine_window below).
+  std::vector<double> deck_stats(5 * 2 * np * lanes_n, 0.0);
+  V* deck_window_max = reinterpret_cast<V*>(deck_stats.data());
+  V* deck_window_step = deck_window_max + 2 * np;
+  V* deck_before_max = deck_window_step + 2 * np;
+  V* deck_before_step = deck_before_max + 2 * np;
+  V* deck_last = deck_before_step + 2 * np;
   const bool corrected = n_corrected_ > 0;
   const std::size_t corrected_u = n + n_forms;
   V speed2{};
@@ -442,6 +471,12 @@ template <int L>
         u += p[corrected_u + i];
         a += speed2 * p[corrected_u + np + i];
       }
+      raise_max_abs(deck_window_max[2 * i], u);
+      raise_max_abs(deck_window_max[2 * i + 1], a);
+      raise_max_abs(deck_window_step[2 * i], u - deck_last[2 * i]);
+      raise_max_abs(deck_window_step[2 * i + 1], a - deck_last[2 * i + 1]);
+      deck_last[2 * i] = u;
+      deck_last[2 * i + 1] = a;
       if (all) {
         raise_max_abs(max_u[i], u);
         raise_max_abs(max_a[i], a);
@@ -491,9 +526,13 @@ template <int L>
       }
       return;
     }
+    const auto at = static_cast<std::size_t>(step - window_base);
     for (std::size_t f = 0; f < nf; ++f) {
-      for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
-        if (all || running(step, l)) ws.forms[l][f][static_cast<std::size_t>(step)] = lane_of(values[f], l);
+      // Every lane's (one that has ended writes what is never read).
+      for (std::size_t l = 0; l < lanes_n; ++l) window_of[f * lanes_n + l][at] = lane_of(values[f], l);
+      raise_max_abs(window_max[f], values[f]);
+      raise_max_abs(window_step[f], values[f] - last_value[f]);
+      last_value[f] = values[f];
       if (all) {
         raise_max_abs(max_abs_form[f], values[f]);
         max_form[f] = max_form[f] < values[f] ? values[f] : max_form[f];
@@ -572,6 +611,81 @@ template <int L>
     }
   };
 
+  // The forms' peaks between samples, refined chunk by chunk: each segment
+  // of a lane's samples between two kinks, over the middle samples whose
+  // neighbours are both recorded (up to sample `upto`), with the largest
+  // |value| so far. A vertex refine_max_abs skips against it is below it,
+  // so below the run's; the maximum of the run's largest |value| and of
+  // these is the bits of refining the whole run against the run's largest.
+  std::vector<double> form_refined(n_forms * lanes_n, 0.0);
+  std::array<long, L> next_middle{};
+  std::array<std::size_t, L> split_at{};
+  next_middle.fill(1);
+  const bool refine_forms = fold_forms && kinks;
+  std::vector<char> scan(n_forms, 1);
+  const auto refine_window = [&](long upto) {
+    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l) {
+      const long last_middle = std::min(upto, last_step[l]) - 1;
+      const std::vector<long>& splits = ws.kink_splits[l];
+      std::size_t& k = split_at[l];
+      long i = next_middle[l];
+      // Which forms' windows may hold a vertex above the largest |value|.
+      bool any = false;
+      for (std::size_t f = 0; f < n_forms; ++f) {
+        const double h = std::max(lane_of(window_step[f], l), lane_of(before_step[f], l));
+        const double top = std::max(lane_of(window_max[f], l), lane_of(before_max[f], l)) + 0.25 * h;
+        scan[f] = !(top * (1.0 + 1e-12) < lane_of(max_abs_form[f], l));
+        any = any || scan[f];
+      }
+      // The cursor moves on whether or not a window is scanned.
+      while (true) {
+        // Past the pairs that end at or before i. The last pair's second
+        // sample may still move on (a kink in the next step): it is kept.
+        while (k + 1 < splits.size() && i >= splits[k]) {
+          i = std::max(i, splits[k + 1] + 1);
+          if (k + 2 >= splits.size()) break;
+          k += 2;
+        }
+        if (i > last_middle) break;
+        const long segment_end = k + 1 < splits.size() && i < splits[k] ? splits[k] : last_middle + 1;
+        const long to = std::min(last_middle, segment_end - 1);
+        for (std::size_t f = 0; any && f < n_forms; ++f) {
+          if (!scan[f]) continue;
+          const double* h = window_of[f * lanes_n + l] + (i - 1 - window_base);
+          double& best = form_refined[f * lanes_n + l];
+          best = std::max(best, refine_max_abs(h, static_cast<std::size_t>(to - i + 3), 1,
+                                               lane_of(max_abs_form[f], l), code));
+        }
+        i = to + 1;
+      }
+      next_middle[l] = i;
+    }
+  };
+  std::vector<double> deck_refined(2 * np * lanes_n, 0.0);
+  std::array<long, L> deck_next_middle{};
+  deck_next_middle.fill(1);
+  const auto refine_deck = [&](long upto) {
+    for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l) {
+      const long i = deck_next_middle[l], last_middle = std::min(upto, last_step[l]) - 1;
+      if (i > last_middle) continue;
+      for (std::size_t j = 0; j < 2 * np; ++j) {
+        const double largest = lane_of(j % 2 == 0 ? max_u[j / 2] : max_a[j / 2], l);
+        const double h = std::max(lane_of(deck_window_step[j], l), lane_of(deck_before_step[j], l));
+        const double top = std::max(lane_of(deck_window_max[j], l), lane_of(deck_before_max[j], l)) + 0.25 * h;
+        if (top * (1.0 + 1e-12) < largest) continue;
+        const double* kept = (j % 2 == 0 ? ws.displacement : ws.acceleration)[l][j / 2].data() + (i - 1);
+        double& best = deck_refined[j * lanes_n + l];
+        best = std::max(best, refine_max_abs(kept, static_cast<std::size_t>(last_middle - i + 3), 1, largest, code));
+      }
+      deck_next_middle[l] = last_middle + 1;
+    }
+    for (std::size_t j = 0; j < 2 * np; ++j) {
+      deck_before_max[j] = deck_window_max[j];
+      deck_before_step[j] = deck_window_step[j];
+      deck_window_max[j] = deck_window_step[j] = V{};
+    }
+  };
+
   // Start from the static modal response under the loads at t = 0, as the
   // FE rung starts from the static equilibrium.
   for (std::size_t l = 0; l < lanes_n; ++l)
@@ -584,7 +698,6 @@ template <int L>
   // do not wait for each other, while the recurrence that follows is one
   // chain per lane. Each value is the same expression as when it is
   // evaluated in its step.
-  constexpr long kChunkSteps = 64;
   const std::size_t row = padded_width * lanes_n;
   ws.chunk.assign(static_cast<std::size_t>(kChunkSteps) * row, 0.0);
   for (long first = 0; first < steps; first += kChunkSteps) {
@@ -738,6 +851,18 @@ template <int L>
         }
       }
     }
+    refine_deck(end);
+    if (fold_forms) {
+      if (refine_forms) refine_window(end);
+      for (std::size_t f = 0; f < n_forms; ++f) {
+        before_max[f] = window_max[f];
+        before_step[f] = window_step[f];
+        window_max[f] = window_step[f] = V{};
+      }
+      // The next chunk's window starts with this one's last two samples.
+      for (double* w : window_of) std::copy(w + (end - 1 - window_base), w + (end + 1 - window_base), w);
+      window_base = end - 1;
+    }
     // The chunk is refilled next: the last loads move out of it.
     std::copy(reinterpret_cast<const double*>(p), reinterpret_cast<const double*>(p) + row, ws.p.data());
     p = reinterpret_cast<V*>(ws.p.data());
@@ -746,40 +871,30 @@ template <int L>
     ModalSweepRun& o = out[l];
     o.steps = last_step[static_cast<std::size_t>(l)];
     // The peaks from the kept samples, each refined between its samples.
-    const auto samples = static_cast<std::size_t>(o.steps) + 1;
     if (fold_forms) {
       // A form's samples between two kinks are smooth: each such segment is
       // refined as the deck's peaks (a parabola across a kink would follow
       // neither side). A form read signed (a reaction) is refined only
       // where its largest value is also its largest |value|.
-      const std::vector<long>& splits = ws.kink_splits[static_cast<std::size_t>(l)];
+      // (Refined chunk by chunk above.)
       for (std::size_t f = 0; f < n_forms; ++f) {
         const auto lane = static_cast<std::size_t>(l);
-        double m = lane_of(form_signed_[f] ? max_form[f] : max_abs_form[f], lane);
+        const double m = lane_of(form_signed_[f] ? max_form[f] : max_abs_form[f], lane);
         if (!kinks || (form_signed_[f] && m < lane_of(max_abs_form[f], lane))) {
           ws.form_values[f] = m;
           continue;
         }
-        const double* h = ws.forms[lane][f].data();
-        std::size_t start = 0;
-        for (std::size_t k = 0; k + 1 < splits.size() && static_cast<std::size_t>(splits[k]) < samples; k += 2) {
-          const auto end = static_cast<std::size_t>(splits[k]);
-          if (end > start) m = refine_max_abs(h + start, end - start + 1, 1, m, code);
-          start = static_cast<std::size_t>(splits[k + 1]);
-        }
-        if (start + 1 < samples) m = refine_max_abs(h + start, samples - start, 1, m, code);
-        ws.form_values[f] = m;
+        ws.form_values[f] = std::max(m, form_refined[f * lanes_n + lane]);
       }
       o.sections->update(ws.form_values);
     }
     o.max_abs_displacement_m.resize(np);
     o.max_abs_acceleration_mps2.resize(np);
     const auto lane = static_cast<std::size_t>(l);
+    // (Refined chunk by chunk above.)
     for (std::size_t i = 0; i < np; ++i) {
-      o.max_abs_displacement_m[i] =
-          refine_max_abs(ws.displacement[lane][i].data(), samples, 1, lane_of(max_u[i], lane), code);
-      o.max_abs_acceleration_mps2[i] =
-          refine_max_abs(ws.acceleration[lane][i].data(), samples, 1, lane_of(max_a[i], lane), code);
+      o.max_abs_displacement_m[i] = std::max(lane_of(max_u[i], lane), deck_refined[2 * i * lanes_n + lane]);
+      o.max_abs_acceleration_mps2[i] = std::max(lane_of(max_a[i], lane), deck_refined[(2 * i + 1) * lanes_n + lane]);
     }
   }
 }

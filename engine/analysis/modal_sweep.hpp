@@ -85,11 +85,13 @@ struct ModalSweepWorkspace {
   // load's columns on both sides of the kink.
   std::vector<double> q_start, qd_start, qdd_start;
   std::vector<double> kink_columns;
-  // Per lane: each form's value at every step, and where its samples split
-  // at the kinks (pairs: the last sample before a kink, the first after
-  // it not on it), so that a peak between two samples away from a kink is
-  // refined as the deck's.
-  std::array<std::vector<std::vector<double>>, kSweepLanes> forms;
+  // Each form's values over the last chunk of steps, per lane and form
+  // (the chunk's samples and the two before it), and per lane where its
+  // samples split at the kinks (pairs: the last sample before a kink, the
+  // first after it not on it), so that a peak between two samples away
+  // from a kink is refined as the deck's, chunk by chunk while the samples
+  // are in cache.
+  std::vector<double> form_window;
   std::array<std::vector<long>, kSweepLanes> kink_splits;
 };
 

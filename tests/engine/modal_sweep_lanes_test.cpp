@@ -10,6 +10,7 @@
 #include <random>
 
 #include "analysis/modal_sweep.hpp"
+#include "core/sampled_peak.hpp"
 #include "generators/bridge_2d.hpp"
 #include "generators/deck_3d.hpp"
 #include "model/rail_line.hpp"
@@ -65,6 +66,18 @@ void expect_same_bits(const ModalSweepRun& grouped, const std::vector<std::vecto
   }
 }
 
+// The deck's peaks, refined chunk by chunk while the run goes, are those
+// of refining the run's kept samples at once (core/sampled_peak.hpp), to
+// the bit.
+void expect_peaks_of_whole_run(const ModalSweepRun& run, const ModalSweepWorkspace& ws, std::size_t lane) {
+  const auto samples = static_cast<std::size_t>(run.steps) + 1;
+  ASSERT_EQ(run.max_abs_displacement_m.size(), ws.displacement[lane].size());
+  for (std::size_t i = 0; i < run.max_abs_displacement_m.size(); ++i) {
+    EXPECT_EQ(run.max_abs_displacement_m[i], refined_max_abs(ws.displacement[lane][i].data(), samples));
+    EXPECT_EQ(run.max_abs_acceleration_mps2[i], refined_max_abs(ws.acceleration[lane][i].data(), samples));
+  }
+}
+
 // Runs `lanes` as one group (in the fastest and in the portable machine
 // code) and one by one; every number must be the same bits.
 void check_group(const ModalSweep& sweep, const std::vector<SweepLane>& lanes, std::size_t points) {
@@ -79,6 +92,8 @@ void check_group(const ModalSweep& sweep, const std::vector<SweepLane>& lanes, s
       ASSERT_TRUE(alone.status.ok()) << alone.status.message();
       EXPECT_EQ(alone.steps, lanes[l].n_steps);
       expect_same_bits(grouped[l], group_ws.acceleration[l], alone, alone_ws.acceleration[0], points);
+      expect_peaks_of_whole_run(alone, alone_ws, 0);
+      expect_peaks_of_whole_run(grouped[l], group_ws, l);
     }
   }
 }
