@@ -11,7 +11,8 @@
 // default DOFS 6000 20000; --fe-cache DIR keeps each FE reference run's
 // values in DIR and reads them from there the next time (the FE run of the
 // 20,000-DOF deck takes minutes); --cost runs the hybrid structure only and
-// prints its parts against the cost model's prediction; --duration-s T simulates T seconds only
+// prints its parts against the cost model's prediction (--train NAME: a
+// library train instead of ICE3); --duration-s T simulates T seconds only
 // (the seed-scale deck: 0.5 s is the paper's 2,000 steps); --partition prints how the hybrid structure
 // would split each deck (track, interface, interior DOFs) and runs nothing.
 #include <cmath>
@@ -97,11 +98,11 @@ Values run(const Scene& scene, double code_cutoff_hz) {
 
 double rel(double a, double b) { return (a - b) / std::abs(b); }
 
-Scene deck_scene(int dofs, bool dip, double duration_s = 0.0) {
+Scene deck_scene(int dofs, bool dip, double duration_s = 0.0, const std::string& train = "ICE3") {
   Deck3dOptions d;
   d.target_dofs = dofs;
   Scene s;
-  s.train = load_library_train("ICE3");
+  s.train = load_library_train(train);
   d.approach_m = s.train.length_m() + 10.0;  // the whole train starts on the track
   s.structure = make_deck_3d(d).model;
   s.speed_mps = 300.0 / 3.6;
@@ -195,11 +196,12 @@ void compare(int dofs, bool dip, const std::vector<double>& cutoffs, const std::
 // run: the reduction once per structure (HybridBasisSummary's parts), the
 // rest of the setup (the reduced operator's factor, rail flexibility,
 // statics) and the loop.
-void cost(int dofs, const std::vector<double>& cutoffs, double duration_s) {
-  Scene s = deck_scene(dofs, false, duration_s);
+void cost(int dofs, const std::vector<double>& cutoffs, double duration_s, const std::string& train) {
+  Scene s = deck_scene(dofs, false, duration_s, train);
   const HybridPartition part = hybrid_partition(*s.structure);
-  std::printf("\n## cost: 3D deck, %d DOFs (track %d, interface %d, interior %d; %zu rail DOFs), %ld steps\n",
-              s.structure->num_dofs(), part.track_dofs, part.interface_dofs, part.interior_dofs,
+  std::printf("\n## cost: %s (%d axles) over a 3D deck, %d DOFs (track %d, interface %d, interior %d; %zu rail DOFs), "
+              "%ld steps\n",
+              train.c_str(), s.train.num_axles(), s.structure->num_dofs(), part.track_dofs, part.interface_dofs, part.interior_dofs,
               s.structure->rail_dofs().size(), planned_steps(s));
   std::printf("| cut-off | modes | constraint modes | interior modes | reduction | structure setup (pred.) | per-dt setup "
               "(pred.) | loop (pred.) | total / predicted |\n|---|---|---|---|---|---|---|---|---|\n");
@@ -239,6 +241,7 @@ int main(int argc, char** argv) {
   std::vector<int> dofs;
   std::vector<double> cutoffs{30.0, 60.0, 100.0};
   bool dip = false, partition_only = false, cost_only = false;
+  std::string train = "ICE3";
   std::string cache_dir;
   double duration_s = 0.0;
   for (int i = 1; i < argc; ++i) {
@@ -251,6 +254,8 @@ int main(int argc, char** argv) {
       partition_only = true;
     } else if (a == "--cost") {
       cost_only = true;
+    } else if (a == "--train" && i + 1 < argc) {
+      train = argv[++i];
     } else if (a == "--dip") {
       dip = true;
     } else if (a == "--cutoffs" && i + 1 < argc) {
@@ -264,7 +269,7 @@ int main(int argc, char** argv) {
   if (dofs.empty()) dofs = {6000, 20000};
   for (int n : dofs) {
     if (partition_only) railvsi::partition(n);
-    else if (cost_only) railvsi::cost(n, cutoffs, duration_s);
+    else if (cost_only) railvsi::cost(n, cutoffs, duration_s, train);
     else railvsi::compare(n, dip, cutoffs, cache_dir, duration_s);
   }
   return 0;
