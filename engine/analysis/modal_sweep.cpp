@@ -315,6 +315,48 @@ template <class V>
   }
 }
 
+// What a chunk of steps may hold between its samples, per signal and lane:
+// the largest |sample| and |difference of two consecutive samples| of this
+// chunk and of the one before (whose last two samples start the chunk's
+// window), and the last sample. A parabola's vertex through samples below
+// h apart with middle |sample| y1 above both neighbours' rises at most
+// |y2 - y0| / 8 <= h / 4 above y1 (its curvature |a| >= |b|, the vertex
+// y1 + b^2 / (4 |a|)), so a chunk whose largest |sample| + h / 4 stays
+// below the largest |value| so far holds no vertex that can raise the
+// peak and need not be refined.
+template <int L>
+class ChunkBounds {
+  using V = typename LaneValue<L>::type;
+
+ public:
+  explicit ChunkBounds(std::size_t signals) : n_(signals), values_(5 * signals * sizeof(V) / sizeof(double), 0.0) {}
+  [[gnu::always_inline]] void sample(std::size_t j, const V& v) {
+    raise_max_abs(at(kMax)[j], v);
+    raise_max_abs(at(kStep)[j], v - at(kLast)[j]);
+    at(kLast)[j] = v;
+  }
+  bool may_beat(std::size_t j, std::size_t lane, double largest) const {
+    const double h = std::max(lane_of(at(kStep)[j], lane), lane_of(at(kBeforeStep)[j], lane));
+    const double top = std::max(lane_of(at(kMax)[j], lane), lane_of(at(kBeforeMax)[j], lane)) + 0.25 * h;
+    return !(top * (1.0 + 1e-12) < largest);
+  }
+  // This chunk becomes the one before the next.
+  void next_chunk() {
+    for (std::size_t j = 0; j < n_; ++j) {
+      at(kBeforeMax)[j] = at(kMax)[j];
+      at(kBeforeStep)[j] = at(kStep)[j];
+      at(kMax)[j] = at(kStep)[j] = V{};
+    }
+  }
+
+ private:
+  enum Row : std::size_t { kMax, kStep, kBeforeMax, kBeforeStep, kLast };
+  V* at(Row r) { return reinterpret_cast<V*>(values_.data()) + r * n_; }
+  const V* at(Row r) const { return reinterpret_cast<const V*>(values_.data()) + r * n_; }
+  std::size_t n_;
+  std::vector<double> values_;
+};
+
 }  // namespace
 
 template <int L>
@@ -374,20 +416,7 @@ template <int L>
     for (std::size_t l = 0; l < static_cast<std::size_t>(count); ++l)
       window_of[f * lanes_n + l] = ws.form_window.data() + (l * n_forms + f) * kWindow;
   long window_base = -1;  // the sample at the window's start
-  // Per form and lane, the largest |sample| and |difference of two
-  // consecutive samples| of this chunk and of the one before (its last two
-  // samples start the window), and the last sample: a parabola's vertex
-  // through samples below h apart with middle |sample| y1 above both
-  // neighbours' rises at most |y2 - y0| / 8 <= h / 4 above y1 (its
-  // curvature |a| >= |b|, the vertex y1 + b^2 / (4 |a|)), so a window
-  // whose largest |sample| + h / 4 stays below the largest |value| so far
-  // holds no vertex that can raise the peak and is not scanned.
-  std::vector<double> window_stats(5 * n_forms * lanes_n, 0.0);
-  V* window_max = reinterpret_cast<V*>(window_stats.data());
-  V* window_step = window_max + n_forms;
-  V* before_max = window_step + n_forms;
-  V* before_step = before_max + n_forms;
-  V* last_value = before_step + n_forms;
+  ChunkBounds<L> form_bounds(n_forms);
   const int stride = std::max(1, history_stride);
   if (histories) {
     Histories& h = *histories;
@@ -445,12 +474,7 @@ template <int L>
     }
   // The deck's displacement and acceleration (2 i, 2 i + 1 of output i)
   // are refined chunk by chunk too, as the forms (refine_window below).
-  std::vector<double> deck_stats(5 * 2 * np * lanes_n, 0.0);
-  V* deck_window_max = reinterpret_cast<V*>(deck_stats.data());
-  V* deck_window_step = deck_window_max + 2 * np;
-  V* deck_before_max = deck_window_step + 2 * np;
-  V* deck_before_step = deck_before_max + 2 * np;
-  V* deck_last = deck_before_step + 2 * np;
+  ChunkBounds<L> deck_bounds(2 * np);
   const bool corrected = n_corrected_ > 0;
   const std::size_t corrected_u = n + n_forms;
   V speed2{};
@@ -471,12 +495,8 @@ template <int L>
         u += p[corrected_u + i];
         a += speed2 * p[corrected_u + np + i];
       }
-      raise_max_abs(deck_window_max[2 * i], u);
-      raise_max_abs(deck_window_max[2 * i + 1], a);
-      raise_max_abs(deck_window_step[2 * i], u - deck_last[2 * i]);
-      raise_max_abs(deck_window_step[2 * i + 1], a - deck_last[2 * i + 1]);
-      deck_last[2 * i] = u;
-      deck_last[2 * i + 1] = a;
+      deck_bounds.sample(2 * i, u);
+      deck_bounds.sample(2 * i + 1, a);
       if (all) {
         raise_max_abs(max_u[i], u);
         raise_max_abs(max_a[i], a);
@@ -530,9 +550,7 @@ template <int L>
     for (std::size_t f = 0; f < nf; ++f) {
       // Every lane's (one that has ended writes what is never read).
       for (std::size_t l = 0; l < lanes_n; ++l) window_of[f * lanes_n + l][at] = lane_of(values[f], l);
-      raise_max_abs(window_max[f], values[f]);
-      raise_max_abs(window_step[f], values[f] - last_value[f]);
-      last_value[f] = values[f];
+      form_bounds.sample(f, values[f]);
       if (all) {
         raise_max_abs(max_abs_form[f], values[f]);
         max_form[f] = max_form[f] < values[f] ? values[f] : max_form[f];
@@ -632,9 +650,7 @@ template <int L>
       // Which forms' windows may hold a vertex above the largest |value|.
       bool any = false;
       for (std::size_t f = 0; f < n_forms; ++f) {
-        const double h = std::max(lane_of(window_step[f], l), lane_of(before_step[f], l));
-        const double top = std::max(lane_of(window_max[f], l), lane_of(before_max[f], l)) + 0.25 * h;
-        scan[f] = !(top * (1.0 + 1e-12) < lane_of(max_abs_form[f], l));
+        scan[f] = form_bounds.may_beat(f, l, lane_of(max_abs_form[f], l));
         any = any || scan[f];
       }
       // The cursor moves on whether or not a window is scanned.
@@ -670,20 +686,14 @@ template <int L>
       if (i > last_middle) continue;
       for (std::size_t j = 0; j < 2 * np; ++j) {
         const double largest = lane_of(j % 2 == 0 ? max_u[j / 2] : max_a[j / 2], l);
-        const double h = std::max(lane_of(deck_window_step[j], l), lane_of(deck_before_step[j], l));
-        const double top = std::max(lane_of(deck_window_max[j], l), lane_of(deck_before_max[j], l)) + 0.25 * h;
-        if (top * (1.0 + 1e-12) < largest) continue;
+        if (!deck_bounds.may_beat(j, l, largest)) continue;
         const double* kept = (j % 2 == 0 ? ws.displacement : ws.acceleration)[l][j / 2].data() + (i - 1);
         double& best = deck_refined[j * lanes_n + l];
         best = std::max(best, refine_max_abs(kept, static_cast<std::size_t>(last_middle - i + 3), 1, largest, code));
       }
       deck_next_middle[l] = last_middle + 1;
     }
-    for (std::size_t j = 0; j < 2 * np; ++j) {
-      deck_before_max[j] = deck_window_max[j];
-      deck_before_step[j] = deck_window_step[j];
-      deck_window_max[j] = deck_window_step[j] = V{};
-    }
+    deck_bounds.next_chunk();
   };
 
   // Start from the static modal response under the loads at t = 0, as the
@@ -854,11 +864,7 @@ template <int L>
     refine_deck(end);
     if (fold_forms) {
       if (refine_forms) refine_window(end);
-      for (std::size_t f = 0; f < n_forms; ++f) {
-        before_max[f] = window_max[f];
-        before_step[f] = window_step[f];
-        window_max[f] = window_step[f] = V{};
-      }
+      form_bounds.next_chunk();
       // The next chunk's window starts with this one's last two samples.
       for (double* w : window_of) std::copy(w + (end - 1 - window_base), w + (end + 1 - window_base), w);
       window_base = end - 1;

@@ -145,7 +145,8 @@ StaticSectionEnvelope StaticInfluence::section_envelope(const std::vector<Moving
   for (const MovingForce& a : axles) length = std::max(length, a.offset_m);
   // Every form at once for the train with its first axle at x.
   std::vector<double> values(forms.forms.size());
-  const AxleWindow window(axles, tracks_start_m(), tracks_end_m());
+  const auto [start_m, end_m] = tracks_extent_m();
+  const AxleWindow window(axles, start_m, end_m);
   const auto all_forms = [&](double front_x) -> const std::vector<double>& {
     std::fill(values.begin(), values.end(), 0.0);
     const double share = 1.0 / static_cast<double>(rail_lines_.size());
@@ -218,18 +219,14 @@ StaticSectionEnvelope StaticInfluence::section_envelope(const std::vector<Moving
   return out;
 }
 
-double StaticInfluence::tracks_start_m() const {
-  double x = std::numeric_limits<double>::infinity();
+std::pair<double, double> StaticInfluence::tracks_extent_m() const {
+  double start_m = std::numeric_limits<double>::infinity(), end_m = -start_m;
   for (int r : rail_lines_)
-    if (const auto& rail = structure_.rails()[static_cast<std::size_t>(r)]; rail.x_m.size() >= 2) x = std::min(x, rail.x_m.front());
-  return x;
-}
-
-double StaticInfluence::tracks_end_m() const {
-  double x = -std::numeric_limits<double>::infinity();
-  for (int r : rail_lines_)
-    if (const auto& rail = structure_.rails()[static_cast<std::size_t>(r)]; rail.x_m.size() >= 2) x = std::max(x, rail.x_m.back());
-  return x;
+    if (const auto& rail = structure_.rails()[static_cast<std::size_t>(r)]; rail.x_m.size() >= 2) {
+      start_m = std::min(start_m, rail.x_m.front());
+      end_m = std::max(end_m, rail.x_m.back());
+    }
+  return {start_m, end_m};
 }
 
 double StaticInfluence::rails_start_m() const { return grid_x_m_.front(); }
@@ -252,7 +249,8 @@ double StaticInfluence::positive_area_to(const std::function<double(double)>& h,
 StaticEnvelope StaticInfluence::train_envelope(int k, const std::vector<MovingForce>& axles) const {
   double length = 0.0;
   for (const MovingForce& a : axles) length = std::max(length, a.offset_m);
-  const AxleWindow window(axles, tracks_start_m(), tracks_end_m());
+  const auto [start_m, end_m] = tracks_extent_m();
+  const AxleWindow window(axles, start_m, end_m);
   const auto magnitude = [&](double front_x) {
     double w = 0.0;
     const auto [first, last] = window.at(front_x);

@@ -11,6 +11,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/structure_model.hpp"
@@ -103,9 +104,8 @@ class StaticInfluence {
                             const LoadModel71& lm) const;
   double rails_start_m() const;
   double rails_end_m() const;
-  // Where any of the rail lines starts and where the last one ends.
-  double tracks_start_m() const;
-  double tracks_end_m() const;
+  // Where the first of the rail lines starts and where the last one ends.
+  std::pair<double, double> tracks_extent_m() const;
 
   const StructureModel& structure_;
   std::vector<int> rail_lines_;
