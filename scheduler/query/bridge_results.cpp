@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "compliance/stored_checks.hpp"
+#include "store/store_check.hpp"
 #include "study/structure_variants.hpp"
 
 namespace railvsi::scheduler {
@@ -31,23 +32,25 @@ struct EnvelopeKey {
 }  // namespace
 
 struct BridgeReader::Statements {
-  Statements(Database& db, const std::string& study_id, BridgeFields f)
+  Statements(Database& database, const std::string& study, BridgeFields f)
       : fields(f),
         // Every (bridge, job) row of the study in the order of study_results:
         // the bridge's place, then the job's. Only numbers are sorted.
-        rows(db.prepare("SELECT ss.structure, j.rowid FROM study_structures ss "
+        rows(database.prepare("SELECT ss.structure, j.rowid FROM study_structures ss "
                         "JOIN study_jobs sj ON sj.study_id = ss.study_id AND sj.job_id = ss.job_id "
                         "JOIN jobs j ON j.id = ss.job_id WHERE ss.study_id = ? ORDER BY ss.position, sj.position")),
-        job(db.prepare(f == BridgeFields::kAll
+        job(database.prepare(f == BridgeFields::kAll
                            ? fmt::format("SELECT {}, j.seq FROM jobs j LEFT JOIN job_scenes s ON s.job_id = j.id "
                                          "LEFT JOIN fidelity_records f ON f.id = j.fidelity_id WHERE j.rowid = ?",
                                          job_result_columns("s.scene", "f.record"))
                            : std::string("SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, "
                                          "j.error, j.dt_s, j.dt_reason, j.cutoff_hz, j.seq, j.operator_key "
                                          "FROM jobs j WHERE j.rowid = ?"))),
-        scene(db.prepare("SELECT json_extract(scene, '$.structure.variant'), json_type(scene, '$.train'), "
+        scene(database.prepare("SELECT json_extract(scene, '$.structure.variant'), json_type(scene, '$.train'), "
                          "json_extract(scene, '$.train') FROM job_scenes WHERE job_id = ?")),
-        values(db.prepare("SELECT key, value, error_estimate FROM envelope_values WHERE job_seq = ?")) {
+        values(database.prepare("SELECT key, value, error_estimate FROM envelope_values WHERE job_seq = ?")),
+        db(database),
+        study_id(study) {
     rows.bind(1, study_id);
     const std::set<std::string> judged = judged_quantities();
     Statement k = db.prepare("SELECT key, quantity, location FROM envelope_keys");
@@ -100,10 +103,12 @@ struct BridgeReader::Statements {
       r.variant = it->second.first;
       r.axle_forces = it->second.second;
     }
-    if (seq) {
+    if (seq && fields != BridgeFields::kLabels) {
       values.reset();
       values.bind(1, *seq);
+      bool any = false;
       while (values.step()) {
+        any = true;
         const std::int64_t key = values.int64(0);
         if (key < 0 || static_cast<std::size_t>(key) >= keys.size() || !keys[static_cast<std::size_t>(key)].read)
           continue;
@@ -111,6 +116,9 @@ struct BridgeReader::Statements {
         r.envelopes[k.quantity][k.location] = values.optional_real(1);
         if (const auto estimate = values.optional_real(2)) r.error_estimates[k.quantity][k.location] = *estimate;
       }
+      bare_done_jobs += !any && r.state == "done";
+    } else if (fields != BridgeFields::kLabels && r.state == "done") {
+      ++bare_done_jobs;  // no number: no envelopes
     }
     return r;
   }
@@ -122,6 +130,11 @@ struct BridgeReader::Statements {
   // (train, operator key) -> (bound of the structure, axle forces)
   std::map<std::pair<std::string, std::string>, std::pair<std::string, std::optional<bool>>> facts;
   bool pending = false;  // rows holds the first row of the next bridge
+  // Done jobs read without any envelope value (a damaged page reads as
+  // fewer rows): the study check these reads stand for (StudyCheck::kLinks).
+  std::int64_t bare_done_jobs = 0;
+  Database& db;
+  std::string study_id;
 };
 
 BridgeReader::BridgeReader(Database& db, const std::string& study_id, BridgeFields fields)
@@ -131,7 +144,11 @@ BridgeReader::~BridgeReader() = default;
 
 bool BridgeReader::next(std::string& name, std::vector<JobResult>& jobs) {
   jobs.clear();
-  if (!s_->pending) return false;
+  if (!s_->pending) {
+    // What require_consistent_study's kAll would have refused, found by reading.
+    if (s_->bare_done_jobs > 0) throw done_jobs_without_envelopes(s_->db, s_->study_id, s_->bare_done_jobs);
+    return false;
+  }
   name = s_->rows.text(0);
   // The facts of one scene per train and key hold within a bridge's jobs.
   s_->facts.clear();

@@ -19,6 +19,9 @@ enum class BridgeFields {
   // key, not per job), and only the envelope values the checks judge. No
   // fidelity record, warnings, timings or profile family.
   kVerdicts,
+  // kVerdicts without the envelope values: which jobs a bridge has, for
+  // the static envelopes stored at submission (stored_statics.hpp).
+  kLabels,
 };
 
 class BridgeReader {
