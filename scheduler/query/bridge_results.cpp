@@ -44,7 +44,7 @@ struct BridgeReader::Statements {
                                          "LEFT JOIN fidelity_records f ON f.id = j.fidelity_id WHERE j.rowid = ?",
                                          job_result_columns("s.scene", "f.record"))
                            : std::string("SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, "
-                                         "j.error, j.dt_s, j.dt_reason, j.cutoff_hz, j.seq, j.operator_key "
+                                         "j.error, j.dt_s, j.cutoff_hz, j.seq, j.operator_key "
                                          "FROM jobs j WHERE j.rowid = ?"))),
         scene(database.prepare("SELECT json_extract(scene, '$.structure.variant'), json_type(scene, '$.train'), "
                          "json_extract(scene, '$.train') FROM job_scenes WHERE job_id = ?")),
@@ -81,15 +81,14 @@ struct BridgeReader::Statements {
       r.status = job.text(5);
       r.error = job.text(6);
       r.dt_s = job.real(7);
-      r.dt_reason = job.text(8);
-      r.cutoff_hz = job.real(9);
+      r.cutoff_hz = job.real(8);
       r.ran_dt_s = r.dt_s;
-      if (!job.is_null(10)) seq = job.int64(10);
+      if (!job.is_null(9)) seq = job.int64(9);
       // Jobs with one operator key share the structure model (a bound of it
       // scales its mass or stiffness, so it has its own key) and whether
       // the train is axle forces (the rail flexibility is in the key; the
       // modal rung runs axle forces only): one scene says both.
-      const auto [it, fresh] = facts.try_emplace({r.train, job.text(11)});
+      const auto [it, fresh] = facts.try_emplace({r.train, job.text(10)});
       if (fresh) {
         it->second.first = "nominal";
         scene.reset();
