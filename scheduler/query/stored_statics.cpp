@@ -55,16 +55,6 @@ std::vector<Row> rows_of(const StaticInfluence& influence, const TrainStatics& s
   return rows;
 }
 
-// The bridges of a line study, each with its jobs' labels (no values).
-std::vector<std::vector<JobResult>> bridges_of(Database& db, const std::string& study_id) {
-  std::vector<std::vector<JobResult>> out;
-  BridgeReader reader(db, study_id, BridgeFields::kLabels);
-  std::string name;
-  std::vector<JobResult> jobs;
-  while (reader.next(name, jobs)) out.push_back(std::move(jobs));
-  return out;
-}
-
 }  // namespace
 
 StaticSceneJobs static_scene_jobs(const std::vector<JobResult>& jobs) {
@@ -143,7 +133,13 @@ void write_train_statics(Database& db, const std::string& structure_job, const s
 
 std::size_t store_static_envelopes(Database& db, const std::string& study_id) {
   std::size_t computed = 0;
-  for (const std::vector<JobResult>& jobs : bridges_of(db, study_id)) {
+  // Bridge by bridge as the line table reads them (one bridge's job labels
+  // in memory), each bridge's rows written in a short transaction of its own:
+  // workers of the study may be completing jobs.
+  BridgeReader reader(db, study_id, BridgeFields::kLabels);
+  std::string name;
+  std::vector<JobResult> jobs;
+  while (reader.next(name, jobs)) {
     const StaticSceneJobs picked = static_scene_jobs(jobs);
     if (picked.structure_job.empty()) continue;
     const Scene structure_scene = load_job_scene(db, picked.structure_job);
@@ -162,7 +158,6 @@ std::size_t store_static_envelopes(Database& db, const std::string& study_id) {
       ++computed;
     }
     if (fresh.empty()) continue;
-    // One short transaction a bridge: workers of the study may be completing jobs.
     Transaction tx(db);
     for (const auto& [job, statics] : fresh) write_train_statics(db, picked.structure_job, job, *influence, statics);
     tx.commit();
