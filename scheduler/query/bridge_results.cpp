@@ -115,9 +115,9 @@ struct BridgeReader::Statements {
         r.envelopes[k.quantity][k.location] = values.optional_real(1);
         if (const auto estimate = values.optional_real(2)) r.error_estimates[k.quantity][k.location] = *estimate;
       }
-      bare_done_jobs += !any && r.state == "done";
+      if (!any && r.state == "done") bare_done_jobs.insert(rowid);
     } else if (fields != BridgeFields::kLabels && r.state == "done") {
-      ++bare_done_jobs;  // no number: no envelopes
+      bare_done_jobs.insert(rowid);  // no number: no envelopes
     }
     return r;
   }
@@ -130,8 +130,9 @@ struct BridgeReader::Statements {
   std::map<std::pair<std::string, std::string>, std::pair<std::string, std::optional<bool>>> facts;
   bool pending = false;  // rows holds the first row of the next bridge
   // Done jobs read without any envelope value (a damaged page reads as
-  // fewer rows): the study check these reads stand for (StudyCheck::kLinks).
-  std::int64_t bare_done_jobs = 0;
+  // fewer rows), by row (a job of two bridges is one): the study check
+  // these reads stand for (StudyCheck::kLinks).
+  std::set<std::int64_t> bare_done_jobs;
   Database& db;
   std::string study_id;
 };
@@ -145,7 +146,8 @@ bool BridgeReader::next(std::string& name, std::vector<JobResult>& jobs) {
   jobs.clear();
   if (!s_->pending) {
     // What require_consistent_study's kAll would have refused, found by reading.
-    if (s_->bare_done_jobs > 0) throw done_jobs_without_envelopes(s_->db, s_->study_id, s_->bare_done_jobs);
+    if (!s_->bare_done_jobs.empty())
+      throw done_jobs_without_envelopes(s_->db, s_->study_id, static_cast<std::int64_t>(s_->bare_done_jobs.size()));
     return false;
   }
   name = s_->rows.text(0);

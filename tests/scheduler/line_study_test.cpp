@@ -442,7 +442,13 @@ TEST_F(LineStudyFiles, TheLineRefusesADoneJobWithoutEnvelopesFoundAsItReads) {
   ASSERT_EQ(vsi({"query", "--db", db, "--study", id, "--line"}, "sound").exit_code, 0);
   {
     scheduler::Database d(db);
-    d.exec("DELETE FROM envelope_values WHERE job_seq = (SELECT max(seq) FROM jobs)");
+    // A job of bridge A, which C shares: read twice, one job.
+    d.exec("DELETE FROM envelope_values WHERE job_seq = (SELECT min(j.seq) FROM jobs j JOIN study_structures ss "
+           "ON ss.job_id = j.id WHERE ss.structure = 'C')");
+    EXPECT_EQ(count_rows(d, "SELECT count(*) FROM study_structures ss JOIN jobs j ON j.id = ss.job_id WHERE j.seq = "
+                            "(SELECT min(j.seq) FROM jobs j JOIN study_structures ss ON ss.job_id = j.id "
+                            "WHERE ss.structure = 'C')"),
+              2);
   }
   const std::string expected = "study " + id.substr(0, 12) + ": 1 done jobs have no envelopes";
   for (const std::vector<std::string>& args :
