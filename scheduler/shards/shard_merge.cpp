@@ -63,10 +63,11 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
   if (table_columns(target, "src", "jobs") != all_columns)
     throw InputError("", "its jobs table differs from the target's", shard.file.string());
   // A job's number (seq) is the store's own: the target keeps its numbers
-  // and numbers the jobs it takes after its last.
+  // and numbers the jobs it takes after its last. So is the number of its
+  // scene's part: the scene is added below through the view job_scenes.
   std::vector<std::string> columns;
   std::copy_if(all_columns.begin(), all_columns.end(), std::back_inserter(columns),
-               [](const std::string& c) { return c != "seq"; });
+               [](const std::string& c) { return c != "seq" && c != "scene_part" && c != "scene_speed"; });
   target.exec("CREATE TEMP TABLE IF NOT EXISTS merge_take (id TEXT PRIMARY KEY)");
   DeferredTransaction tx(target);
   target.exec("DELETE FROM temp.merge_take");

@@ -41,8 +41,9 @@ int model_dofs(const Scene& scene) {
 
 std::vector<ShardJob> estimate_study_jobs(Database& db, const std::string& study_id) {
   Statement s = db.prepare(
-      "SELECT j.id, j.operator_key, j.train, j.speed_kmh, j.scene FROM study_jobs sj JOIN job_records j ON j.id = sj.job_id "
-      "WHERE sj.study_id = ? ORDER BY sj.position");
+      "SELECT j.id, j.operator_key, j.train, j.speed_kmh, j.scene FROM study_job_links sj "
+      "JOIN job_records j ON j.seq = sj.job_seq WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?) "
+      "ORDER BY sj.position");
   s.bind(1, study_id);
   std::map<std::pair<std::string, std::string>, Scene> scenes;  // (operator key, train) -> a scene of the group
   std::vector<ShardJob> jobs;
