@@ -36,13 +36,15 @@ struct BridgeReader::Statements {
       : fields(f),
         // Every (bridge, job) row of the study in the order of study_results:
         // the bridge's place, then the job's. Only numbers are sorted.
-        rows(database.prepare("SELECT ss.structure, j.rowid FROM study_structures ss "
-                        "JOIN study_jobs sj ON sj.study_id = ss.study_id AND sj.job_id = ss.job_id "
-                        "JOIN jobs j ON j.id = ss.job_id WHERE ss.study_id = ? ORDER BY ss.position, sj.position")),
+        rows(database.prepare("SELECT ss.name, j.rowid FROM study_bridge_jobs sb "
+                        "JOIN study_bridges ss ON ss.study_seq = sb.study_seq AND ss.position = sb.position "
+                        "JOIN study_job_links sj ON sj.study_seq = sb.study_seq AND sj.job_seq = sb.job_seq "
+                        "JOIN jobs j ON j.seq = sb.job_seq WHERE sb.study_seq = (SELECT seq FROM studies WHERE id = ?) "
+                        "ORDER BY sb.position, sj.position")),
         job(database.prepare(f == BridgeFields::kAll
-                           ? fmt::format("SELECT {}, j.seq FROM jobs j LEFT JOIN job_scenes s ON s.job_id = j.id "
+                           ? fmt::format("SELECT {}, j.seq FROM jobs j LEFT JOIN scene_parts p ON p.part = j.scene_part "
                                          "LEFT JOIN fidelity_records f ON f.id = j.fidelity_id WHERE j.rowid = ?",
-                                         job_result_columns("s.scene", "f.record"))
+                                         job_result_columns("p.head || j.scene_speed || p.tail", "f.record"))
                            : std::string("SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, "
                                          "j.error, j.dt_s, j.cutoff_hz, j.seq, j.operator_key "
                                          "FROM jobs j WHERE j.rowid = ?"))),

@@ -17,13 +17,15 @@ namespace {
 
 // The filters are bound parameters; a NULL parameter disables its filter.
 constexpr const char* kFilter =
-    "sj.study_id = ?1 AND (?2 IS NULL OR j.train = ?2) AND (?3 IS NULL OR j.speed_kmh >= ?3) "
+    "sj.study_seq = (SELECT seq FROM studies WHERE id = ?1) AND (?2 IS NULL OR j.train = ?2) AND (?3 IS NULL OR j.speed_kmh >= ?3) "
     "AND (?4 IS NULL OR j.speed_kmh <= ?4) AND (?5 IS NULL OR j.irregularity = ?5) "
-    "AND (?6 IS NULL OR ss.structure = ?6)";
+    "AND (?6 IS NULL OR ss.name = ?6)";
 
-// The bridge of each row of a line study (none in a study of one structure).
+// The bridge of each row of a line study (none in a study of one structure),
+// by the store's numbers (the view study_structures gives them by ids).
 constexpr const char* kStructureJoin =
-    "LEFT JOIN study_structures ss ON ss.study_id = sj.study_id AND ss.job_id = sj.job_id";
+    "LEFT JOIN study_bridge_jobs sb ON sb.study_seq = sj.study_seq AND sb.job_seq = sj.job_seq "
+    "LEFT JOIN study_bridges ss ON ss.study_seq = sb.study_seq AND ss.position = sb.position";
 
 void bind_filter(Statement& s, const QueryFilter& f) {
   s.bind(1, f.study_id);
@@ -115,8 +117,10 @@ StudyInfo study_info(Database& db, const std::string& study_id) {
 }
 
 std::vector<std::string> study_structure_names(Database& db, const std::string& study_id) {
-  Statement s = db.prepare("SELECT structure FROM study_structures WHERE study_id = ? "
-                           "GROUP BY structure ORDER BY min(position)");
+  // The bridges that have jobs in this store (a shard holds some).
+  Statement s = db.prepare("SELECT b.name FROM study_bridges b WHERE b.study_seq = (SELECT seq FROM studies WHERE id = ?1) "
+                           "AND b.position IN (SELECT position FROM study_bridge_jobs WHERE study_seq = b.study_seq) "
+                           "GROUP BY b.name ORDER BY min(b.position)");
   s.bind(1, study_id);
   std::vector<std::string> names;
   while (s.step()) names.push_back(s.text(0));
@@ -127,8 +131,8 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
   std::vector<JobResult> jobs;
   std::unordered_map<std::string, std::vector<std::size_t>> index;  // a job on two bridges is two rows
   TrainKinds axle_forces;
-  Statement s = db.prepare(fmt::format("SELECT {}, ss.structure FROM study_jobs sj {} JOIN job_records j ON j.id = sj.job_id "
-                                       "WHERE {} ORDER BY coalesce(ss.position, 0), sj.position",
+  Statement s = db.prepare(fmt::format("SELECT {}, ss.name FROM study_job_links sj {} JOIN job_records j ON j.seq = sj.job_seq "
+                                       "WHERE {} ORDER BY coalesce(sb.position, 0), sj.position",
                                        job_result_columns("j.scene", "j.fidelity"), kStructureJoin, kFilter));
   bind_filter(s, filter);
   while (s.step()) {
@@ -138,8 +142,8 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
     jobs.push_back(std::move(r));
   }
   Statement e = db.prepare(fmt::format(
-      "SELECT DISTINCT j.id, e.quantity, e.location, e.value, e.error_estimate FROM study_jobs sj {} "
-      "JOIN jobs j ON j.id = sj.job_id JOIN job_envelopes e ON e.job_seq = j.seq WHERE {}",
+      "SELECT DISTINCT j.id, e.quantity, e.location, e.value, e.error_estimate FROM study_job_links sj {} "
+      "JOIN jobs j ON j.seq = sj.job_seq JOIN job_envelopes e ON e.job_seq = j.seq WHERE {}",
       kStructureJoin, kFilter));
   bind_filter(e, filter);
   while (e.step()) {
@@ -158,8 +162,8 @@ namespace {
 // Distinct labels of one column of a study's jobs, in study order. `column`
 // is one of ours (train, irregularity), never user text.
 std::vector<std::string> study_labels(Database& db, const std::string& study_id, std::string_view column) {
-  Statement s = db.prepare(fmt::format("SELECT j.{0} FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
-                                       "WHERE sj.study_id = ? GROUP BY j.{0} ORDER BY min(sj.position)",
+  Statement s = db.prepare(fmt::format("SELECT j.{0} FROM study_job_links sj JOIN jobs j ON j.seq = sj.job_seq "
+                                       "WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?) GROUP BY j.{0} ORDER BY min(sj.position)",
                                        column));
   s.bind(1, study_id);
   std::vector<std::string> labels;
@@ -214,7 +218,7 @@ std::optional<std::string> filter_error(Database& db, const QueryFilter& f) {
         "SELECT min(j.speed_kmh), max(j.speed_kmh), "
         "sum((?2 IS NULL OR j.speed_kmh >= ?2) AND (?3 IS NULL OR j.speed_kmh <= ?3)), "
         "max(CASE WHEN j.speed_kmh < ?2 THEN j.speed_kmh END), min(CASE WHEN j.speed_kmh > ?3 THEN j.speed_kmh END) "
-        "FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1");
+        "FROM study_job_links sj JOIN jobs j ON j.seq = sj.job_seq WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?1)");
     s.bind(1, f.study_id);
     if (f.speed_min_kmh) s.bind(2, *f.speed_min_kmh); else s.bind_null(2);
     if (f.speed_max_kmh) s.bind(3, *f.speed_max_kmh); else s.bind_null(3);

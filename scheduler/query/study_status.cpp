@@ -16,15 +16,15 @@ StudyStatus study_status(Database& db, const std::string& study_id, double now) 
   st.counts = state_counts(db, study_id);
   {
     Statement s = db.prepare(
-        "SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
-        "WHERE sj.study_id = ? AND j.state = 'running' AND (j.lease_expires IS NULL OR j.lease_expires < ?)");
+        "SELECT count(*) FROM study_job_links sj JOIN jobs j ON j.seq = sj.job_seq "
+        "WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?) AND j.state = 'running' AND (j.lease_expires IS NULL OR j.lease_expires < ?)");
     s.bind(1, study_id).bind(2, now).step();
     st.stale_leases = s.int64(0);
   }
   {
     Statement s = db.prepare(
-        "SELECT total(j.wall_s), total(j.loop_s) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
-        "WHERE sj.study_id = ? AND j.state IN ('done', 'failed') AND j.finished_at IS NOT NULL");
+        "SELECT total(j.wall_s), total(j.loop_s) FROM study_job_links sj JOIN jobs j ON j.seq = sj.job_seq "
+        "WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?) AND j.state IN ('done', 'failed') AND j.finished_at IS NOT NULL");
     s.bind(1, study_id).step();
     st.job_wall_s = s.real(0);
     st.loop_s = s.real(1);

@@ -126,7 +126,7 @@ std::optional<VerifyRequest> verify_request(const json& study_document, bool by_
 
 bool verifies_by_default(Database& db, const std::string& study_id) {
   Statement s = db.prepare(
-      "SELECT EXISTS (SELECT 1 FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ? "
+      "SELECT EXISTS (SELECT 1 FROM study_job_links sj JOIN jobs j ON j.seq = sj.job_seq WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?) "
       "AND j.rung LIKE 'interaction/%' AND j.irregularity != 'none')");
   s.bind(1, study_id).step();
   return s.int64(0) != 0;
@@ -150,8 +150,8 @@ std::size_t enqueue_verification(Database& db, const std::string& study_id, int 
   done.bind(1, study_id).step();
   if (done.int64(0) > 0) return 0;
   Statement ok = db.prepare(
-      "SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
-      "WHERE sj.study_id = ? AND j.state = 'done' AND j.status = 'ok'");
+      "SELECT count(*) FROM study_job_links sj JOIN jobs j ON j.seq = sj.job_seq "
+      "WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?) AND j.state = 'done' AND j.status = 'ok'");
   ok.bind(1, study_id).step();
   if (ok.int64(0) == 0) return 0;
 

@@ -12,6 +12,7 @@
 
 #include "core/sha256.hpp"
 #include "core/unix_time.hpp"
+#include "store/scene_parts.hpp"
 
 namespace railvsi::scheduler {
 
@@ -54,25 +55,39 @@ SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts)
   db.prepare("INSERT OR IGNORE INTO cache_stats (study_id) VALUES (?)").bind(1, plan.id).run();
   result.new_jobs = insert_study_jobs(db, plan.id, plan.jobs, 0, max_attempts, now);
   if (!plan.structures.empty()) {
-    Statement on = db.prepare(
-        "INSERT OR IGNORE INTO study_structures (study_id, job_id, structure, position) VALUES (?, ?, ?, ?)");
+    // By the store's numbers of the study and the job (the view
+    // study_structures gives the names and ids).
+    const std::int64_t study = study_seq(db, plan.id);
+    Statement bridge = db.prepare("INSERT OR IGNORE INTO study_bridges (study_seq, position, name) VALUES (?, ?, ?)");
+    for (std::size_t k = 0; k < plan.structures.size(); ++k)
+      bridge.bind(1, study).bind(2, static_cast<std::int64_t>(k)).bind(3, plan.structures[k]).run();
+    Statement on = db.prepare("INSERT OR IGNORE INTO study_bridge_jobs (study_seq, job_seq, position) "
+                              "VALUES (?, (SELECT seq FROM jobs WHERE id = ?), ?)");
     for (const JobSpec& j : plan.jobs)
-      for (int k : j.structures)
-        on.bind(1, plan.id).bind(2, j.id).bind(3, plan.structures[static_cast<std::size_t>(k)]).bind(4, k).run();
+      for (int k : j.structures) on.bind(1, study).bind(2, j.id).bind(3, k).run();
   }
   tx.commit();
   return result;
 }
 
+std::int64_t study_seq(Database& db, const std::string& study_id) {
+  Statement s = db.prepare("SELECT seq FROM studies WHERE id = ?");
+  if (!s.bind(1, study_id).step() || s.is_null(0))
+    throw std::logic_error(fmt::format("study {} is not stored (or has no number)", study_id));
+  return s.int64(0);
+}
+
 std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_attempts, double now) {
   std::size_t new_jobs = 0;
+  // The scene as its part (stored once for the jobs that share it) and its
+  // speed's text: the view job_scenes gives the very text back.
   Statement insert_job = db.prepare(
       "INSERT OR IGNORE INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
-      "cutoff_hz, max_attempts, enqueued_at, rung, planned_modes, seq) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-      "(SELECT coalesce(max(seq), 0) + 1 FROM jobs))");
-  // The scene lives apart from the jobs row, which claims and completions rewrite.
-  Statement insert_scene = db.prepare("INSERT OR IGNORE INTO job_scenes (job_id, scene) VALUES (?, ?)");
+      "cutoff_hz, max_attempts, enqueued_at, rung, planned_modes, scene_part, scene_speed, seq) VALUES (?, ?, ?, ?, ?, "
+      "?, ?, ?, ?, ?, ?, ?, ?, ?, (SELECT coalesce(max(seq), 0) + 1 FROM jobs))");
+  ScenePartCache parts(db);
   for (const JobSpec& j : jobs) {
+    const SceneSplit split = split_scene(j.scene);
     insert_job.bind(1, j.id)
         .bind(2, j.train)
         .bind(3, j.speed_kmh)
@@ -85,10 +100,10 @@ std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_
         .bind(10, now)
         .bind(11, j.rung.empty() ? SqlValue(Null{}) : SqlValue(j.rung))
         .bind(12, j.modes > 0 ? SqlValue(static_cast<std::int64_t>(j.modes)) : SqlValue(Null{}))
+        .bind(13, parts.part(split))
+        .bind(14, split.speed)
         .run();
-    const auto added = static_cast<std::size_t>(db.changes());
-    new_jobs += added;
-    if (added > 0) insert_scene.bind(1, j.id).bind(2, j.scene).run();
+    new_jobs += static_cast<std::size_t>(db.changes());
   }
   return new_jobs;
 }
@@ -96,9 +111,11 @@ std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_
 std::size_t insert_study_jobs(Database& db, const std::string& study_id, const std::vector<JobSpec>& jobs,
                               std::int64_t first_position, int max_attempts, double now) {
   const std::size_t new_jobs = insert_jobs(db, jobs, max_attempts, now);
-  Statement link = db.prepare("INSERT OR IGNORE INTO study_jobs (study_id, job_id, position) VALUES (?, ?, ?)");
+  const std::int64_t study = study_seq(db, study_id);
+  Statement link = db.prepare("INSERT OR IGNORE INTO study_job_links (study_seq, job_seq, position) "
+                              "VALUES (?, (SELECT seq FROM jobs WHERE id = ?), ?)");
   std::int64_t position = first_position;
-  for (const JobSpec& j : jobs) link.bind(1, study_id).bind(2, j.id).bind(3, position++).run();
+  for (const JobSpec& j : jobs) link.bind(1, study).bind(2, j.id).bind(3, position++).run();
   return new_jobs;
 }
 
@@ -118,9 +135,9 @@ std::optional<ClaimedJob> JobQueue::claim_row(const std::string& id, double now_
       .bind(4, id)
       .run();
   Statement s = db_.prepare(
-      "SELECT j.id, s.scene, j.operator_key, j.train, j.irregularity, j.speed_kmh, j.dt_s, j.cutoff_hz, j.attempts, "
-      "coalesce(j.rung, ''), coalesce(j.planned_modes, -1) FROM jobs j JOIN job_scenes s ON s.job_id = j.id "
-      "WHERE j.id = ?");
+      "SELECT j.id, p.head || j.scene_speed || p.tail, j.operator_key, j.train, j.irregularity, j.speed_kmh, j.dt_s, "
+      "j.cutoff_hz, j.attempts, coalesce(j.rung, ''), coalesce(j.planned_modes, -1) FROM jobs j "
+      "JOIN scene_parts p ON p.part = j.scene_part WHERE j.id = ?");
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
   return ClaimedJob{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5), s.real(6), s.real(7),
@@ -198,8 +215,11 @@ std::optional<ClaimedJob> JobQueue::claim_in_transaction(const std::string& pref
   }
   if (id.empty()) {
     // The claim index orders queued jobs by operator key: workers drain one
-    // factorization's jobs before the next.
-    Statement s = db_.prepare("SELECT id FROM jobs WHERE state = 'queued' LIMIT 1");
+    // factorization's jobs before the next. Named: the planner would take
+    // jobs_lease (state, of every job), and sort the queued jobs at each
+    // claim for the ORDER BY.
+    Statement s = db_.prepare(
+        "SELECT id FROM jobs INDEXED BY jobs_claim WHERE state = 'queued' ORDER BY operator_key, rung, train LIMIT 1");
     if (s.step()) id = s.text(0);
   }
   while (id.empty()) {
@@ -424,8 +444,8 @@ bool JobQueue::release_after_error(const ClaimedJob& job, const std::string& err
 StateCounts state_counts(Database& db, const std::string& study_id) {
   Statement s = study_id.empty()
                     ? db.prepare("SELECT state, count(*) FROM jobs GROUP BY state")
-                    : db.prepare("SELECT j.state, count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id "
-                                 "WHERE sj.study_id = ? GROUP BY j.state");
+                    : db.prepare("SELECT j.state, count(*) FROM study_job_links sj JOIN jobs j ON j.seq = sj.job_seq "
+                                 "WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?) GROUP BY j.state");
   if (!study_id.empty()) s.bind(1, study_id);
   StateCounts c;
   while (s.step()) {

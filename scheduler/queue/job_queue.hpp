@@ -41,6 +41,9 @@ struct SubmitResult {
 // jobs gets none of the plan's: differing_jobs).
 SubmitResult submit_study(Database& db, const StudyPlan& plan, int max_attempts = 3);
 
+// The store's number of a stored study (studies.seq: what its links hold).
+std::int64_t study_seq(Database& db, const std::string& study_id);
+
 // Inserts jobs (INSERT OR IGNORE: a job already stored stays as it is) in
 // no study; returns the number of new jobs. Inside the caller's transaction.
 std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_attempts, double now);

@@ -8,7 +8,7 @@ namespace {
 // The jobs of one study, or all jobs.
 std::string jobs_of(const std::string& study_id) {
   return study_id.empty() ? "jobs j WHERE 1"
-                          : "study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1";
+                          : "study_job_links sj JOIN jobs j ON j.seq = sj.job_seq WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?1)";
 }
 
 }  // namespace

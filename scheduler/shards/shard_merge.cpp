@@ -63,10 +63,11 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
   if (table_columns(target, "src", "jobs") != all_columns)
     throw InputError("", "its jobs table differs from the target's", shard.file.string());
   // A job's number (seq) is the store's own: the target keeps its numbers
-  // and numbers the jobs it takes after its last.
+  // and numbers the jobs it takes after its last. So is the number of its
+  // scene's part: the target numbers the parts it takes (below).
   std::vector<std::string> columns;
   std::copy_if(all_columns.begin(), all_columns.end(), std::back_inserter(columns),
-               [](const std::string& c) { return c != "seq"; });
+               [](const std::string& c) { return c != "seq" && c != "scene_part" && c != "scene_speed"; });
   target.exec("CREATE TEMP TABLE IF NOT EXISTS merge_take (id TEXT PRIMARY KEY)");
   DeferredTransaction tx(target);
   target.exec("DELETE FROM temp.merge_take");
@@ -109,9 +110,13 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
   // a lease of a worker on another machine.
   target.exec("UPDATE main.jobs SET state = 'queued', worker = NULL, lease_expires = NULL "
               "WHERE state = 'running' AND id IN temp.merge_take");
-  // A taken job's scene, new to the target (after its jobs row: it refers to it).
-  target.exec("INSERT OR IGNORE INTO main.job_scenes (job_id, scene) SELECT job_id, scene FROM src.job_scenes "
-              "WHERE job_id IN temp.merge_take");
+  // A taken job's scene, new to the target: its part under the target's
+  // number (a set by table, not row by row through the view's trigger).
+  target.exec("INSERT OR IGNORE INTO main.scene_parts (head, tail) SELECT head, tail FROM src.scene_parts "
+              "WHERE part IN (SELECT scene_part FROM src.jobs WHERE id IN temp.merge_take) ORDER BY part");
+  target.exec("UPDATE main.jobs SET (scene_part, scene_speed) = (SELECT mp.part, s.scene_speed FROM src.jobs s "
+              "JOIN src.scene_parts sp ON sp.part = s.scene_part JOIN main.scene_parts mp ON mp.head = sp.head "
+              "AND mp.tail = sp.tail WHERE s.id = main.jobs.id) WHERE id IN temp.merge_take AND scene_part IS NULL");
   // The envelopes by the target's keys of their quantity and location
   // (a set by table, not row by row through the view's trigger).
   target.exec("INSERT OR IGNORE INTO main.envelope_keys (quantity, location) "

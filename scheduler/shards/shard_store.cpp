@@ -41,8 +41,9 @@ int model_dofs(const Scene& scene) {
 
 std::vector<ShardJob> estimate_study_jobs(Database& db, const std::string& study_id) {
   Statement s = db.prepare(
-      "SELECT j.id, j.operator_key, j.train, j.speed_kmh, j.scene FROM study_jobs sj JOIN job_records j ON j.id = sj.job_id "
-      "WHERE sj.study_id = ? ORDER BY sj.position");
+      "SELECT j.id, j.operator_key, j.train, j.speed_kmh, j.scene FROM study_job_links sj "
+      "JOIN job_records j ON j.seq = sj.job_seq WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?) "
+      "ORDER BY sj.position");
   s.bind(1, study_id);
   std::map<std::pair<std::string, std::string>, Scene> scenes;  // (operator key, train) -> a scene of the group
   std::vector<ShardJob> jobs;
@@ -121,14 +122,15 @@ void copy_shard(Database& source, const std::string& study_id, const std::vector
   // seq: the source's numbers are unique, so they serve the new store.
   // With its planned rung and modes: a worker batches the modal moving-force
   // jobs of one key only when they carry their rung.
+  // Their scenes' parts under the source's numbers too (the new store has none).
+  source.exec("INSERT INTO dst.scene_parts (part, head, tail) SELECT part, head, tail FROM main.scene_parts "
+              "WHERE part IN (SELECT scene_part FROM main.jobs WHERE id IN temp.shard_job_ids)");
   source.prepare("INSERT INTO dst.jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
-                 "cutoff_hz, max_attempts, enqueued_at, seq, rung, planned_modes) SELECT id, train, speed_kmh, "
-                 "irregularity, operator_key, dt_s, dt_reason, cutoff_hz, max_attempts, ?, seq, rung, planned_modes "
-                 "FROM main.jobs WHERE id IN temp.shard_job_ids")
+                 "cutoff_hz, max_attempts, enqueued_at, seq, rung, planned_modes, scene_part, scene_speed) SELECT id, "
+                 "train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, max_attempts, ?, seq, rung, "
+                 "planned_modes, scene_part, scene_speed FROM main.jobs WHERE id IN temp.shard_job_ids")
       .bind(1, unix_now_s())
       .run();
-  source.exec("INSERT INTO dst.job_scenes (job_id, scene) SELECT job_id, scene FROM main.job_scenes "
-              "WHERE job_id IN temp.shard_job_ids");
   source.prepare("INSERT INTO dst.study_jobs (study_id, job_id, position) SELECT study_id, job_id, position "
                  "FROM main.study_jobs WHERE study_id = ? AND job_id IN temp.shard_job_ids")
       .bind(1, study_id)

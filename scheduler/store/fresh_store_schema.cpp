@@ -14,7 +14,7 @@ CREATE TABLE studies (
   checks       TEXT NOT NULL,         -- JSON object of the study's "checks"
   job_count    INTEGER NOT NULL,
   submitted_at REAL NOT NULL          -- Unix time, s
-);
+, seq INTEGER);
 CREATE TABLE jobs (
   id              TEXT PRIMARY KEY,   -- SHA-256 of the canonical scene
   train           TEXT NOT NULL,      -- train name
@@ -40,15 +40,8 @@ CREATE TABLE jobs (
   enqueued_at     REAL NOT NULL,
   started_at      REAL,
   finished_at     REAL
-, warnings TEXT, rung TEXT, fidelity_id TEXT, seq INTEGER, planned_modes INTEGER);
+, warnings TEXT, rung TEXT, fidelity_id TEXT, seq INTEGER, planned_modes INTEGER, scene_part INTEGER, scene_speed TEXT);
 CREATE INDEX jobs_lease ON jobs (state, lease_expires);
-CREATE TABLE study_jobs (
-  study_id TEXT NOT NULL REFERENCES studies (id),
-  job_id   TEXT NOT NULL REFERENCES jobs (id),
-  position INTEGER NOT NULL,          -- order of the job in the study: trains, then speeds, then profiles
-  PRIMARY KEY (study_id, job_id)
-) WITHOUT ROWID;
-CREATE INDEX study_jobs_job ON study_jobs (job_id);
 CREATE TABLE cache_stats (
   study_id        TEXT PRIMARY KEY REFERENCES studies (id),
   jobs            INTEGER NOT NULL DEFAULT 0,   -- jobs finished (done or failed after a run)
@@ -57,9 +50,6 @@ CREATE TABLE cache_stats (
   factorization_s REAL NOT NULL DEFAULT 0,
   evictions       INTEGER NOT NULL DEFAULT 0
 );
-CREATE VIEW study_progress AS
-  SELECT sj.study_id, j.state, count(*) AS jobs
-  FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id GROUP BY sj.study_id, j.state;
 CREATE TABLE shard (                  -- one row in a store written by vsi shard, none elsewhere
   study_id       TEXT PRIMARY KEY REFERENCES studies (id),
   shard_index    INTEGER NOT NULL,    -- 0 .. shard_count - 1 (SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX)
@@ -112,26 +102,11 @@ CREATE TABLE price_rows (
   priced_at   REAL NOT NULL,        -- Unix time, s
   PRIMARY KEY (study_id, job_id, run, quantity)
 ) WITHOUT ROWID;
-CREATE INDEX jobs_claim ON jobs (state, operator_key, rung, train);
-CREATE TABLE job_scenes (
-  job_id TEXT PRIMARY KEY REFERENCES jobs (id),
-  scene  TEXT NOT NULL                -- canonical scene JSON (what the worker runs); its SHA-256 is job_id
-);
 CREATE TABLE fidelity_records (
   id     TEXT PRIMARY KEY,            -- SHA-256 of record
   record TEXT NOT NULL                -- JSON: model, contact law, solver path, DOFs, HHT parameters, modes, ...
 ) WITHOUT ROWID;
-CREATE VIEW job_records AS
-  SELECT j.*, s.scene, f.record AS fidelity
-  FROM jobs j LEFT JOIN job_scenes s ON s.job_id = j.id LEFT JOIN fidelity_records f ON f.id = j.fidelity_id;
 CREATE UNIQUE INDEX jobs_seq ON jobs (seq);
-CREATE TABLE study_structures (
-  study_id  TEXT NOT NULL REFERENCES studies (id),
-  job_id    TEXT NOT NULL REFERENCES jobs (id),
-  structure TEXT NOT NULL,            -- name of the bridge in the study
-  position  INTEGER NOT NULL,         -- the bridge's place in the study's structures
-  PRIMARY KEY (study_id, job_id, structure)
-) WITHOUT ROWID;
 CREATE TABLE envelope_keys (
   key      INTEGER PRIMARY KEY,       -- what a job's rows hold instead of the two names
   quantity TEXT NOT NULL,             -- e.g. deck_acceleration_mps2 (unit in the name)
@@ -166,9 +141,90 @@ END;
 CREATE VIEW envelopes AS
   SELECT j.id AS job_id, e.quantity, e.location, e.value, e.error_estimate
   FROM job_envelopes e JOIN jobs j ON j.seq = e.job_seq;
+CREATE TABLE scene_parts (
+  part INTEGER PRIMARY KEY,           -- what a job's row holds (jobs.scene_part)
+  head TEXT NOT NULL,                 -- the scene up to and with its first "speed_kmh": (all of it when none)
+  tail TEXT NOT NULL,                 -- the scene after the speed's number
+  UNIQUE (head, tail)
+);
+CREATE VIEW job_scenes AS
+  SELECT j.id AS job_id, p.head || j.scene_speed || p.tail AS scene FROM jobs j JOIN scene_parts p ON p.part = j.scene_part;
+CREATE TRIGGER job_scenes_insert INSTEAD OF INSERT ON job_scenes BEGIN
+  INSERT OR IGNORE INTO scene_parts (head, tail) SELECT head, tail FROM (
+    SELECT head, substr(rest, CASE WHEN c > 0 AND (b = 0 OR c < b) THEN c WHEN b > 0 THEN b ELSE length(rest) + 1 END) AS tail FROM (
+      SELECT head, rest, instr(rest, ',') AS c, instr(rest, '}') AS b FROM (
+        SELECT CASE WHEN i > 0 THEN substr(NEW.scene, 1, i + 11) ELSE NEW.scene END AS head,
+               CASE WHEN i > 0 THEN substr(NEW.scene, i + 12) ELSE '' END AS rest
+        FROM (SELECT instr(NEW.scene, '"speed_kmh":') AS i))));
+  UPDATE jobs SET scene_part = p.part, scene_speed = s.speed FROM (
+    SELECT head, substr(rest, 1, n) AS speed, substr(rest, n + 1) AS tail FROM (
+      SELECT head, rest, CASE WHEN c > 0 AND (b = 0 OR c < b) THEN c WHEN b > 0 THEN b ELSE length(rest) + 1 END - 1 AS n FROM (
+        SELECT head, rest, instr(rest, ',') AS c, instr(rest, '}') AS b FROM (
+          SELECT CASE WHEN i > 0 THEN substr(NEW.scene, 1, i + 11) ELSE NEW.scene END AS head,
+                 CASE WHEN i > 0 THEN substr(NEW.scene, i + 12) ELSE '' END AS rest
+          FROM (SELECT instr(NEW.scene, '"speed_kmh":') AS i))))) s
+    JOIN scene_parts p ON p.head = s.head AND p.tail = s.tail
+  WHERE jobs.id = NEW.job_id AND jobs.scene_part IS NULL;
+END;
+CREATE VIEW job_records AS
+  SELECT j.*, p.head || j.scene_speed || p.tail AS scene, f.record AS fidelity
+  FROM jobs j LEFT JOIN scene_parts p ON p.part = j.scene_part LEFT JOIN fidelity_records f ON f.id = j.fidelity_id;
+CREATE UNIQUE INDEX studies_seq ON studies (seq);
+CREATE TRIGGER studies_number AFTER INSERT ON studies WHEN NEW.seq IS NULL BEGIN
+  UPDATE studies SET seq = (SELECT coalesce(max(seq), 0) + 1 FROM studies) WHERE id = NEW.id;
+END;
+CREATE TABLE study_job_links (
+  study_seq INTEGER NOT NULL REFERENCES studies (seq),
+  job_seq   INTEGER NOT NULL REFERENCES jobs (seq),
+  position  INTEGER NOT NULL,         -- order of the job in the study: trains, then speeds, then profiles
+  PRIMARY KEY (study_seq, job_seq)
+) WITHOUT ROWID;
+CREATE INDEX study_job_links_job ON study_job_links (job_seq);
+CREATE TABLE study_bridges (
+  study_seq INTEGER NOT NULL REFERENCES studies (seq),
+  position  INTEGER NOT NULL,         -- the bridge's place in the study's structures
+  name      TEXT NOT NULL,            -- name of the bridge in the study
+  PRIMARY KEY (study_seq, position)
+) WITHOUT ROWID;
+CREATE TABLE study_bridge_jobs (
+  study_seq INTEGER NOT NULL,
+  job_seq   INTEGER NOT NULL REFERENCES jobs (seq),
+  position  INTEGER NOT NULL,
+  PRIMARY KEY (study_seq, job_seq, position),
+  FOREIGN KEY (study_seq, position) REFERENCES study_bridges (study_seq, position)
+) WITHOUT ROWID;
+CREATE VIEW study_jobs AS
+  SELECT s.id AS study_id, j.id AS job_id, l.position
+  FROM study_job_links l JOIN studies s ON s.seq = l.study_seq JOIN jobs j ON j.seq = l.job_seq;
+CREATE TRIGGER study_jobs_insert INSTEAD OF INSERT ON study_jobs BEGIN
+  SELECT RAISE(ABORT, 'FOREIGN KEY constraint failed') WHERE NOT EXISTS (SELECT 1 FROM studies WHERE id = NEW.study_id)
+    OR NOT EXISTS (SELECT 1 FROM jobs WHERE id = NEW.job_id);
+  INSERT INTO study_job_links (study_seq, job_seq, position)
+    SELECT s.seq, j.seq, NEW.position FROM studies s, jobs j WHERE s.id = NEW.study_id AND j.id = NEW.job_id;
+END;
+CREATE TRIGGER study_jobs_delete INSTEAD OF DELETE ON study_jobs BEGIN
+  DELETE FROM study_job_links WHERE study_seq = (SELECT seq FROM studies WHERE id = OLD.study_id)
+    AND job_seq = (SELECT seq FROM jobs WHERE id = OLD.job_id);
+END;
+CREATE VIEW study_structures AS
+  SELECT s.id AS study_id, j.id AS job_id, b.name AS structure, l.position
+  FROM study_bridge_jobs l JOIN study_bridges b ON b.study_seq = l.study_seq AND b.position = l.position
+  JOIN studies s ON s.seq = l.study_seq JOIN jobs j ON j.seq = l.job_seq;
+CREATE TRIGGER study_structures_insert INSTEAD OF INSERT ON study_structures BEGIN
+  SELECT RAISE(ABORT, 'FOREIGN KEY constraint failed') WHERE NOT EXISTS (SELECT 1 FROM studies WHERE id = NEW.study_id)
+    OR NOT EXISTS (SELECT 1 FROM jobs WHERE id = NEW.job_id);
+  INSERT OR IGNORE INTO study_bridges (study_seq, position, name)
+    SELECT seq, NEW.position, NEW.structure FROM studies WHERE id = NEW.study_id;
+  INSERT INTO study_bridge_jobs (study_seq, job_seq, position)
+    SELECT s.seq, j.seq, NEW.position FROM studies s, jobs j WHERE s.id = NEW.study_id AND j.id = NEW.job_id;
+END;
+CREATE VIEW study_progress AS
+  SELECT s.id AS study_id, j.state, count(*) AS jobs
+  FROM study_job_links l JOIN studies s ON s.seq = l.study_seq JOIN jobs j ON j.seq = l.job_seq GROUP BY s.id, j.state;
 CREATE VIEW study_envelopes AS
-  SELECT sj.study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
-  FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id JOIN job_envelopes e ON e.job_seq = j.seq;
+  SELECT s.id AS study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
+  FROM study_job_links l JOIN studies s ON s.seq = l.study_seq JOIN jobs j ON j.seq = l.job_seq
+  JOIN job_envelopes e ON e.job_seq = j.seq;
 CREATE TABLE static_envelopes (
   structure_job TEXT NOT NULL REFERENCES jobs (id),  -- the job whose scene gives the structure and its rail lines
   train_job     TEXT NOT NULL REFERENCES jobs (id),  -- the job whose scene gives the train's axles
@@ -178,6 +234,7 @@ CREATE TABLE static_envelopes (
   value         REAL,                 -- max over the train's positions; NULL: the section has no such form
   PRIMARY KEY (structure_job, train_job, quantity, place)
 ) WITHOUT ROWID;
+CREATE INDEX jobs_claim ON jobs (operator_key, rung, train) WHERE state = 'queued';
 )sql";
   return kSql;
 }

@@ -36,16 +36,18 @@ const Invariant kInvariants[] = {
     {"SELECT count(*) FROM jobs WHERE seq IS NULL", "jobs without a number (jobs.seq: their envelopes could not be stored)"},
     {"SELECT count(*) FROM envelope_values v WHERE NOT EXISTS (SELECT 1 FROM envelope_keys k WHERE k.key = v.key)",
      "envelope values of no known quantity and location (envelope_keys)"},
-    {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM study_jobs sj WHERE sj.job_id = j.id) "
+    {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM study_job_links sj WHERE sj.job_seq = j.seq) "
      "AND NOT EXISTS (SELECT 1 FROM verification_jobs v WHERE v.verify_job_id = j.id)",
      "jobs of no study (nor verifying one)"},
     // A shard store links part of its study's jobs: fewer is not a problem.
-    {"SELECT count(*) FROM studies s WHERE job_count < (SELECT count(*) FROM study_jobs sj WHERE sj.study_id = s.id)",
+    {"SELECT count(*) FROM studies s WHERE job_count < (SELECT count(*) FROM study_job_links sj WHERE sj.study_seq = s.seq)",
      "studies with more jobs linked than they have"},
     {"SELECT count(*) FROM jobs WHERE attempts > max_attempts OR attempts < 0",
      "jobs with more attempts than allowed"},
-    {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM job_scenes s WHERE s.job_id = j.id)",
+    {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM scene_parts p WHERE p.part = j.scene_part) "
+     "OR j.scene_speed IS NULL",
      "jobs without a scene"},
+    {"SELECT count(*) FROM studies WHERE seq IS NULL", "studies without a number (studies.seq: their jobs cannot be linked)"},
     {"SELECT count(*) FROM jobs j WHERE fidelity_id IS NOT NULL "
      "AND NOT EXISTS (SELECT 1 FROM fidelity_records f WHERE f.id = j.fidelity_id)",
      "jobs whose fidelity record is missing"},
@@ -113,12 +115,14 @@ std::runtime_error done_jobs_without_envelopes(Database& db, const std::string& 
 
 void require_consistent_study(Database& db, const std::string& study_id, StudyCheck what) {
   // A shard store holds part of a study: job_count bounds the links, it
-  // need not equal them. The join to jobs reads their id index alone.
+  // need not equal them. The join to jobs reads their number index alone.
   Statement s = db.prepare(
       "SELECT (SELECT job_count FROM studies WHERE id = ?1), "
-      "(SELECT count(*) FROM study_jobs WHERE study_id = ?1), "
-      "(SELECT count(*) FROM study_jobs INDEXED BY study_jobs_job WHERE study_id = ?1), "
-      "(SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1)");
+      "(SELECT count(*) FROM study_job_links WHERE study_seq = (SELECT seq FROM studies WHERE id = ?1)), "
+      "(SELECT count(*) FROM study_job_links INDEXED BY study_job_links_job "
+      "WHERE study_seq = (SELECT seq FROM studies WHERE id = ?1)), "
+      "(SELECT count(*) FROM study_job_links sj JOIN jobs j ON j.seq = sj.job_seq "
+      "WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?1))");
   s.bind(1, study_id).step();
   const std::int64_t listed = s.int64(0), linked = s.int64(1), indexed = s.int64(2), found = s.int64(3);
   if (linked != indexed || linked != found || linked > listed)
@@ -127,7 +131,8 @@ void require_consistent_study(Database& db, const std::string& study_id, StudyCh
                                    listed, linked, indexed, found));
   if (what == StudyCheck::kLinks) return;
   Statement b = db.prepare(
-      "SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1 AND j.state = 'done' "
+      "SELECT count(*) FROM study_job_links sj JOIN jobs j ON j.seq = sj.job_seq "
+      "WHERE sj.study_seq = (SELECT seq FROM studies WHERE id = ?1) AND j.state = 'done' "
       "AND NOT EXISTS (SELECT 1 FROM job_envelopes e WHERE e.job_seq = j.seq)");
   b.bind(1, study_id).step();
   if (const std::int64_t bare = b.int64(0); bare > 0) throw done_jobs_without_envelopes(db, study_id, bare);

@@ -323,6 +323,133 @@ CREATE TABLE static_envelopes (
   PRIMARY KEY (structure_job, train_job, quantity, place)
 ) WITHOUT ROWID;
 )sql"},
+      {"scene_parts, study_job_links, study_bridges, study_bridge_jobs: a job's scene is its part (the text of its "
+       "structure, train, profile and step, stored once) around its speed; studies link their jobs and bridges by the "
+       "stores' numbers (jobs.seq, studies.seq) instead of SHA-256 texts; jobs_claim holds the queued jobs alone. "
+       "Views job_scenes, study_jobs and study_structures give (and take) the rows as the tables did",
+       R"sql(
+CREATE TABLE scene_parts (
+  part INTEGER PRIMARY KEY,           -- what a job's row holds (jobs.scene_part)
+  head TEXT NOT NULL,                 -- the scene up to and with its first "speed_kmh": (all of it when none)
+  tail TEXT NOT NULL,                 -- the scene after the speed's number
+  UNIQUE (head, tail)
+);
+-- No REFERENCES clause (see migration 8); vsi check verifies it.
+ALTER TABLE jobs ADD COLUMN scene_part INTEGER;
+ALTER TABLE jobs ADD COLUMN scene_speed TEXT;
+CREATE TEMP TABLE scene_split (job_id TEXT PRIMARY KEY, head TEXT, speed TEXT, tail TEXT);
+INSERT INTO temp.scene_split (job_id, head, speed, tail)
+  SELECT job_id, head, substr(rest, 1, n), substr(rest, n + 1) FROM (
+    SELECT job_id, head, rest, CASE WHEN c > 0 AND (b = 0 OR c < b) THEN c WHEN b > 0 THEN b
+                                    ELSE length(rest) + 1 END - 1 AS n FROM (
+      SELECT job_id, head, rest, instr(rest, ',') AS c, instr(rest, '}') AS b FROM (
+        SELECT job_id, CASE WHEN i > 0 THEN substr(scene, 1, i + 11) ELSE scene END AS head,
+               CASE WHEN i > 0 THEN substr(scene, i + 12) ELSE '' END AS rest
+        FROM (SELECT job_id, scene, instr(scene, '"speed_kmh":') AS i FROM job_scenes))))
+  ORDER BY job_id;
+INSERT OR IGNORE INTO scene_parts (head, tail) SELECT s.head, s.tail FROM temp.scene_split s JOIN jobs j ON j.id = s.job_id ORDER BY j.seq;
+UPDATE jobs SET scene_part = p.part, scene_speed = s.speed FROM temp.scene_split s JOIN scene_parts p ON p.head = s.head AND p.tail = s.tail
+  WHERE s.job_id = jobs.id;
+DROP TABLE temp.scene_split;
+DROP VIEW job_records;
+DROP TABLE job_scenes;
+CREATE VIEW job_scenes AS
+  SELECT j.id AS job_id, p.head || j.scene_speed || p.tail AS scene FROM jobs j JOIN scene_parts p ON p.part = j.scene_part;
+CREATE TRIGGER job_scenes_insert INSTEAD OF INSERT ON job_scenes BEGIN
+  INSERT OR IGNORE INTO scene_parts (head, tail) SELECT head, tail FROM (
+    SELECT head, substr(rest, CASE WHEN c > 0 AND (b = 0 OR c < b) THEN c WHEN b > 0 THEN b ELSE length(rest) + 1 END) AS tail FROM (
+      SELECT head, rest, instr(rest, ',') AS c, instr(rest, '}') AS b FROM (
+        SELECT CASE WHEN i > 0 THEN substr(NEW.scene, 1, i + 11) ELSE NEW.scene END AS head,
+               CASE WHEN i > 0 THEN substr(NEW.scene, i + 12) ELSE '' END AS rest
+        FROM (SELECT instr(NEW.scene, '"speed_kmh":') AS i))));
+  UPDATE jobs SET scene_part = p.part, scene_speed = s.speed FROM (
+    SELECT head, substr(rest, 1, n) AS speed, substr(rest, n + 1) AS tail FROM (
+      SELECT head, rest, CASE WHEN c > 0 AND (b = 0 OR c < b) THEN c WHEN b > 0 THEN b ELSE length(rest) + 1 END - 1 AS n FROM (
+        SELECT head, rest, instr(rest, ',') AS c, instr(rest, '}') AS b FROM (
+          SELECT CASE WHEN i > 0 THEN substr(NEW.scene, 1, i + 11) ELSE NEW.scene END AS head,
+                 CASE WHEN i > 0 THEN substr(NEW.scene, i + 12) ELSE '' END AS rest
+          FROM (SELECT instr(NEW.scene, '"speed_kmh":') AS i))))) s
+    JOIN scene_parts p ON p.head = s.head AND p.tail = s.tail
+  WHERE jobs.id = NEW.job_id AND jobs.scene_part IS NULL;
+END;
+CREATE VIEW job_records AS
+  SELECT j.*, p.head || j.scene_speed || p.tail AS scene, f.record AS fidelity
+  FROM jobs j LEFT JOIN scene_parts p ON p.part = j.scene_part LEFT JOIN fidelity_records f ON f.id = j.fidelity_id;
+ALTER TABLE studies ADD COLUMN seq INTEGER;
+UPDATE studies SET seq = rowid;
+CREATE UNIQUE INDEX studies_seq ON studies (seq);
+CREATE TRIGGER studies_number AFTER INSERT ON studies WHEN NEW.seq IS NULL BEGIN
+  UPDATE studies SET seq = (SELECT coalesce(max(seq), 0) + 1 FROM studies) WHERE id = NEW.id;
+END;
+CREATE TABLE study_job_links (
+  study_seq INTEGER NOT NULL REFERENCES studies (seq),
+  job_seq   INTEGER NOT NULL REFERENCES jobs (seq),
+  position  INTEGER NOT NULL,         -- order of the job in the study: trains, then speeds, then profiles
+  PRIMARY KEY (study_seq, job_seq)
+) WITHOUT ROWID;
+INSERT INTO study_job_links (study_seq, job_seq, position)
+  SELECT s.seq, j.seq, sj.position FROM study_jobs sj JOIN studies s ON s.id = sj.study_id JOIN jobs j ON j.id = sj.job_id
+  ORDER BY s.seq, j.seq;
+CREATE INDEX study_job_links_job ON study_job_links (job_seq);
+CREATE TABLE study_bridges (
+  study_seq INTEGER NOT NULL REFERENCES studies (seq),
+  position  INTEGER NOT NULL,         -- the bridge's place in the study's structures
+  name      TEXT NOT NULL,            -- name of the bridge in the study
+  PRIMARY KEY (study_seq, position)
+) WITHOUT ROWID;
+CREATE TABLE study_bridge_jobs (
+  study_seq INTEGER NOT NULL,
+  job_seq   INTEGER NOT NULL REFERENCES jobs (seq),
+  position  INTEGER NOT NULL,
+  PRIMARY KEY (study_seq, job_seq, position),
+  FOREIGN KEY (study_seq, position) REFERENCES study_bridges (study_seq, position)
+) WITHOUT ROWID;
+INSERT OR IGNORE INTO study_bridges (study_seq, position, name)
+  SELECT s.seq, ss.position, ss.structure FROM study_structures ss JOIN studies s ON s.id = ss.study_id
+  ORDER BY s.seq, ss.position;
+INSERT OR IGNORE INTO study_bridge_jobs (study_seq, job_seq, position)
+  SELECT s.seq, j.seq, ss.position FROM study_structures ss JOIN studies s ON s.id = ss.study_id
+  JOIN jobs j ON j.id = ss.job_id ORDER BY s.seq, j.seq, ss.position;
+DROP VIEW study_progress;
+DROP VIEW study_envelopes;
+DROP TABLE study_jobs;
+DROP TABLE study_structures;
+CREATE VIEW study_jobs AS
+  SELECT s.id AS study_id, j.id AS job_id, l.position
+  FROM study_job_links l JOIN studies s ON s.seq = l.study_seq JOIN jobs j ON j.seq = l.job_seq;
+CREATE TRIGGER study_jobs_insert INSTEAD OF INSERT ON study_jobs BEGIN
+  SELECT RAISE(ABORT, 'FOREIGN KEY constraint failed') WHERE NOT EXISTS (SELECT 1 FROM studies WHERE id = NEW.study_id)
+    OR NOT EXISTS (SELECT 1 FROM jobs WHERE id = NEW.job_id);
+  INSERT INTO study_job_links (study_seq, job_seq, position)
+    SELECT s.seq, j.seq, NEW.position FROM studies s, jobs j WHERE s.id = NEW.study_id AND j.id = NEW.job_id;
+END;
+CREATE TRIGGER study_jobs_delete INSTEAD OF DELETE ON study_jobs BEGIN
+  DELETE FROM study_job_links WHERE study_seq = (SELECT seq FROM studies WHERE id = OLD.study_id)
+    AND job_seq = (SELECT seq FROM jobs WHERE id = OLD.job_id);
+END;
+CREATE VIEW study_structures AS
+  SELECT s.id AS study_id, j.id AS job_id, b.name AS structure, l.position
+  FROM study_bridge_jobs l JOIN study_bridges b ON b.study_seq = l.study_seq AND b.position = l.position
+  JOIN studies s ON s.seq = l.study_seq JOIN jobs j ON j.seq = l.job_seq;
+CREATE TRIGGER study_structures_insert INSTEAD OF INSERT ON study_structures BEGIN
+  SELECT RAISE(ABORT, 'FOREIGN KEY constraint failed') WHERE NOT EXISTS (SELECT 1 FROM studies WHERE id = NEW.study_id)
+    OR NOT EXISTS (SELECT 1 FROM jobs WHERE id = NEW.job_id);
+  INSERT OR IGNORE INTO study_bridges (study_seq, position, name)
+    SELECT seq, NEW.position, NEW.structure FROM studies WHERE id = NEW.study_id;
+  INSERT INTO study_bridge_jobs (study_seq, job_seq, position)
+    SELECT s.seq, j.seq, NEW.position FROM studies s, jobs j WHERE s.id = NEW.study_id AND j.id = NEW.job_id;
+END;
+CREATE VIEW study_progress AS
+  SELECT s.id AS study_id, j.state, count(*) AS jobs
+  FROM study_job_links l JOIN studies s ON s.seq = l.study_seq JOIN jobs j ON j.seq = l.job_seq GROUP BY s.id, j.state;
+CREATE VIEW study_envelopes AS
+  SELECT s.id AS study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
+  FROM study_job_links l JOIN studies s ON s.seq = l.study_seq JOIN jobs j ON j.seq = l.job_seq
+  JOIN job_envelopes e ON e.job_seq = j.seq;
+-- Only the queued jobs are claimed by it: at the end of a run it is empty.
+DROP INDEX jobs_claim;
+CREATE INDEX jobs_claim ON jobs (operator_key, rung, train) WHERE state = 'queued';
+)sql"},
   };
   return all;
 }

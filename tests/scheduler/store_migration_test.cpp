@@ -6,7 +6,11 @@
 // 13: the envelopes are stored by a small key of quantity and location;
 // view job_envelopes gives (and takes) them as the table did. 14: the
 // trains' static envelopes of a line study are stored; an older store gets
-// them on its upgrade, the same rows a submission stores.
+// them on its upgrade, the same rows a submission stores. 15: a scene
+// is its part (shared by the jobs that differ in speed alone) and its
+// speed's text, studies link their jobs and bridges by the store's numbers;
+// views job_scenes, study_jobs and study_structures give the very rows, and
+// vsi query the very bytes, of before.
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -20,6 +24,7 @@
 #include "query/study_results.hpp"
 #include "queue/job_queue.hpp"
 #include "scheduler_test_support.hpp"
+#include "store/scene_parts.hpp"
 #include "store/store_check.hpp"
 #include "store/store_schema.hpp"
 #include "study/study_plan.hpp"
@@ -58,6 +63,23 @@ std::size_t complete_every_job(Database& db, const std::vector<EnvelopeRow>& env
     ++completed;
   }
   return completed;
+}
+
+// Jobs written as vsi wrote them from store version 9 to 14: the scene a
+// row of the table job_scenes. Returns how many.
+std::size_t insert_jobs_before_15(Database& db, const std::vector<JobSpec>& jobs) {
+  Statement job = db.prepare(
+      "INSERT INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, enqueued_at, "
+      "rung, seq) VALUES (?, ?, ?, ?, ?, ?, ?, ?, 0, ?, (SELECT coalesce(max(seq), 0) + 1 FROM jobs))");
+  Statement scene = db.prepare("INSERT INTO job_scenes (job_id, scene) VALUES (?, ?)");
+  for (const JobSpec& j : jobs) {
+    job.bind(1, j.id).bind(2, j.train).bind(3, j.speed_kmh).bind(4, j.irregularity).bind(5, j.operator_key);
+    job.bind(6, j.dt_s).bind(7, j.dt_reason).bind(8, j.cutoff_hz);
+    if (j.rung.empty()) job.bind_null(9); else job.bind(9, j.rung);
+    job.run();
+    scene.bind(1, j.id).bind(2, j.scene).run();
+  }
+  return jobs.size();
 }
 
 TEST_F(StoreMigration, ANewStoreGetsInOneStepTheSchemaOfEveryMigrationInTurn) {
@@ -242,7 +264,7 @@ TEST_F(StoreMigration, TwelveSpellsTheLoadModelAsTheSchemaDoesInRecordsAndPriceR
   {
     Database db((dir_ / "old.sqlite").string());
     migrate(db, 11);
-    ASSERT_EQ(insert_jobs(db, plan.jobs, 3, 0.0), plan.jobs.size());
+    ASSERT_EQ(insert_jobs_before_15(db, plan.jobs), plan.jobs.size());
     for (const std::string& r : {old_record, other_record})
       db.prepare("INSERT INTO fidelity_records (id, record) VALUES (?, ?)").bind(1, sha256_hex(r)).bind(2, r).run();
     db.prepare("UPDATE jobs SET fidelity_id = ? WHERE id <> ?").bind(1, sha256_hex(old_record)).bind(2, plan.jobs[0].id).run();
@@ -293,7 +315,7 @@ TEST_F(StoreMigration, ThirteenKeepsEveryEnvelopeToTheBitAndTheViewWritesThrough
     // A version-12 store: envelopes one row per quantity and location, one verified.
     Database db((dir_ / "old.sqlite").string());
     migrate(db, 12);
-    ASSERT_EQ(insert_jobs(db, plan.jobs, 3, 0.0), plan.jobs.size());
+    ASSERT_EQ(insert_jobs_before_15(db, plan.jobs), plan.jobs.size());
     Statement e = db.prepare("INSERT INTO job_envelopes (job_seq, quantity, location, value, error_estimate) "
                              "VALUES ((SELECT seq FROM jobs WHERE id = ?), ?, ?, ?, ?)");
     const std::vector<std::pair<std::string, std::string>> names = {
@@ -387,6 +409,31 @@ TEST_F(StoreMigration, ThirteenKeepsEveryEnvelopeToTheBitAndTheViewWritesThrough
             1);
 }
 
+// The rows of the store `now_db` written as a version-13 store holds them
+// (tables job_scenes, study_jobs, study_structures keyed by SHA-256 texts;
+// no static envelopes) into the new file `old_db`.
+void write_as_version_13(const std::string& now_db, const std::string& old_db) {
+  Database old(old_db);
+  migrate(old, 13);
+  old.exec("ATTACH '" + now_db + "' AS now");
+  old.exec("INSERT INTO studies (id, name, file, document, checks, job_count, submitted_at) "
+           "SELECT id, name, file, document, checks, job_count, submitted_at FROM now.studies");
+  old.exec("INSERT INTO fidelity_records SELECT * FROM now.fidelity_records");
+  old.exec("INSERT INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, state, "
+           "attempts, max_attempts, worker, lease_expires, error, status, steps, wall_s, loop_s, setup_s, "
+           "factorization_s, enqueued_at, started_at, finished_at, warnings, rung, fidelity_id, seq, planned_modes) "
+           "SELECT id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, state, attempts, "
+           "max_attempts, worker, lease_expires, error, status, steps, wall_s, loop_s, setup_s, factorization_s, "
+           "enqueued_at, started_at, finished_at, warnings, rung, fidelity_id, seq, planned_modes FROM now.jobs "
+           "ORDER BY seq");
+  old.exec("INSERT INTO job_scenes (job_id, scene) SELECT job_id, scene FROM now.job_scenes");
+  old.exec("INSERT INTO study_jobs SELECT study_id, job_id, position FROM now.study_jobs");
+  old.exec("INSERT INTO study_structures SELECT study_id, job_id, structure, position FROM now.study_structures");
+  old.exec("INSERT INTO cache_stats SELECT * FROM now.cache_stats");
+  old.exec("INSERT INTO envelope_keys SELECT * FROM now.envelope_keys");
+  old.exec("INSERT INTO envelope_values SELECT * FROM now.envelope_values");
+}
+
 TEST_F(StoreMigration, FourteenStoresTheStaticEnvelopesOfAnOldStoresLineOnItsUpgradeAsASubmissionDoes) {
   json doc = tiny_study();
   json a = doc["structure"], b = doc["structure"];
@@ -395,19 +442,18 @@ TEST_F(StoreMigration, FourteenStoresTheStaticEnvelopesOfAnOldStoresLineOnItsUpg
   doc["structures"] = json::array({{{"name", "A"}, {"structure", a}}, {{"name", "B"}, {"structure", b}}});
   const auto file = write_json("line.json", doc);
   const std::string old_db = (dir_ / "old.sqlite").string(), new_db = (dir_ / "new.sqlite").string();
+  const VsiResult submitted = vsi({"submit", file.string(), "--db", new_db}, "submit");
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.err;
+  // A version-13 store of the same line: the submission's rows as vsi 13
+  // held them, without the static envelopes (its schema has no such table).
+  write_as_version_13(new_db, old_db);
   {
-    // A version-13 store of the line, submitted by the queue as vsi 13 did.
     Database db(old_db);
-    migrate(db, 13);
-    const StudyPlan plan = expand_study(doc, dir_, file.string());
-    submit_study(db, plan);
     EXPECT_EQ(count_rows(db, "SELECT count(*) FROM sqlite_schema WHERE name = 'static_envelopes'"), 0);
   }
   const VsiResult upgrade = vsi({"work", "--db", old_db, "--threads", "1"}, "upgrade");
   ASSERT_EQ(upgrade.exit_code, 0) << upgrade.err;
   EXPECT_NE(upgrade.err.find("the static envelopes of 4 trains stored"), std::string::npos) << upgrade.err;
-  const VsiResult submitted = vsi({"submit", file.string(), "--db", new_db}, "submit");
-  ASSERT_EQ(submitted.exit_code, 0) << submitted.err;
   // Every row, its value's bits included: (structure job, train job,
   // quantity, place, location, bits or NULL).
   const auto rows = [](const std::string& file) {
@@ -428,11 +474,129 @@ TEST_F(StoreMigration, FourteenStoresTheStaticEnvelopesOfAnOldStoresLineOnItsUpg
   // + 2 supports x reaction and rotation).
   EXPECT_EQ(upgraded.size(), 2u * 2u * (2u * 3u + 2u * 2u));
   EXPECT_EQ(rows(new_db), upgraded);
-  // The upgrade is done once: the next writer finds schema 14 and stores nothing.
+  // The upgrade is done once: the next writer finds the current schema and stores nothing.
   const VsiResult again = vsi({"work", "--db", old_db, "--threads", "1"}, "again");
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(again.err.find("static envelopes"), std::string::npos) << again.err;
 }
 
+
+// Every row of a query as text ('|' between columns, NULL as \N), sorted:
+// what a table and the view that replaces it must both give.
+std::vector<std::string> rows_of(Database& db, const std::string& sql) {
+  std::vector<std::string> rows;
+  Statement s = db.prepare(sql);
+  while (s.step()) {
+    std::string row;
+    for (int c = 0; c < s.columns(); ++c) {
+      if (c > 0) row += '|';
+      row += s.is_null(c) ? std::string("\\N") : s.text(c);
+    }
+    rows.push_back(row);
+  }
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
+TEST_F(StoreMigration, SceneSplitGivesBackEveryTextToTheByte) {
+  // Speeds as canonical JSON writes them, a scene without one, text after
+  // the number up to '}' only, UTF-8 before the key, a key in a string.
+  for (const std::string& scene :
+       {std::string(R"({"analysis":{"dt_s":0.001},"speed_kmh":103.5,"train":"HSLM-A1"})"), std::string(R"({"speed_kmh":100})"),
+        std::string(R"({"train":"x"})"), std::string(R"({"name":"Brücke \"speed_kmh\":1","speed_kmh":2e2,"z":0})"),
+        std::string(R"({"speed_kmh":)"), std::string()}) {
+    const SceneSplit s = split_scene(scene);
+    EXPECT_EQ(std::string(s.head) + std::string(s.speed) + std::string(s.tail), scene);
+  }
+  const SceneSplit s = split_scene(R"({"analysis":{},"speed_kmh":103.5,"train":"A"})");
+  EXPECT_EQ(s.head, R"({"analysis":{},"speed_kmh":)");
+  EXPECT_EQ(s.speed, "103.5");
+  EXPECT_EQ(s.tail, R"(,"train":"A"})");
+}
+
+TEST_F(StoreMigration, FifteenKeepsEverySceneAndLinkToTheByteAndVsiQueryGivesTheSameBytes) {
+  // A line study (bridges A and C one structure, B another) run on this
+  // vsi's schema ...
+  nlohmann::json doc = tiny_study();
+  nlohmann::json span12 = doc["structure"];
+  span12["spans_m"] = {12.0};
+  doc["structures"] = json::array({{{"name", "A"}, {"structure", doc["structure"]}},
+                                   {{"name", "Brücke B"}, {"structure", span12}},
+                                   {{"name", "C"}, {"structure", doc["structure"]}}});
+  doc.erase("structure");
+  const std::string now_db = (dir_ / "now.sqlite").string(), old_db = (dir_ / "old.sqlite").string();
+  ASSERT_EQ(vsi({"run", write_json("line.json", doc).string(), "--db", now_db}, "run").exit_code, 0);
+  // ... and the same rows written as a version-13 store holds them (tables
+  // job_scenes, study_jobs, study_structures keyed by SHA-256 texts).
+  write_as_version_13(now_db, old_db);
+  Database old(old_db);
+  const std::vector<std::string> scenes = rows_of(old, "SELECT job_id, scene FROM job_scenes");
+  const std::vector<std::string> links = rows_of(old, "SELECT * FROM study_jobs");
+  const std::vector<std::string> bridges = rows_of(old, "SELECT * FROM study_structures");
+  const std::vector<std::string> records = rows_of(old, "SELECT * FROM job_records");
+  ASSERT_EQ(scenes.size(), 20u);   // 2 structures x 2 trains x 5 speeds
+  ASSERT_EQ(bridges.size(), 30u);  // A and C share their 10 jobs
+  migrate(old);
+  EXPECT_EQ(count_rows(old, "PRAGMA user_version"), kStoreSchemaVersion);
+  // The views give the very rows: scenes to the byte (SHA-256 of each is its id).
+  EXPECT_EQ(rows_of(old, "SELECT job_id, scene FROM job_scenes"), scenes);
+  EXPECT_EQ(count_rows(old, "SELECT count(*) FROM job_scenes WHERE vsi_sha256(scene) != job_id"), 0);
+  EXPECT_EQ(rows_of(old, "SELECT * FROM study_jobs"), links);
+  EXPECT_EQ(rows_of(old, "SELECT * FROM study_structures"), bridges);
+  // job_records as before, with the two new columns of jobs at the end.
+  std::vector<std::string> upgraded_records = rows_of(
+      old, "SELECT id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, state, attempts, "
+           "max_attempts, worker, lease_expires, error, status, steps, wall_s, loop_s, setup_s, factorization_s, "
+           "enqueued_at, started_at, finished_at, warnings, rung, fidelity_id, seq, planned_modes, scene, fidelity "
+           "FROM job_records");
+  EXPECT_EQ(upgraded_records, records);
+  // One part per structure and train: the 5 speeds of each share it.
+  EXPECT_EQ(count_rows(old, "SELECT count(*) FROM scene_parts"), 4);
+  // The claim index holds the queued jobs alone: none after the run.
+  EXPECT_EQ(count_rows(old, "SELECT count(*) FROM jobs INDEXED BY jobs_claim WHERE state = 'queued'"), 0);
+  for (const std::string& p : check_store(old).problems) ADD_FAILURE() << p;
+
+  // vsi query reads the upgraded store to the byte as the store run on
+  // this schema: the table, CSV, JSON and the line table.
+  const std::string study = rows_of(old, "SELECT id FROM studies").at(0);
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{}, {"--format", "csv"}, {"--format", "json"}, {"--line"}, {"--line", "--format", "csv"},
+        {"--structure", "Brücke B", "--format", "json"}}) {
+    std::vector<std::string> on_old = {"query", "--db", old_db, "--study", study}, on_now = on_old;
+    on_now[2] = now_db;
+    on_old.insert(on_old.end(), args.begin(), args.end());
+    on_now.insert(on_now.end(), args.begin(), args.end());
+    const VsiResult a = vsi(on_old, "q-old"), b = vsi(on_now, "q-now");
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    EXPECT_EQ(a.out, b.out) << args.size();
+    EXPECT_GT(a.out.size(), 200u) << "an output to compare";
+  }
+
+  // The views take writes as the tables did: a job added with its scene
+  // and link; a duplicate link refused, OR IGNORE ignored; a link deleted.
+  const std::string scene = R"({"speed_kmh":777,"train":"Zug ü"})";
+  const std::string id = sha256_hex(scene);
+  old.prepare("INSERT INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, "
+              "enqueued_at, seq) VALUES (?, 'Zug ü', 777, 'none', 'k', 0.001, 'r', 30, 0, 1000)")
+      .bind(1, id)
+      .run();
+  old.prepare("INSERT INTO job_scenes (job_id, scene) VALUES (?, ?)").bind(1, id).bind(2, scene).run();
+  EXPECT_EQ(rows_of(old, "SELECT scene FROM job_scenes WHERE job_id = '" + id + "'"), std::vector<std::string>{scene});
+  old.prepare("INSERT INTO study_jobs (study_id, job_id, position) VALUES (?, ?, 99)").bind(1, study).bind(2, id).run();
+  EXPECT_EQ(count_rows(old, "SELECT count(*) FROM study_jobs WHERE position = 99 AND job_id = '" + id + "'"), 1);
+  EXPECT_THROW(old.prepare("INSERT INTO study_jobs (study_id, job_id, position) VALUES (?, ?, 98)")
+                   .bind(1, study).bind(2, id).run(),
+               SqliteError);
+  old.prepare("INSERT OR IGNORE INTO study_jobs (study_id, job_id, position) VALUES (?, ?, 98)").bind(1, study).bind(2, id).run();
+  EXPECT_THROW(old.prepare("INSERT INTO study_jobs (study_id, job_id, position) VALUES (?, 'no such job', 97)")
+                   .bind(1, study).run(),
+               SqliteError);
+  old.prepare("INSERT INTO study_structures (study_id, job_id, structure, position) VALUES (?, ?, 'Brücke B', 1)")
+      .bind(1, study).bind(2, id).run();
+  EXPECT_EQ(count_rows(old, "SELECT count(*) FROM study_structures WHERE structure = 'Brücke B'"), 11);
+  old.prepare("DELETE FROM study_jobs WHERE job_id = ?").bind(1, id).run();
+  EXPECT_EQ(count_rows(old, "SELECT count(*) FROM study_jobs"), 20);
+}
 }  // namespace
 }  // namespace railvsi::test
