@@ -109,6 +109,7 @@ StructureOperatorOptions structure_operator_options(const Scene& scene) {
   options.structure_backend = scene.analysis.structure_backend;
   options.modal_modes = scene.analysis.modal_modes;
   options.modal_cutoff_hz = scene.analysis.modal_cutoff_hz;
+  options.hybrid_bridge_modes = scene.analysis.hybrid_bridge_modes;
   options.rail_flexibility = !scene.train.is_moving_forces();
   options.modal_static_correction = scene.analysis.modal_static_correction;
   return options;

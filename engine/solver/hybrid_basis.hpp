@@ -39,6 +39,22 @@ struct HybridPartition {
 };
 HybridPartition hybrid_partition(const StructureModel& structure);
 
+// Which modes of the bridge join its static constraint modes.
+enum class BridgeModes {
+  // The interior's modes with the interface held, K_II phi = omega^2 M_II
+  // phi (Craig-Bampton).
+  kFixedInterface,
+  // The bridge's own modes without its track, the interface free
+  // (K_BB phi = omega^2 M_BB phi), each less its static interface part:
+  // phi_I - Psi phi_G. With the constraint modes they span what
+  // free-interface modes with residual flexibility span (MacNeal-Rubin in
+  // primal form: MacNeal, Computers & Structures 1(4), 1971; Rubin, AIAA
+  // Journal 13(8), 1975). The bridge's low modes are then in the basis as
+  // they are, where the held interface (the deck's top, which carries the
+  // track) moves the fixed-interface modes far above them.
+  kFreeInterface,
+};
+
 struct HybridBasisOptions {
   // Interior modes up to this frequency (Hz), > 0; or, when modes > 0,
   // exactly the lowest `modes`; or, with all_modes, every one (a dense
@@ -53,6 +69,7 @@ struct HybridBasisOptions {
   // kRayleighFitTolerance), reduce C from M's and K's reductions instead
   // of its own products (false: always its own; for verification).
   bool rayleigh_shortcut = true;
+  BridgeModes bridge_modes = BridgeModes::kFixedInterface;
 };
 
 // How exactly C must equal a0 M + a1 K on the bridge's interior (largest
@@ -94,8 +111,17 @@ class HybridBasis {
   int interface_dofs() const { return n_interface_; }
   int num_modes() const { return static_cast<int>(frequencies_hz_.size()); }
   int size() const { return n_track_ + n_interface_ + num_modes(); }
-  // Frequencies of the interior's modes kept (interface held), ascending.
+  // Frequencies of the interior's modes kept (interface held), ascending:
+  // with free-interface modes, those of the interior in the subspace they
+  // span (Rayleigh-Ritz).
   const std::vector<double>& frequencies_hz() const { return frequencies_hz_; }
+  // With free-interface modes, the bridge's own frequencies that the
+  // cut-off chose (interface free); empty otherwise.
+  const std::vector<double>& bridge_frequencies_hz() const { return bridge_frequencies_hz_; }
+  BridgeModes bridge_modes() const { return bridge_modes_; }
+  // "free-interface " for free-interface modes, "" for the interface held
+  // (the form the fidelity records have named since the hybrid rung came).
+  const char* modes_label() const { return bridge_modes_ == BridgeModes::kFreeInterface ? "free-interface " : ""; }
   // The cut-off asked, or the highest frequency kept (modes, all_modes).
   double cutoff_hz() const { return cutoff_hz_; }
 
@@ -117,6 +143,8 @@ class HybridBasis {
   std::shared_ptr<const StructureModel> reduced_;
   int n_track_ = 0, n_interface_ = 0;
   std::vector<double> frequencies_hz_;
+  std::vector<double> bridge_frequencies_hz_;
+  BridgeModes bridge_modes_ = BridgeModes::kFixedInterface;
   double cutoff_hz_ = 0.0;
   std::vector<int> index_;   // model DOF -> coordinate, -1 interior
   std::vector<int> row_of_;  // model DOF -> column of rows_, -1 none
