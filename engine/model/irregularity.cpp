@@ -56,8 +56,22 @@ ProfilePoint Irregularity::smooth_at(double x) const {
 
 double Irregularity::at(double x) const {
   if (x < x_.front() || x > x_.back()) return 0.0;
-  const auto it = std::upper_bound(x_.begin(), x_.end(), x);
-  std::size_t j = static_cast<std::size_t>(it - x_.begin());
+  return interpolated(static_cast<std::size_t>(std::upper_bound(x_.begin(), x_.end(), x) - x_.begin()), x);
+}
+
+double Irregularity::at(double x, std::size_t& hint) const {
+  if (x < x_.front() || x > x_.back()) return 0.0;
+  // j: the first sample past x (upper_bound's), found in the hint's
+  // interval or the next one when x lies there.
+  std::size_t j = x_.size();
+  for (std::size_t k = hint; k < hint + 2 && k + 1 < x_.size(); ++k)
+    if (x_[k] <= x && x < x_[k + 1]) j = k + 1;
+  if (j == x_.size()) j = static_cast<std::size_t>(std::upper_bound(x_.begin(), x_.end(), x) - x_.begin());
+  if (j < x_.size()) hint = j - 1;
+  return interpolated(j, x);
+}
+
+double Irregularity::interpolated(std::size_t j, double x) const {
   if (j >= x_.size()) return r_.back();
   const std::size_t i = j - 1;
   const double t = (x - x_[i]) / (x_[j] - x_[i]);

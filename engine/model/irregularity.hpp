@@ -23,12 +23,18 @@ class Irregularity {
   Irregularity(std::vector<double> x_m, std::vector<double> r_m, std::string source = {});
 
   double at(double x_m) const;
+  // The same value; `hint` (the caller's, per wheel: the model is shared)
+  // is the sample interval of the last call, tried before the binary
+  // search, since a wheel moves by less than a sample per step.
+  double at(double x_m, std::size_t& hint) const;
   ProfilePoint smooth_at(double x_m) const;
   const std::vector<double>& x_m() const { return x_; }
   const std::vector<double>& r_m() const { return r_; }
   const std::string& source() const { return source_; }
 
  private:
+  // r at x (x_[j-1] <= x < x_[j]; j past the end: the last sample's).
+  double interpolated(std::size_t j, double x) const;
   std::vector<double> x_, r_;
   std::vector<double> spline_m_;  // second derivatives of the natural cubic spline at the samples
   std::string source_;

@@ -60,6 +60,10 @@ class EnergyAccount {
   // same size, for the next pass to overwrite).
   void step(const HhtCoefficients& h, const KinematicState& old, const KinematicState& now, const Vector& f_alpha,
             StateProducts& now_products);
+  // The same with the loads f_{n+1}, f_n given: f^a_{n+1} is formed in the
+  // one pass over the rows that takes every dot product of the step.
+  void step(const HhtCoefficients& h, const KinematicState& old, const KinematicState& now, const Vector& f_new,
+            const Vector& f_old, StateProducts& now_products);
 
   const EnergyTotals& totals() const { return e_; }
   double initial_mechanical_J() const { return e0_; }
@@ -72,8 +76,12 @@ class EnergyAccount {
   Vector Cv_prev_, Cv_;       // C v_{n-1}, C v_n
   Vector Ma_;                 // M a_n
   Vector fa_;                 // f^a_n
-  Vector work_;
-  Vector du_;                 // scratch: u_{n+1} - u_n
+  StateProducts scratch_;     // the products of `now` when the caller has none
+  // One pass over the rows: the step's dot products; fa_ becomes f^a_{n+1}
+  // (load_at(i): its entry i).
+  template <class LoadAt>
+  void accumulate(const HhtCoefficients& h, const KinematicState& old, const KinematicState& now, LoadAt load_at,
+                  StateProducts& p);
   EnergyTotals e_;
   double e0_ = 0.0;
 };

@@ -20,7 +20,8 @@ RunMonitor::RunMonitor(const Scene& scene, const TrainLayout& layout, const Stru
   for (std::size_t v = 0; v < layout.vehicles.size(); ++v) {
     const VehicleModel& m = *layout.vehicles[v].model;
     u_v0_.push_back(vehicles0[v].u);
-    vehicle_energy_.emplace_back(m.M(), m.C(), m.K(), vehicles0[v], vehicle_load(v, P0, P0, 0.0));
+    vehicle_load(v, P0, P0, 0.0, f_alpha_);
+    vehicle_energy_.emplace_back(m.M(), m.C(), m.K(), vehicles0[v], f_alpha_);
   }
   for (const ContactSpec& c : layout.contacts)
     if (c.law->is_constraint()) energy_checked_ = false;
@@ -59,16 +60,16 @@ std::vector<RunWarning> scene_input_warnings(const Scene& scene) {
   return out;
 }
 
-Vector RunMonitor::vehicle_load(std::size_t v, const Vector& P_old, const Vector& P_new, double alpha) const {
+void RunMonitor::vehicle_load(std::size_t v, const Vector& P_old, const Vector& P_new, double alpha,
+                              Vector& f) const {
   const VehicleInstance& vi = layout_.vehicles[v];
-  Vector f = layout_.gravity_load_N.segment(vi.first_dof, vi.model->num_dofs());
+  f = layout_.gravity_load_N.segment(vi.first_dof, vi.model->num_dofs());
   for (std::size_t c = 0; c < layout_.contacts.size(); ++c) {
     const ContactSpec& cs = layout_.contacts[c];
     if (cs.vehicle != static_cast<int>(v)) continue;
     const auto i = static_cast<Eigen::Index>(c);
     f[cs.local_dof] += (1.0 + alpha) * P_new[i] - alpha * P_old[i];
   }
-  return f;
 }
 
 void RunMonitor::warn_once(const std::string& code, std::string message, std::optional<double> t_s,
@@ -137,12 +138,16 @@ Status RunMonitor::after_step(const HhtCoefficients& h, double t_new, const Kine
   max_iterations_ = std::max(max_iterations_, iterations);
   // Energy.
   if (energy_checked_) {
-    f_alpha_ = (1.0 + h.alpha) * f_s_new - h.alpha * f_s_old;
-    const Vector& f_alpha = f_alpha_;
-    if (structure_products) structure_energy_.step(h, s_old, s, f_alpha, *structure_products);
-    else structure_energy_.step(h, s_old, s, f_alpha);
-    for (std::size_t v = 0; v < vehicle_energy_.size(); ++v)
-      vehicle_energy_[v].step(h, vehicles_old[v], vehicles[v], vehicle_load(v, P_old, P_new, h.alpha));
+    if (structure_products) {
+      structure_energy_.step(h, s_old, s, f_s_new, f_s_old, *structure_products);
+    } else {
+      f_alpha_ = (1.0 + h.alpha) * f_s_new - h.alpha * f_s_old;
+      structure_energy_.step(h, s_old, s, f_alpha_);
+    }
+    for (std::size_t v = 0; v < vehicle_energy_.size(); ++v) {
+      vehicle_load(v, P_old, P_new, h.alpha, f_alpha_);
+      vehicle_energy_[v].step(h, vehicles_old[v], vehicles[v], f_alpha_);
+    }
     double residual = 0.0, mechanical = 0.0;
     const auto add = [&](const auto& account) {
       const EnergyTotals& e = account.totals();

@@ -70,7 +70,8 @@ class RunMonitor {
   void summarize(RunSummary& summary) const;
 
  private:
-  Vector vehicle_load(std::size_t v, const Vector& P_old, const Vector& P_new, double alpha) const;
+  // Vehicle v's shifted load f^a (gravity and contact forces) into f.
+  void vehicle_load(std::size_t v, const Vector& P_old, const Vector& P_new, double alpha, Vector& f) const;
   void warn_once(const std::string& code, std::string message, std::optional<double> t_s = {},
                  std::optional<int> wheel = {}, std::optional<double> factor = {});
   void check_track_ends(double start_x_m);
@@ -97,7 +98,7 @@ class RunMonitor {
   std::vector<double> min_tension_ratio_;  // most negative P/Q0 of a bilateral contact
   std::vector<RunWarning> warnings_;
   int max_iterations_ = 0;
-  Vector f_alpha_;  // scratch: the structure's shifted load of the step
+  Vector f_alpha_;  // scratch: a subsystem's shifted load of the step
 };
 
 }  // namespace railvsi

@@ -54,8 +54,11 @@ Status RunState::step(const HhtCoefficients& h, double t_new, StepSolver& solver
   f_new_.setZero(s_.u.size());
   add_moving_force_loads(scene_, x, f_new_, coords_);
   rows_ = locate_contacts(*scene_.structure, layout_, x);
+  irregularity_hint_.resize(static_cast<std::size_t>(r_.size()), 0);
   for (Eigen::Index c = 0; c < r_.size(); ++c)
-    r_[c] = scene_.irregularity ? scene_.irregularity->at(TrainLayout::position_m(x, layout_.contacts[c].offset_m)) : 0.0;
+    r_[c] = scene_.irregularity ? scene_.irregularity->at(TrainLayout::position_m(x, layout_.contacts[c].offset_m),
+                                                          irregularity_hint_[static_cast<std::size_t>(c)])
+                                : 0.0;
   rigid_.prepare(h, x, s_, vehicles_, rows_, r_);
 
   // Right-hand sides of eq. (3) with the new contact forces left out:

@@ -60,6 +60,7 @@ class RunState {
   Vector f_s_;  // total structure load at t_n
   std::vector<std::optional<RailContactRow>> rows_;
   Vector r_, rhs_s_, rhs_v_, f_new_;
+  std::vector<std::size_t> irregularity_hint_;  // each wheel's last sample interval (Irregularity::at)
   StepSolution solution_;
   RigidWheels rigid_;
   // The state at t_n while stepping (for the monitor's energy balance).

@@ -30,10 +30,11 @@ struct Basis {
 };
 
 // W -= F (MF' W) and W -= V h with h = V' M W (h returned, summed over the
-// two passes: classical Gram-Schmidt twice, "twice is enough"). MW follows.
-DenseMatrix project_out(Basis& b, Block W, Block MW) {
+// passes: classical Gram-Schmidt, twice for a vector on its own, "twice is
+// enough"). MW follows.
+DenseMatrix project_out(Basis& b, Block W, Block MW, int passes = 2) {
   DenseMatrix h = DenseMatrix::Zero(b.size, W.cols()), c, hp;
-  for (int pass = 0; pass < 2; ++pass) {
+  for (int pass = 0; pass < passes; ++pass) {
     if (b.F.cols() > 0) {
       c.resize(b.F.cols(), W.cols());
       multiply_blocks(true, b.MF, W, c);
@@ -135,15 +136,19 @@ DenseMatrix orthonormalize(Basis& b, DenseMatrix& W, DenseMatrix& MW, Eigen::Ind
 }
 
 // W (and MW = M W) M-orthogonal to F and V, then M-orthonormal: twice
-// (Gram-Schmidt against the basis, then within the block), since a block
-// whose columns differ in size by orders (nearly converged directions)
-// amplifies in its second step the rounding left along the basis in the
-// first. W_in = V h + W_out R; h added to `h` when given.
+// (one Gram-Schmidt pass against the basis, then within the block: block
+// classical Gram-Schmidt twice, BCGS2), since a block whose columns differ
+// in size by orders (nearly converged directions) amplifies in its second
+// step the rounding left along the basis in the first. Each round's single
+// pass is enough there: the second round's removes what the first's
+// normalization amplified (two passes per round cost 25.5 s of the 53 s at
+// seed scale, docs/performance.md). W_in = V h + W_out R; h added to `h`
+// when given.
 DenseMatrix extend(Basis& b, DenseMatrix& W, DenseMatrix& MW, Eigen::Index room, SplitMix64& random,
                    DenseMatrix* h) {
-  DenseMatrix h1 = project_out(b, W, MW);
+  DenseMatrix h1 = project_out(b, W, MW, 1);
   const DenseMatrix R1 = orthonormalize(b, W, MW, room, random);
-  const DenseMatrix h2 = project_out(b, W, MW);
+  const DenseMatrix h2 = project_out(b, W, MW, 1);
   const DenseMatrix R2 = orthonormalize(b, W, MW, room, random);
   if (h) *h = h1 + h2 * R1;
   return R2 * R1;

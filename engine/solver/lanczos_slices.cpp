@@ -106,10 +106,23 @@ ModalResult lanczos_slices(const SparseMatrix& K, const SparseMatrix& M, Eigen::
   const std::unique_ptr<NearestEigenpairs> solver = make_nearest_eigenpairs(options);
   Pairs all;  // every pair accepted
   all.phi.resize(n, 0);
+  // Counted already: one slice of exactly the count, certified when every
+  // pair lies below the cut-off.
+  bool certified_by_count = false;
+  if (cut && options.modes_below_cutoff >= 0 && modes <= options.modes_below_cutoff &&
+      here->eigenvalues_below() == 0) {
+    const Eigen::Index count = std::min<Eigen::Index>(options.modes_below_cutoff, n - 1);
+    Pairs near = count > 0 ? solver->nearest(M, *here, count, all.phi, options.slice_restarts) : Pairs{};
+    result.iterations += near.iterations;
+    certified_by_count =
+        near.status.ok() && static_cast<Eigen::Index>(near.lambda.size()) == count &&
+        std::all_of(near.lambda.begin(), near.lambda.end(), [&](double l) { return l > here->sigma() && l < lambda_cut; });
+    if (certified_by_count && count > 0) merge(all, near);
+  }
   Eigen::Index grow = 1;  // a slice without a gap to put the next shift in is asked again, twice as wide
   Eigen::Index shrink = 1;  // one that does not converge in slice_restarts, half as wide
   bool wide = false;
-  for (;;) {
+  while (!certified_by_count) {
     const Eigen::Index certified = static_cast<Eigen::Index>(all.lambda.size());
     const Eigen::Index remaining = modes - certified;
     // A quarter more than the modes still wanted, so that the last shift

@@ -39,6 +39,14 @@ struct ModalOptions {
   // shifts inside the spectrum itself.
   double shift_rad2_per_s2 = -1.0;
   IndefiniteFactorizer indefinite = IndefiniteFactorizer::kMumps;
+  // The Sturm count of the modes below max_frequency_hz, made already by
+  // the caller (count_modes_below: one L D L' factor at the cut-off); -1:
+  // none. With it and a first factor below the spectrum, Lanczos asks
+  // exactly that many pairs nearest the first shift and accepts them when
+  // every one lies below the cut-off (that many eigenpairs in the interval
+  // the count covers are all of them): no factor of its own at the cut-off
+  // and no modes beyond it. Else it slices as without the count.
+  int modes_below_cutoff = -1;
   // Lanczos: eigenpairs converged per shift (spectrum slice). Fewer cost
   // more factors, more cost a larger basis (its dense work grows as its
   // square); see tests/bench/mode_solver_bench.cpp.

@@ -21,9 +21,14 @@ int write_query(const ServiceArgs& args, std::ostream& out_text, std::ostream& e
   const auto db = open_store(args.db, scheduler::OpenMode::kReadOnly);
   const auto id = find_study(*db, args.study_id);
   if (!id) return kExitInvalidInput;
-  scheduler::require_consistent_study(*db, *id);
   const scheduler::QueryFilter filter{*id,          args.train,        args.speed_min_kmh,
                                       args.speed_max_kmh, args.irregularity, args.structure};
+  // Without filters the line table reads the study bridge by bridge, every
+  // job with its envelope values, and refuses a done job without any itself.
+  const bool whole = !filter.train && !filter.speed_min_kmh && !filter.speed_max_kmh && !filter.irregularity &&
+                     !filter.structure;
+  scheduler::require_consistent_study(*db, *id,
+                                      args.line && whole ? scheduler::StudyCheck::kLinks : scheduler::StudyCheck::kAll);
   if (const auto why = scheduler::filter_error(*db, filter)) {
     err << "error: " << scheduler::terminal_safe(*why) << '\n';  // it lists the study's names
     return kExitInvalidInput;
@@ -42,8 +47,6 @@ int write_query(const ServiceArgs& args, std::ostream& out_text, std::ostream& e
     options.histories = false;
     options.checks_only = true;
     // Without filters the study is read bridge by bridge; a filter judges the jobs it keeps.
-    const bool whole = !filter.train && !filter.speed_min_kmh && !filter.speed_max_kmh && !filter.irregularity &&
-                       !filter.structure;
     const auto bridges = whole ? scheduler::line_bridges(*db, *id, options)
                                : scheduler::line_bridges(*db, *id, scheduler::study_results(*db, filter), options);
     if (args.format == "csv") std::cout << scheduler::format_line_csv(bridges);

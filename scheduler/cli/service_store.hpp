@@ -16,6 +16,11 @@ namespace railvsi::cli {
 std::unique_ptr<scheduler::Database> open_store(const std::string& file,
                                                 scheduler::OpenMode mode = scheduler::OpenMode::kReadOnly);
 
+// Computes and stores the trains' static envelopes of a line study
+// (stored_statics.hpp), or of every line study in the store without an
+// id; a failure is logged, not thrown (the readers compute what is missing).
+void fill_static_envelopes(scheduler::Database& db, const std::optional<std::string>& study_id);
+
 // The full id of --study (a unique prefix is enough); prints an error and
 // returns nullopt when there is no such study.
 std::optional<std::string> find_study(scheduler::Database& db, const std::string& id_or_prefix);

@@ -62,6 +62,7 @@ Submitted submit(const ServiceArgs& args, scheduler::FactorizationCache* cache =
                                  "study into a new database (--db) for this expansion's results",
                                  args.db, r.study_id.substr(0, 12), r.differing_jobs, r.stored_jobs, r.jobs),
                      args.study_file);
+  fill_static_envelopes(*s.db, r.study_id);
   return s;
 }
 

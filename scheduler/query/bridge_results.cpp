@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "compliance/stored_checks.hpp"
+#include "store/store_check.hpp"
 #include "study/structure_variants.hpp"
 
 namespace railvsi::scheduler {
@@ -31,23 +32,25 @@ struct EnvelopeKey {
 }  // namespace
 
 struct BridgeReader::Statements {
-  Statements(Database& db, const std::string& study_id, BridgeFields f)
+  Statements(Database& database, const std::string& study, BridgeFields f)
       : fields(f),
         // Every (bridge, job) row of the study in the order of study_results:
         // the bridge's place, then the job's. Only numbers are sorted.
-        rows(db.prepare("SELECT ss.structure, j.rowid FROM study_structures ss "
+        rows(database.prepare("SELECT ss.structure, j.rowid FROM study_structures ss "
                         "JOIN study_jobs sj ON sj.study_id = ss.study_id AND sj.job_id = ss.job_id "
                         "JOIN jobs j ON j.id = ss.job_id WHERE ss.study_id = ? ORDER BY ss.position, sj.position")),
-        job(db.prepare(f == BridgeFields::kAll
+        job(database.prepare(f == BridgeFields::kAll
                            ? fmt::format("SELECT {}, j.seq FROM jobs j LEFT JOIN job_scenes s ON s.job_id = j.id "
                                          "LEFT JOIN fidelity_records f ON f.id = j.fidelity_id WHERE j.rowid = ?",
                                          job_result_columns("s.scene", "f.record"))
                            : std::string("SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, "
-                                         "j.error, j.dt_s, j.dt_reason, j.cutoff_hz, j.seq, j.operator_key "
+                                         "j.error, j.dt_s, j.cutoff_hz, j.seq, j.operator_key "
                                          "FROM jobs j WHERE j.rowid = ?"))),
-        scene(db.prepare("SELECT json_extract(scene, '$.structure.variant'), json_type(scene, '$.train'), "
+        scene(database.prepare("SELECT json_extract(scene, '$.structure.variant'), json_type(scene, '$.train'), "
                          "json_extract(scene, '$.train') FROM job_scenes WHERE job_id = ?")),
-        values(db.prepare("SELECT key, value, error_estimate FROM envelope_values WHERE job_seq = ?")) {
+        values(database.prepare("SELECT key, value, error_estimate FROM envelope_values WHERE job_seq = ?")),
+        db(database),
+        study_id(study) {
     rows.bind(1, study_id);
     const std::set<std::string> judged = judged_quantities();
     Statement k = db.prepare("SELECT key, quantity, location FROM envelope_keys");
@@ -78,15 +81,14 @@ struct BridgeReader::Statements {
       r.status = job.text(5);
       r.error = job.text(6);
       r.dt_s = job.real(7);
-      r.dt_reason = job.text(8);
-      r.cutoff_hz = job.real(9);
+      r.cutoff_hz = job.real(8);
       r.ran_dt_s = r.dt_s;
-      if (!job.is_null(10)) seq = job.int64(10);
+      if (!job.is_null(9)) seq = job.int64(9);
       // Jobs with one operator key share the structure model (a bound of it
       // scales its mass or stiffness, so it has its own key) and whether
       // the train is axle forces (the rail flexibility is in the key; the
       // modal rung runs axle forces only): one scene says both.
-      const auto [it, fresh] = facts.try_emplace({r.train, job.text(11)});
+      const auto [it, fresh] = facts.try_emplace({r.train, job.text(10)});
       if (fresh) {
         it->second.first = "nominal";
         scene.reset();
@@ -100,10 +102,12 @@ struct BridgeReader::Statements {
       r.variant = it->second.first;
       r.axle_forces = it->second.second;
     }
-    if (seq) {
+    if (seq && fields != BridgeFields::kLabels) {
       values.reset();
       values.bind(1, *seq);
+      bool any = false;
       while (values.step()) {
+        any = true;
         const std::int64_t key = values.int64(0);
         if (key < 0 || static_cast<std::size_t>(key) >= keys.size() || !keys[static_cast<std::size_t>(key)].read)
           continue;
@@ -111,6 +115,9 @@ struct BridgeReader::Statements {
         r.envelopes[k.quantity][k.location] = values.optional_real(1);
         if (const auto estimate = values.optional_real(2)) r.error_estimates[k.quantity][k.location] = *estimate;
       }
+      if (!any && r.state == "done") bare_done_jobs.insert(rowid);
+    } else if (fields != BridgeFields::kLabels && r.state == "done") {
+      bare_done_jobs.insert(rowid);  // no number: no envelopes
     }
     return r;
   }
@@ -122,6 +129,12 @@ struct BridgeReader::Statements {
   // (train, operator key) -> (bound of the structure, axle forces)
   std::map<std::pair<std::string, std::string>, std::pair<std::string, std::optional<bool>>> facts;
   bool pending = false;  // rows holds the first row of the next bridge
+  // Done jobs read without any envelope value (a damaged page reads as
+  // fewer rows), by row (a job of two bridges is one): the study check
+  // these reads stand for (StudyCheck::kLinks).
+  std::set<std::int64_t> bare_done_jobs;
+  Database& db;
+  std::string study_id;
 };
 
 BridgeReader::BridgeReader(Database& db, const std::string& study_id, BridgeFields fields)
@@ -131,7 +144,12 @@ BridgeReader::~BridgeReader() = default;
 
 bool BridgeReader::next(std::string& name, std::vector<JobResult>& jobs) {
   jobs.clear();
-  if (!s_->pending) return false;
+  if (!s_->pending) {
+    // What require_consistent_study's kAll would have refused, found by reading.
+    if (!s_->bare_done_jobs.empty())
+      throw done_jobs_without_envelopes(s_->db, s_->study_id, static_cast<std::int64_t>(s_->bare_done_jobs.size()));
+    return false;
+  }
   name = s_->rows.text(0);
   // The facts of one scene per train and key hold within a bridge's jobs.
   s_->facts.clear();

@@ -14,11 +14,14 @@ namespace railvsi::scheduler {
 enum class BridgeFields {
   kAll,  // every field study_results reads
   // What the checks' verdicts read (ComplianceOptions::checks_only): the
-  // job's labels, state and step, its bound of the structure and whether
+  // job's labels, state and step (not why it was chosen), its bound of the structure and whether
   // its train is axle forces (read from one scene per train and operator
   // key, not per job), and only the envelope values the checks judge. No
   // fidelity record, warnings, timings or profile family.
   kVerdicts,
+  // kVerdicts without the envelope values: which jobs a bridge has, for
+  // the static envelopes stored at submission (stored_statics.hpp).
+  kLabels,
 };
 
 class BridgeReader {

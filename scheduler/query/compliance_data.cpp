@@ -20,6 +20,7 @@
 #include "compliance/check_limits.hpp"
 #include "query/price_figures.hpp"
 #include "query/static_effects.hpp"
+#include "query/stored_statics.hpp"
 #include "query/study_results.hpp"
 #include "report/governing_figures.hpp"
 #include "report/mode_shapes.hpp"
@@ -355,7 +356,11 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   report.accuracy_tolerance = info.tolerance;
   report.title = title_block(study, info.name);
 
-  const std::vector<JobResult> jobs = options.jobs ? *options.jobs : study_results(db, {study_id, {}, {}, {}, {}, {}});
+  // The caller's jobs as they are (a copy of a bridge's 1,010 jobs and their
+  // envelope maps cost as much as judging them).
+  std::vector<JobResult> read_jobs;
+  if (!options.jobs) read_jobs = study_results(db, {study_id, {}, {}, {}, {}, {}});
+  const std::vector<JobResult>& jobs = options.jobs ? *options.jobs : read_jobs;
   std::vector<std::string> train_order;
   std::map<std::string, std::vector<const JobResult*>> by_train;
   for (const JobResult& j : jobs) {
@@ -376,11 +381,17 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
   std::vector<std::string> variants;
   for (const JobResult& j : jobs)
     if (std::find(variants.begin(), variants.end(), j.variant) == variants.end()) variants.push_back(j.variant);
-  for (const std::string& t : train_order) {
-    const auto& list = by_train[t];
-    const auto nominal = std::find_if(list.begin(), list.end(), [](const JobResult* j) { return j->variant == "nominal"; });
-    scenes.emplace(t, load_job_scene(db, (nominal == list.end() ? list.front() : *nominal)->id));
-  }
+  // (The scenes the trains' static envelopes are stored by: stored_statics.)
+  const StaticSceneJobs scene_jobs = static_scene_jobs(jobs);
+  // The checks alone read the first train's scene (the structure); another
+  // train's only when its static envelopes are not stored.
+  const auto scene_of = [&](const std::string& t) -> const Scene& {
+    auto it = scenes.find(t);
+    if (it == scenes.end()) it = scenes.emplace(t, load_job_scene(db, scene_jobs.train_job.at(t))).first;
+    return it->second;
+  };
+  for (const std::string& t : train_order)
+    if (!options.checks_only || t == scene_jobs.train_job.begin()->first) scene_of(t);
   const Scene& first = scenes.begin()->second;
   const StructureModel& structure = *first.structure;
   const StructureInfo& sinfo = structure.info();
@@ -595,11 +606,14 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       return d;
     };
     for (const std::string& t : train_order) {
-      const std::vector<MovingForce> axles = axle_loads(scenes.at(t).train);
+      // Stored at submission (the same bits), else computed here.
+      std::optional<TrainStatics> stored =
+          read_train_statics(db, scene_jobs.structure_job, scene_jobs.train_job.at(t), *influence);
+      const TrainStatics train_stat =
+          stored ? std::move(*stored) : compute_train_statics(*influence, axle_loads(scene_of(t).train));
       // (Without forms it says why, with no values.)
-      const StaticSectionEnvelope section_stat = influence->section_envelope(axles);
-      TrainStatics* statics = known.influence ? &known.trains[t] : nullptr;
-      if (statics) statics->sections = section_stat;
+      const StaticSectionEnvelope& section_stat = train_stat.sections;
+      if (known.influence) known.trains[t] = train_stat;
       std::optional<double> ratio;
       const JobResult* gov_job = nullptr;
       std::string gov_point;
@@ -624,8 +638,7 @@ ComplianceReport build_compliance_report(Database& db, const std::string& study_
       };
       for (std::size_t k = 0; k < structure.outputs().size(); ++k) {
         const std::string& point = structure.outputs()[k].name;
-        const double y_stat = influence->train_envelope(static_cast<int>(k), axles).max_deflection_m;
-        if (statics) statics->max_deflection_m.push_back(y_stat);
+        const double y_stat = train_stat.max_deflection_m.at(k);
         const Dynamic y = dynamic_max(t, "deck_displacement_m", point);
         missing = missing || !y.all;
         if (y.value >= 0.0 && y_stat > 0.0 && lm71_deflection_m[k] > 0.0)

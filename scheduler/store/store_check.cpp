@@ -98,28 +98,39 @@ void require_sound(Database& db) {
                                          db.file(), first, db.file()));
 }
 
-void require_consistent_study(Database& db, const std::string& study_id) {
+namespace {
+
+std::runtime_error inconsistent(Database& db, const std::string& study_id, const std::string& why) {
+  return std::runtime_error(fmt::format("{} is damaged or inconsistent: study {}: {}; vsi check --db {} lists the problems",
+                                        db.file(), study_id.substr(0, 12), why, db.file()));
+}
+
+}  // namespace
+
+std::runtime_error done_jobs_without_envelopes(Database& db, const std::string& study_id, std::int64_t count) {
+  return inconsistent(db, study_id, fmt::format("{} done jobs have no envelopes", count));
+}
+
+void require_consistent_study(Database& db, const std::string& study_id, StudyCheck what) {
   // A shard store holds part of a study: job_count bounds the links, it
-  // need not equal them.
+  // need not equal them. The join to jobs reads their id index alone.
   Statement s = db.prepare(
       "SELECT (SELECT job_count FROM studies WHERE id = ?1), "
       "(SELECT count(*) FROM study_jobs WHERE study_id = ?1), "
       "(SELECT count(*) FROM study_jobs INDEXED BY study_jobs_job WHERE study_id = ?1), "
-      "(SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1), "
-      "(SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1 AND j.state = 'done' "
-      " AND NOT EXISTS (SELECT 1 FROM job_envelopes e WHERE e.job_seq = j.seq))");
+      "(SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1)");
   s.bind(1, study_id).step();
-  const std::int64_t listed = s.int64(0), linked = s.int64(1), indexed = s.int64(2), found = s.int64(3),
-                     bare = s.int64(4);
-  std::string why;
+  const std::int64_t listed = s.int64(0), linked = s.int64(1), indexed = s.int64(2), found = s.int64(3);
   if (linked != indexed || linked != found || linked > listed)
-    why = fmt::format("the study lists {} jobs; {} are linked to it, {} through the job index and {} found", listed,
-                      linked, indexed, found);
-  else if (bare > 0)
-    why = fmt::format("{} done jobs have no envelopes", bare);
-  if (!why.empty())
-    throw std::runtime_error(fmt::format("{} is damaged or inconsistent: study {}: {}; vsi check --db {} lists the problems",
-                                         db.file(), study_id.substr(0, 12), why, db.file()));
+    throw inconsistent(db, study_id,
+                       fmt::format("the study lists {} jobs; {} are linked to it, {} through the job index and {} found",
+                                   listed, linked, indexed, found));
+  if (what == StudyCheck::kLinks) return;
+  Statement b = db.prepare(
+      "SELECT count(*) FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id WHERE sj.study_id = ?1 AND j.state = 'done' "
+      "AND NOT EXISTS (SELECT 1 FROM job_envelopes e WHERE e.job_seq = j.seq)");
+  b.bind(1, study_id).step();
+  if (const std::int64_t bare = b.int64(0); bare > 0) throw done_jobs_without_envelopes(db, study_id, bare);
 }
 
 }  // namespace railvsi::scheduler

@@ -308,6 +308,21 @@ CREATE VIEW study_envelopes AS
   SELECT sj.study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
   FROM study_jobs sj JOIN jobs j ON j.id = sj.job_id JOIN job_envelopes e ON e.job_seq = j.seq;
 )sql"},
+      {"static_envelopes: the static envelopes of a train on a structure (deflection at each output point, section "
+       "forces and support values of a beam deck), computed once when the study is submitted and read by vsi "
+       "query --line and vsi report instead of the static influence lines again; keyed by the two jobs whose "
+       "scenes give the structure and the train. A store of an older vsi gets them on its upgrade",
+       R"sql(
+CREATE TABLE static_envelopes (
+  structure_job TEXT NOT NULL REFERENCES jobs (id),  -- the job whose scene gives the structure and its rail lines
+  train_job     TEXT NOT NULL REFERENCES jobs (id),  -- the job whose scene gives the train's axles
+  quantity      TEXT NOT NULL,        -- deck_displacement_m, bending_moment_Nm, shear_force_N, support_reaction_N, support_rotation_rad
+  place         INTEGER NOT NULL,     -- the output point's or the support's index in the structure
+  location      TEXT NOT NULL,        -- its name
+  value         REAL,                 -- max over the train's positions; NULL: the section has no such form
+  PRIMARY KEY (structure_job, train_job, quantity, place)
+) WITHOUT ROWID;
+)sql"},
   };
   return all;
 }

@@ -4,6 +4,10 @@
 // values equal that study's to the bit; a structure listed twice is one
 // set of jobs; the query and the report read the study per bridge; and a
 // shard keeps the planned rung of its jobs.
+#include <stdlib.h>
+
+#include <bit>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -11,7 +15,10 @@
 #include <tuple>
 
 #include "core/input_error.hpp"
+#include "analysis/static_influence.hpp"
 #include "query/bridge_results.hpp"
+#include "query/stored_statics.hpp"
+#include "simulation/static_equilibrium.hpp"
 #include "scheduler_test_support.hpp"
 #include "study/study_plan.hpp"
 
@@ -330,6 +337,130 @@ TEST_F(LineStudyFiles, ReadBridgeByBridgeTheLineIsWhatTheWholeStudyReadAtOnceGiv
     }
     EXPECT_FALSE(reader.next(name, jobs));
     EXPECT_TRUE(jobs.empty());
+  }
+}
+
+// The bits of a value (nullopt stays nullopt: a missing value never equals one).
+std::optional<std::uint64_t> bits(std::optional<double> v) {
+  return v ? std::optional(std::bit_cast<std::uint64_t>(*v)) : std::nullopt;
+}
+
+// Schema 14: the submission stores each bridge's static envelopes of each
+// train (the deflection at each output point, the section forces and
+// support values of the beam deck), and what the store gives back is what
+// the static influence lines give, to the bit: the expected values here
+// are StaticInfluence's own, not the stored path's. With the rows gone the
+// line table and the report compute them, to the same bytes.
+TEST_F(LineStudyFiles, TheStoredStaticEnvelopesAreTheInfluenceLinesOwnToTheBit) {
+  const std::string db = (dir_ / "line.sqlite").string();
+  ASSERT_EQ(vsi({"run", write_json("line.json", line_study()).string(), "--db", db}, "run").exit_code, 0);
+  const std::string id = study_id(db);
+  std::size_t pairs = 0, expected_rows = 0;
+  {
+    scheduler::Database d(db, scheduler::OpenMode::kReadOnly);
+    scheduler::BridgeReader reader(d, id, scheduler::BridgeFields::kLabels);
+    std::string name;
+    std::vector<scheduler::JobResult> jobs;
+    std::set<std::pair<std::string, std::string>> seen;
+    while (reader.next(name, jobs)) {
+      SCOPED_TRACE(name);
+      const scheduler::StaticSceneJobs picked = scheduler::static_scene_jobs(jobs);
+      ASSERT_EQ(picked.train_job.size(), 2u);  // two trains
+      const Scene structure_scene = scheduler::load_job_scene(d, picked.structure_job);
+      const StaticInfluence influence(*structure_scene.structure, structure_scene.analysis.contact.rail_lines);
+      const std::size_t points = structure_scene.structure->outputs().size();
+      const std::size_t supports = influence.section_forms().supports.size();
+      ASSERT_EQ(points, 2u);
+      ASSERT_TRUE(influence.section_forms().available());
+      for (const auto& [train, job] : picked.train_job) {
+        SCOPED_TRACE(train);
+        const std::optional<scheduler::TrainStatics> stored =
+            scheduler::read_train_statics(d, picked.structure_job, job, influence);
+        ASSERT_TRUE(stored.has_value());
+        const std::vector<MovingForce> axles = axle_loads(scheduler::load_job_scene(d, job).train);
+        const StaticSectionEnvelope sections = influence.section_envelope(axles);
+        ASSERT_EQ(stored->max_deflection_m.size(), points);
+        for (std::size_t k = 0; k < points; ++k) {
+          const double computed = influence.train_envelope(static_cast<int>(k), axles).max_deflection_m;
+          EXPECT_GT(computed, 0.0);  // a train of downward loads bends the span down
+          EXPECT_EQ(bits(stored->max_deflection_m[k]), bits(computed)) << k;
+        }
+        EXPECT_EQ(stored->sections.unavailable, sections.unavailable);
+        ASSERT_EQ(stored->sections.max_abs_bending_moment_Nm.size(), points);
+        ASSERT_EQ(stored->sections.max_reaction_N.size(), supports);
+        for (std::size_t k = 0; k < points; ++k) {
+          ASSERT_TRUE(sections.max_abs_bending_moment_Nm[k].has_value());
+          EXPECT_EQ(bits(stored->sections.max_abs_bending_moment_Nm[k]), bits(sections.max_abs_bending_moment_Nm[k]));
+          EXPECT_EQ(bits(stored->sections.max_abs_shear_force_N[k]), bits(sections.max_abs_shear_force_N[k]));
+        }
+        for (std::size_t i = 0; i < supports; ++i) {
+          EXPECT_EQ(bits(stored->sections.max_reaction_N[i]), bits(sections.max_reaction_N[i]));
+          EXPECT_EQ(bits(stored->sections.max_abs_rotation_rad[i]), bits(sections.max_abs_rotation_rad[i]));
+        }
+        // Bridges A and C are one structure (one set of jobs): one set of rows.
+        if (seen.insert({picked.structure_job, job}).second) {
+          ++pairs;
+          expected_rows += 3 * points + 2 * supports;
+        }
+      }
+    }
+    EXPECT_EQ(pairs, 4u);  // 2 distinct spans x 2 trains
+    EXPECT_EQ(count_rows(d, "SELECT count(*) FROM static_envelopes"), static_cast<std::int64_t>(expected_rows));
+  }
+  // Read, then computed: the same bytes.
+  const auto outputs = [&](const std::string& tag) {
+    std::vector<std::string> out;
+    for (const char* format : {"table", "csv", "json"}) {
+      const VsiResult r = vsi({"query", "--db", db, "--study", id, "--line", "--format", format}, tag);
+      EXPECT_EQ(r.exit_code, 0) << r.err;
+      out.push_back(r.out);
+    }
+    // The report's one changing line, the date, fixed (the child inherits it).
+    ::setenv("SOURCE_DATE_EPOCH", "1800000000", 1);
+    const VsiResult report = vsi({"report", "--db", db, "--study", id, "--no-histories", "--format", "json"}, tag);
+    ::unsetenv("SOURCE_DATE_EPOCH");
+    EXPECT_EQ(report.exit_code, 0) << report.err;
+    out.push_back(report.out);
+    return out;
+  };
+  const std::vector<std::string> read = outputs("read");
+  {
+    scheduler::Database d(db);
+    d.exec("DELETE FROM static_envelopes");
+  }
+  EXPECT_EQ(outputs("computed"), read);
+}
+
+// The line table and the line report check the study's links alone before
+// reading (StudyCheck::kLinks) and refuse, as they read, a done job without
+// envelopes (a damaged page reads as fewer rows): nothing printed, exit 1,
+// the message of the whole check.
+TEST_F(LineStudyFiles, TheLineRefusesADoneJobWithoutEnvelopesFoundAsItReads) {
+  const std::string db = (dir_ / "line.sqlite").string();
+  ASSERT_EQ(vsi({"run", write_json("line.json", line_study()).string(), "--db", db}, "run").exit_code, 0);
+  const std::string id = study_id(db);
+  ASSERT_EQ(vsi({"query", "--db", db, "--study", id, "--line"}, "sound").exit_code, 0);
+  {
+    scheduler::Database d(db);
+    // A job of bridge A, which C shares: read twice, one job.
+    d.exec("DELETE FROM envelope_values WHERE job_seq = (SELECT min(j.seq) FROM jobs j JOIN study_structures ss "
+           "ON ss.job_id = j.id WHERE ss.structure = 'C')");
+    EXPECT_EQ(count_rows(d, "SELECT count(*) FROM study_structures ss JOIN jobs j ON j.id = ss.job_id WHERE j.seq = "
+                            "(SELECT min(j.seq) FROM jobs j JOIN study_structures ss ON ss.job_id = j.id "
+                            "WHERE ss.structure = 'C')"),
+              2);
+  }
+  const std::string expected = "study " + id.substr(0, 12) + ": 1 done jobs have no envelopes";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"query", "--db", db, "--study", id, "--line"},
+        std::vector<std::string>{"query", "--db", db, "--study", id, "--line", "--train", "one axle"},
+        std::vector<std::string>{"query", "--db", db, "--study", id, "--format", "csv"},
+        std::vector<std::string>{"report", "--db", db, "--study", id, "--no-histories", "--format", "json"}}) {
+    SCOPED_TRACE(args.back());
+    const VsiResult r = vsi(args, "damaged");
+    EXPECT_EQ(r.exit_code, 1) << r.out;
+    EXPECT_EQ(r.out, "");
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
   }
 }
 

@@ -4,7 +4,9 @@
 // keyed by the job's number; view envelopes gives them by job id as before.
 // 12: records and price rows take the schema's spelling of the load model.
 // 13: the envelopes are stored by a small key of quantity and location;
-// view job_envelopes gives (and takes) them as the table did.
+// view job_envelopes gives (and takes) them as the table did. 14: the
+// trains' static envelopes of a line study are stored; an older store gets
+// them on its upgrade, the same rows a submission stores.
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -383,6 +385,53 @@ TEST_F(StoreMigration, ThirteenKeepsEveryEnvelopeToTheBitAndTheViewWritesThrough
   EXPECT_EQ(std::count_if(after.begin(), after.end(),
                           [](const std::string& p) { return p.find("no known quantity") != std::string::npos; }),
             1);
+}
+
+TEST_F(StoreMigration, FourteenStoresTheStaticEnvelopesOfAnOldStoresLineOnItsUpgradeAsASubmissionDoes) {
+  json doc = tiny_study();
+  json a = doc["structure"], b = doc["structure"];
+  b["spans_m"] = {12};
+  doc.erase("structure");
+  doc["structures"] = json::array({{{"name", "A"}, {"structure", a}}, {{"name", "B"}, {"structure", b}}});
+  const auto file = write_json("line.json", doc);
+  const std::string old_db = (dir_ / "old.sqlite").string(), new_db = (dir_ / "new.sqlite").string();
+  {
+    // A version-13 store of the line, submitted by the queue as vsi 13 did.
+    Database db(old_db);
+    migrate(db, 13);
+    const StudyPlan plan = expand_study(doc, dir_, file.string());
+    submit_study(db, plan);
+    EXPECT_EQ(count_rows(db, "SELECT count(*) FROM sqlite_schema WHERE name = 'static_envelopes'"), 0);
+  }
+  const VsiResult upgrade = vsi({"work", "--db", old_db, "--threads", "1"}, "upgrade");
+  ASSERT_EQ(upgrade.exit_code, 0) << upgrade.err;
+  EXPECT_NE(upgrade.err.find("the static envelopes of 4 trains stored"), std::string::npos) << upgrade.err;
+  const VsiResult submitted = vsi({"submit", file.string(), "--db", new_db}, "submit");
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.err;
+  // Every row, its value's bits included: (structure job, train job,
+  // quantity, place, location, bits or NULL).
+  const auto rows = [](const std::string& file) {
+    Database db(file, OpenMode::kReadOnly);
+    EXPECT_EQ(count_rows(db, "PRAGMA user_version"), kStoreSchemaVersion);
+    std::vector<std::string> out;
+    Statement s = db.prepare("SELECT structure_job, train_job, quantity, place, location, value FROM static_envelopes "
+                             "ORDER BY structure_job, train_job, quantity, place");
+    while (s.step()) {
+      const std::optional<double> v = s.optional_real(5);
+      out.push_back(s.text(0) + " " + s.text(1) + " " + s.text(2) + " " + std::to_string(s.int64(3)) + " " +
+                    s.text(4) + " " + (v ? std::to_string(std::bit_cast<std::uint64_t>(*v)) : "NULL"));
+    }
+    return out;
+  };
+  const std::vector<std::string> upgraded = rows(old_db);
+  // 2 bridges x 2 trains x (2 output points x deflection, moment and shear
+  // + 2 supports x reaction and rotation).
+  EXPECT_EQ(upgraded.size(), 2u * 2u * (2u * 3u + 2u * 2u));
+  EXPECT_EQ(rows(new_db), upgraded);
+  // The upgrade is done once: the next writer finds schema 14 and stores nothing.
+  const VsiResult again = vsi({"work", "--db", old_db, "--threads", "1"}, "again");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(again.err.find("static envelopes"), std::string::npos) << again.err;
 }
 
 }  // namespace
