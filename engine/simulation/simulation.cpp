@@ -271,7 +271,7 @@ Result Simulation::run() const {
   sum.fidelity.solver_path = an.solver == SolverPath::kReference ? "reference" : "condensed";
   sum.fidelity.structure_dofs = sc.structure->num_dofs();
   if (an.structure_backend == StructureBackend::kHybrid && op_) {
-    // The bridge's modes (with the track-bearing DOFs held) and their cut-off.
+    // The bridge's modes (free-interface by default: BridgeModes) and their cut-off.
     const auto* hybrid = dynamic_cast<const HybridOperator*>(op_.get());
     sum.fidelity.modes = hybrid ? hybrid->basis().num_modes() : 0;
     sum.fidelity.modal_cutoff_hz =

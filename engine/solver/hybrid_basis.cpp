@@ -306,7 +306,7 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
     modes = interior_modes(K.II, M.II, options, factor.get(), summary_);
     factor.reset();
     frequencies_hz_ = modes.frequencies_hz;
-  } else {
+  } else if (n_interior > 0) {
     // The bridge's own modes (its interface free), each less its static
     // interface part, then orthonormalised on the interior.
     factor.reset();

@@ -1,14 +1,16 @@
 #pragma once
 // The hybrid structure: the track in finite elements, the bridge in its
-// modes. Craig-Bampton reduction of the bridge (Craig & Bampton, "Coupling
-// of substructures for dynamic analyses", AIAA Journal 6(7), 1968): the
-// bridge DOFs split into the interface G (those coupled to a track DOF in
-// K, M or C) and the interior I, and
+// modes. The bridge DOFs split into the interface G (those coupled to a
+// track DOF in K, M or C) and the interior I, and
 //
 //   u_I = Psi u_G + Phi q,   Psi = -K_II^-1 K_IG,
 //
-// Psi the static constraint modes, Phi the interior's modes with the
-// interface held (K_II phi = omega^2 M_II phi) up to a cut-off. The state
+// Psi the static constraint modes and Phi a basis of the interior with the
+// interface held: by default the bridge's own modes up to a cut-off (its
+// interface free), less their static interface part (BridgeModes::
+// kFreeInterface, MacNeal-Rubin in primal form), or the interior's modes
+// with the interface held (kFixedInterface, Craig & Bampton, "Coupling of
+// substructures for dynamic analyses", AIAA Journal 6(7), 1968). The state
 // is x = [u_T; u_G; q]: the track's DOFs and the interface as they are, the
 // interior in its modes. The reduced matrices are T' K T, T' M T, T' C T of
 // that transformation, so the track keeps its own damping and its coupling
@@ -69,7 +71,7 @@ struct HybridBasisOptions {
   // kRayleighFitTolerance), reduce C from M's and K's reductions instead
   // of its own products (false: always its own; for verification).
   bool rayleigh_shortcut = true;
-  BridgeModes bridge_modes = BridgeModes::kFixedInterface;
+  BridgeModes bridge_modes = BridgeModes::kFreeInterface;
 };
 
 // How exactly C must equal a0 M + a1 K on the bridge's interior (largest
@@ -144,7 +146,7 @@ class HybridBasis {
   int n_track_ = 0, n_interface_ = 0;
   std::vector<double> frequencies_hz_;
   std::vector<double> bridge_frequencies_hz_;
-  BridgeModes bridge_modes_ = BridgeModes::kFixedInterface;
+  BridgeModes bridge_modes_ = BridgeModes::kFreeInterface;
   double cutoff_hz_ = 0.0;
   std::vector<int> index_;   // model DOF -> coordinate, -1 interior
   std::vector<int> row_of_;  // model DOF -> column of rows_, -1 none

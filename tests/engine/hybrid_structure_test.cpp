@@ -1,5 +1,6 @@
 // The hybrid structure (solver/hybrid_basis.hpp): the track in finite
-// elements, the bridge in its modes with the track-bearing DOFs held. With
+// elements, the bridge in its modes (free-interface by default, or with the
+// interface held) and its static constraint modes. With
 // every bridge mode kept it is the finite-element model in other
 // coordinates, so a run must give the FE run's histories to round-off; with
 // a cut-off it is statically exact and close dynamically.
@@ -98,14 +99,21 @@ TEST(HybridStructure, WithEveryBridgeModeKeptEqualsTheFiniteElementRun) {
   Scene s = viaduct_scene();
   const Result fe = run(s);
   s.analysis.structure_backend = StructureBackend::kHybrid;
+  const HybridBasis basis(s.structure, HybridBasisOptions{0.0, 0, true});
+  // Free-interface modes (the default): every mode of the bridge kept, the
+  // Rayleigh-Ritz step keeps as many directions as the interior has DOFs.
+  EXPECT_EQ(basis.interface_dofs() + basis.num_modes(), s.structure->info().deck_dofs);
+  EXPECT_EQ(static_cast<int>(basis.bridge_frequencies_hz().size()), s.structure->info().deck_dofs);
   const Result hy = run(s, hybrid_operator(s, HybridBasisOptions{0.0, 0, true}));
-  EXPECT_NE(hy.summary.fidelity.structure_backend.find("hybrid"), std::string::npos);
+  EXPECT_NE(hy.summary.fidelity.structure_backend.find("free-interface modes"), std::string::npos);
+  const double d = history_difference(hy, fe);
+  std::printf("[hybrid free-interface, every mode] history difference %.2e\n", d);
   // The same model in other coordinates (300 track DOFs, 67 interface DOFs,
-  // 133 modes): measured 1.63e-9 of the largest value over the run with its
-  // default free vibration (2.0e-10 when the run stopped 10 m after the last
-  // axle; 2026-11-27), the contact Newton's tolerance and the modes'
-  // round-off; tolerance 4.5e-9.
-  EXPECT_LT(history_difference(hy, fe), 4.5e-9);
+  // 133 modes): measured 5.75e-10 of the largest value over the run with its
+  // default free vibration (2026-11-28; 1.63e-9 with the fixed-interface
+  // modes), the contact Newton's tolerance and the modes' round-off;
+  // tolerance 1.7e-9.
+  EXPECT_LT(d, 1.7e-9);
 }
 
 TEST(HybridStructure, WithEveryBridgeModeKeptGivesTheFiniteElementSectionForces) {
@@ -177,8 +185,10 @@ TEST(HybridStructure, OnADeck3dWithEveryBridgeModeKeptEqualsTheFiniteElementRun)
 // dense eigensolver (every mode kept) are the reference.
 TEST(HybridStructure, InteriorModesToACutoffEqualTheDenseSolversAndPassTheResidualCheck) {
   const auto structure = two_span_deck_3d();
-  const HybridBasis dense(structure, HybridBasisOptions{0.0, 0, true});
-  const HybridBasis cut(structure, HybridBasisOptions{150.0, 0, false});
+  HybridBasisOptions o_dense{0.0, 0, true}, o_cut{150.0, 0, false};
+  o_dense.bridge_modes = o_cut.bridge_modes = BridgeModes::kFixedInterface;
+  const HybridBasis dense(structure, o_dense);
+  const HybridBasis cut(structure, o_cut);
   ASSERT_GT(hybrid_partition(*structure).interior_dofs, 400);  // past the dense path of the cut-off
   const std::vector<double>& f = cut.frequencies_hz();
   ASSERT_GT(f.size(), 10u);
@@ -233,25 +243,21 @@ TEST(HybridStructure, ARayleighDampedInteriorReducesCFromMAndKAsItsOwnProducts) 
   EXPECT_FALSE(HybridBasis(damped, HybridBasisOptions{150.0, 0, false}).summary().rayleigh_damping);
 }
 
-// Free-interface modes (BridgeModes::kFreeInterface): with every mode of the
-// bridge kept, their span with the constraint modes is the whole bridge, so
-// the run is the FE run in other coordinates (the Rayleigh-Ritz step drops
-// the interface's share of directions the free modes repeat).
-TEST(HybridStructure, WithEveryFreeInterfaceModeKeptEqualsTheFiniteElementRun) {
+// Fixed-interface modes (Craig-Bampton, BridgeModes::kFixedInterface), kept
+// for verification: with every interior mode kept, the FE run too.
+TEST(HybridStructure, WithEveryFixedInterfaceModeKeptEqualsTheFiniteElementRun) {
   Scene s = viaduct_scene();
   const Result fe = run(s);
   s.analysis.structure_backend = StructureBackend::kHybrid;
   HybridBasisOptions o{0.0, 0, true};
-  o.bridge_modes = BridgeModes::kFreeInterface;
-  const HybridBasis basis(s.structure, o);
-  EXPECT_EQ(basis.interface_dofs() + basis.num_modes(), s.structure->info().deck_dofs);
-  EXPECT_EQ(static_cast<int>(basis.bridge_frequencies_hz().size()), s.structure->info().deck_dofs);
+  o.bridge_modes = BridgeModes::kFixedInterface;
   const Result hy = run(s, hybrid_operator(s, o));
-  EXPECT_NE(hy.summary.fidelity.structure_backend.find("free-interface modes"), std::string::npos);
+  EXPECT_EQ(hy.summary.fidelity.structure_backend.find("free-interface"), std::string::npos);
   const double d = history_difference(hy, fe);
-  std::printf("[hybrid free-interface, every mode] history difference %.2e\n", d);
-  // Measured 5.75e-10 of the largest value (2026-11-28); tolerance 1.7e-9.
-  EXPECT_LT(d, 1.7e-9);
+  std::printf("[hybrid fixed-interface, every mode] history difference %.2e\n", d);
+  // Measured 1.63e-9 of the largest value over the run with its default
+  // free vibration (2026-11-27); tolerance 4.5e-9.
+  EXPECT_LT(d, 4.5e-9);
 }
 
 // At a cut-off the two kinds of bridge modes give up different things: the
