@@ -27,6 +27,8 @@ struct AnalysisOptions {
   StructureBackend structure_backend = StructureBackend::kFiniteElements;
   int modal_modes = 0;
   double modal_cutoff_hz = 0.0;
+  // Hybrid: which modes of the bridge join its constraint modes.
+  BridgeModes hybrid_bridge_modes = BridgeModes::kFreeInterface;
   // Modal with vehicles: the dropped modes' static flexibility at the rails
   // (StructureOperatorOptions::modal_static_correction).
   bool modal_static_correction = true;

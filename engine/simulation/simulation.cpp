@@ -109,6 +109,7 @@ StructureOperatorOptions structure_operator_options(const Scene& scene) {
   options.structure_backend = scene.analysis.structure_backend;
   options.modal_modes = scene.analysis.modal_modes;
   options.modal_cutoff_hz = scene.analysis.modal_cutoff_hz;
+  options.hybrid_bridge_modes = scene.analysis.hybrid_bridge_modes;
   options.rail_flexibility = !scene.train.is_moving_forces();
   options.modal_static_correction = scene.analysis.modal_static_correction;
   return options;
@@ -270,7 +271,7 @@ Result Simulation::run() const {
   sum.fidelity.solver_path = an.solver == SolverPath::kReference ? "reference" : "condensed";
   sum.fidelity.structure_dofs = sc.structure->num_dofs();
   if (an.structure_backend == StructureBackend::kHybrid && op_) {
-    // The bridge's modes (with the track-bearing DOFs held) and their cut-off.
+    // The bridge's modes (free-interface by default: BridgeModes) and their cut-off.
     const auto* hybrid = dynamic_cast<const HybridOperator*>(op_.get());
     sum.fidelity.modes = hybrid ? hybrid->basis().num_modes() : 0;
     sum.fidelity.modal_cutoff_hz =

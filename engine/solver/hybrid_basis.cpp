@@ -81,6 +81,55 @@ Blocks split(const SparseMatrix& A, const std::vector<Part>& part, const std::ve
   return b;
 }
 
+// The bridge's interior and interface as one matrix (interior first, then
+// the interface): the bridge without its track.
+SparseMatrix bridge_block(const SparseMatrix& A, const std::vector<Part>& part, const std::vector<int>& local,
+                          int n_interior, int n_interface) {
+  std::vector<Triplet> t;
+  const auto at = [&](std::size_t d) { return part[d] == Part::kInterior ? local[d] : n_interior + local[d]; };
+  for (int j = 0; j < A.outerSize(); ++j) {
+    const auto uj = static_cast<std::size_t>(j);
+    if (part[uj] == Part::kTrack) continue;
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+      const auto ui = static_cast<std::size_t>(it.row());
+      if (part[ui] != Part::kTrack) t.emplace_back(at(ui), at(uj), it.value());
+    }
+  }
+  SparseMatrix B(n_interior + n_interface, n_interior + n_interface);
+  B.setFromTriplets(t.begin(), t.end());
+  return B;
+}
+
+// Rayleigh-Ritz of the interior (K_II, M_II) on the columns of Q: an
+// M_II-orthonormal basis of their span whose K_II block is diagonal,
+// ascending, and its frequencies (Hz). Directions of Q that are (nearly)
+// dependent, relative 1e-10 in Q' M_II Q, are dropped: with every free mode
+// kept, Q has more columns than the interior has DOFs.
+std::pair<DenseMatrix, std::vector<double>> interior_ritz(const SparseMatrix& K, const SparseMatrix& M,
+                                                          const DenseMatrix& Q) {
+  DenseMatrix SM;
+  multiply_transposed(Q, sparse_times_dense(M, Q), SM);
+  SM = (0.5 * (SM + SM.transpose())).eval();
+  Eigen::SelfAdjointEigenSolver<DenseMatrix> em(SM);
+  const Eigen::VectorXd& d = em.eigenvalues();
+  const double largest = d.size() ? d.maxCoeff() : 0.0;
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index k = 0; k < d.size(); ++k)
+    if (d(k) > 1e-10 * largest) keep.push_back(k);
+  DenseMatrix U(SM.rows(), static_cast<Eigen::Index>(keep.size()));
+  for (std::size_t k = 0; k < keep.size(); ++k)
+    U.col(static_cast<Eigen::Index>(k)) = em.eigenvectors().col(keep[k]) / std::sqrt(d(keep[k]));
+  const DenseMatrix B = Q * U;
+  DenseMatrix SK;
+  multiply_transposed(B, sparse_times_dense(K, B), SK);
+  SK = (0.5 * (SK + SK.transpose())).eval();
+  Eigen::SelfAdjointEigenSolver<DenseMatrix> ek(SK);
+  std::vector<double> f;
+  for (Eigen::Index k = 0; k < ek.eigenvalues().size(); ++k)
+    f.push_back(std::sqrt(std::max(ek.eigenvalues()(k), 0.0)) / (2.0 * std::numbers::pi));
+  return {B * ek.eigenvectors(), std::move(f)};
+}
+
 // The interior's modes with the interface held, mass-normalised.
 // `factor`: K's L L' factor (the constraint modes'), the first shift (0).
 ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const HybridBasisOptions& o,
@@ -251,15 +300,34 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
   }
   summary_.constraint_modes_cpu_s = thread_cpu_s() - cpu_s;
   cpu_s = thread_cpu_s();
-  const ModalResult modes = interior_modes(K.II, M.II, options, factor.get(), summary_);
-  factor.reset();
+  bridge_modes_ = options.bridge_modes;
+  ModalResult modes;
+  if (bridge_modes_ == BridgeModes::kFixedInterface) {
+    modes = interior_modes(K.II, M.II, options, factor.get(), summary_);
+    factor.reset();
+    frequencies_hz_ = modes.frequencies_hz;
+  } else if (n_interior > 0) {
+    // The bridge's own modes (its interface free), each less its static
+    // interface part, then orthonormalised on the interior.
+    factor.reset();
+    const SparseMatrix K_BB = bridge_block(s.K(), part, local, n_interior, n_interface_);
+    const SparseMatrix M_BB = bridge_block(s.M(), part, local, n_interior, n_interface_);
+    ModalResult free = interior_modes(K_BB, M_BB, options, nullptr, summary_);
+    bridge_frequencies_hz_ = free.frequencies_hz;
+    const DenseMatrix Q = free.shapes.topRows(n_interior) - Psi * free.shapes.bottomRows(n_interface_);
+    auto [basis, ritz_hz] = interior_ritz(K.II, M.II, Q);
+    modes.shapes = std::move(basis);
+    modes.factorizations = free.factorizations;
+    modes.factor_cpu_s = free.factor_cpu_s;
+    frequencies_hz_ = std::move(ritz_hz);
+  }
   summary_.interior_modes_cpu_s = thread_cpu_s() - cpu_s;
   summary_.factorizations = modes.factorizations;
   summary_.interior_factor_cpu_s = modes.factor_cpu_s;
-  frequencies_hz_ = modes.frequencies_hz;
   const DenseMatrix& Phi = modes.shapes;
   const int m = num_modes();
-  cutoff_hz_ = options.modes > 0 || options.all_modes ? (m > 0 ? frequencies_hz_.back() : 0.0)
+  const std::vector<double>& chosen = bridge_frequencies_hz_.empty() ? frequencies_hz_ : bridge_frequencies_hz_;
+  cutoff_hz_ = options.modes > 0 || options.all_modes ? (chosen.empty() ? 0.0 : chosen.back())
                                                        : options.max_frequency_hz;
 
   // T' A T block by block; the track's rows and columns as they are. With
@@ -396,8 +464,8 @@ std::size_t HybridBasis::memory_bytes() const {
 }
 
 std::string HybridBasis::describe() const {
-  return fmt::format("hybrid: track in FE ({} DOFs), bridge in {} modes up to {:.4g} Hz with {} interface DOFs",
-                     n_track_, num_modes(), cutoff_hz_, n_interface_);
+  return fmt::format("hybrid: track in FE ({} DOFs), bridge in {} {}modes up to {:.4g} Hz with {} interface DOFs",
+                     n_track_, num_modes(), modes_label(), cutoff_hz_, n_interface_);
 }
 
 }  // namespace railvsi

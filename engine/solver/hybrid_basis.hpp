@@ -1,14 +1,16 @@
 #pragma once
 // The hybrid structure: the track in finite elements, the bridge in its
-// modes. Craig-Bampton reduction of the bridge (Craig & Bampton, "Coupling
-// of substructures for dynamic analyses", AIAA Journal 6(7), 1968): the
-// bridge DOFs split into the interface G (those coupled to a track DOF in
-// K, M or C) and the interior I, and
+// modes. The bridge DOFs split into the interface G (those coupled to a
+// track DOF in K, M or C) and the interior I, and
 //
 //   u_I = Psi u_G + Phi q,   Psi = -K_II^-1 K_IG,
 //
-// Psi the static constraint modes, Phi the interior's modes with the
-// interface held (K_II phi = omega^2 M_II phi) up to a cut-off. The state
+// Psi the static constraint modes and Phi a basis of the interior with the
+// interface held: by default the bridge's own modes up to a cut-off (its
+// interface free), less their static interface part (BridgeModes::
+// kFreeInterface, MacNeal-Rubin in primal form), or the interior's modes
+// with the interface held (kFixedInterface, Craig & Bampton, "Coupling of
+// substructures for dynamic analyses", AIAA Journal 6(7), 1968). The state
 // is x = [u_T; u_G; q]: the track's DOFs and the interface as they are, the
 // interior in its modes. The reduced matrices are T' K T, T' M T, T' C T of
 // that transformation, so the track keeps its own damping and its coupling
@@ -39,6 +41,22 @@ struct HybridPartition {
 };
 HybridPartition hybrid_partition(const StructureModel& structure);
 
+// Which modes of the bridge join its static constraint modes.
+enum class BridgeModes {
+  // The interior's modes with the interface held, K_II phi = omega^2 M_II
+  // phi (Craig-Bampton).
+  kFixedInterface,
+  // The bridge's own modes without its track, the interface free
+  // (K_BB phi = omega^2 M_BB phi), each less its static interface part:
+  // phi_I - Psi phi_G. With the constraint modes they span what
+  // free-interface modes with residual flexibility span (MacNeal-Rubin in
+  // primal form: MacNeal, Computers & Structures 1(4), 1971; Rubin, AIAA
+  // Journal 13(8), 1975). The bridge's low modes are then in the basis as
+  // they are, where the held interface (the deck's top, which carries the
+  // track) moves the fixed-interface modes far above them.
+  kFreeInterface,
+};
+
 struct HybridBasisOptions {
   // Interior modes up to this frequency (Hz), > 0; or, when modes > 0,
   // exactly the lowest `modes`; or, with all_modes, every one (a dense
@@ -53,6 +71,7 @@ struct HybridBasisOptions {
   // kRayleighFitTolerance), reduce C from M's and K's reductions instead
   // of its own products (false: always its own; for verification).
   bool rayleigh_shortcut = true;
+  BridgeModes bridge_modes = BridgeModes::kFreeInterface;
 };
 
 // How exactly C must equal a0 M + a1 K on the bridge's interior (largest
@@ -94,8 +113,17 @@ class HybridBasis {
   int interface_dofs() const { return n_interface_; }
   int num_modes() const { return static_cast<int>(frequencies_hz_.size()); }
   int size() const { return n_track_ + n_interface_ + num_modes(); }
-  // Frequencies of the interior's modes kept (interface held), ascending.
+  // Frequencies of the interior's modes kept (interface held), ascending:
+  // with free-interface modes, those of the interior in the subspace they
+  // span (Rayleigh-Ritz).
   const std::vector<double>& frequencies_hz() const { return frequencies_hz_; }
+  // With free-interface modes, the bridge's own frequencies that the
+  // cut-off chose (interface free); empty otherwise.
+  const std::vector<double>& bridge_frequencies_hz() const { return bridge_frequencies_hz_; }
+  BridgeModes bridge_modes() const { return bridge_modes_; }
+  // "free-interface " for free-interface modes, "" for the interface held
+  // (the form the fidelity records have named since the hybrid rung came).
+  const char* modes_label() const { return bridge_modes_ == BridgeModes::kFreeInterface ? "free-interface " : ""; }
   // The cut-off asked, or the highest frequency kept (modes, all_modes).
   double cutoff_hz() const { return cutoff_hz_; }
 
@@ -117,6 +145,8 @@ class HybridBasis {
   std::shared_ptr<const StructureModel> reduced_;
   int n_track_ = 0, n_interface_ = 0;
   std::vector<double> frequencies_hz_;
+  std::vector<double> bridge_frequencies_hz_;
+  BridgeModes bridge_modes_ = BridgeModes::kFreeInterface;
   double cutoff_hz_ = 0.0;
   std::vector<int> index_;   // model DOF -> coordinate, -1 interior
   std::vector<int> row_of_;  // model DOF -> column of rows_, -1 none

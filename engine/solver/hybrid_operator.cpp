@@ -61,8 +61,9 @@ DenseMatrix HybridOperator::inverse_block(const std::vector<int>& rows, const st
 }
 
 std::string HybridOperator::backend_name() const {
-  return fmt::format("hybrid (track in FE: {} DOFs; bridge: {} modes up to {:.4g} Hz and {} interface DOFs)",
-                     basis_->track_dofs(), basis_->num_modes(), basis_->cutoff_hz(), basis_->interface_dofs());
+  return fmt::format("hybrid (track in FE: {} DOFs; bridge: {} {}modes up to {:.4g} Hz and {} interface DOFs)",
+                     basis_->track_dofs(), basis_->num_modes(), basis_->modes_label(), basis_->cutoff_hz(),
+                     basis_->interface_dofs());
 }
 
 StructureCoordinates HybridOperator::coordinates(const StructureModel& model) const {

@@ -1,6 +1,6 @@
 #pragma once
 // Hybrid backend of the structure: the track in finite elements, the bridge
-// in its modes (HybridBasis, a Craig-Bampton reduction). The reduced model
+// in its modes (HybridBasis: constraint modes and bridge modes). The reduced model
 // is sparse where the track is and dense only in the interface and modal
 // blocks, and it is factorized like any finite-element model (one CHOLMOD
 // factor of its K_bar, rail DOFs last where that pays): the condensed direct

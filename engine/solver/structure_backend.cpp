@@ -27,6 +27,7 @@ std::shared_ptr<const HybridBasis> make_hybrid_basis(std::shared_ptr<const Struc
   HybridBasisOptions ho;
   ho.modes = options.modal_modes;
   ho.max_frequency_hz = options.modal_cutoff_hz > 0.0 ? options.modal_cutoff_hz : kDefaultModalCutoffHz;
+  ho.bridge_modes = options.hybrid_bridge_modes;
   return std::make_shared<const HybridBasis>(std::move(model), ho);
 }
 

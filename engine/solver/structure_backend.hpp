@@ -28,6 +28,8 @@ struct StructureOperatorOptions {
   // Hybrid: the same for the bridge's modes with the track held.
   int modal_modes = 0;
   double modal_cutoff_hz = 0.0;
+  // Hybrid: which modes of the bridge (hybrid_basis.hpp).
+  BridgeModes hybrid_bridge_modes = BridgeModes::kFreeInterface;
   bool rail_flexibility = true;
   // Modal, with rail_flexibility: add the static flexibility of the dropped
   // modes at the rail DOFs to the contact's (ModalOperatorOptions).

@@ -120,10 +120,10 @@ std::vector<FidelityRecord::Ignored> rung_ignores(const Rung& r, bool irregulari
                    "the deck acceleration envelope keeps frequencies up to the code frequency (EN 1990 A2.4.4.2.1); "
                    "every mode up to the cut-off, with a 20 % margin, is kept"});
   else if (r.structure == "hybrid")
-    out.push_back({fmt::format("the dynamic response of the bridge's modes above {:.1f} Hz (track-bearing DOFs held)",
+    out.push_back({fmt::format("the dynamic response of the bridge's own modes above {:.1f} Hz",
                                modal_cutoff_hz),
                    "the track keeps its FE model and the constraint modes keep the static response of every bridge "
-                   "mode left out (Craig-Bampton); the deck acceleration envelope keeps frequencies up to the code "
+                   "mode left out; the deck acceleration envelope keeps frequencies up to the code "
                    "frequency (EN 1990 A2.4.4.2.1)"});
   if (r.structure == "modal")
     out.push_back({"damping coupling between modes",

@@ -60,19 +60,21 @@ inline constexpr double kEscalationFraction = 0.5;
 // values are within 0.4 % on either rung at dt: a study that does not ask
 // wheel quantities keeps kEscalationFraction and the run's dt.
 inline constexpr double kWheelEscalationFraction = 0.7;
-// The hybrid structure keeps the bridge's modes (with the track-bearing
-// DOFs held) up to this multiple of the code frequency. Those modes are
-// higher than the free deck's, and the deck's response converges slowly in
-// them, slowest under a wheel impact: measured on generated 3D decks of
-// three 25 m spans under ICE3 at 300 km/h against FE at the same dt and law
-// (tests/bench/hybrid_bench, 2026-11-27), the filtered deck acceleration
-// was +0.80 % at 100 Hz, -0.16 % at 150 Hz and -0.15 % at 221 Hz on 19,869
-// DOFs (code frequency 36.8 Hz); over a 20 mm dip on 6,042 DOFs (37.5 Hz)
-// -9.1 % at 75 Hz and +0.08 % at 225 Hz (contact loss 37.0 against
-// 37.5 ms); the wheel values within 0.01 % at every cut-off without the dip.
-inline constexpr double kHybridCutoffFactor = 6.0;
+// The hybrid structure keeps the bridge's own modes (free-interface:
+// BridgeModes) up to this multiple of the code frequency. Measured on
+// generated 3D decks of three 25 m spans under ICE3 at 300 km/h against FE
+// at the same dt and law (tests/bench/hybrid_bench --free-interface,
+// 2026-11-28): at 3 x the code frequency the deck displacement and filtered
+// acceleration within 0.004 % / 0.001 % on 19,869 DOFs (110 Hz: 48 modes)
+// and 0.004 % / 0.028 % at seed scale (231,825 DOFs, 45 modes); over a
+// 20 mm dip -0.10 % / -0.005 % on 6,042 DOFs (113 Hz) and +0.001 % /
+// -0.090 % on 19,869 DOFs, the contact-loss time equal to FE's; the wheel
+// values within 0.001 %. At 2 x (75 Hz) the dip gave -0.23 % / -0.52 %.
+// (The fixed-interface modes, before, needed 6 x: +0.08 % at 225 Hz over
+// the dip on 6,042 DOFs, +1.8 % at 221 Hz on 19,869.)
+inline constexpr double kHybridCutoffFactor = 3.0;
 // ... but not above this: the cut-off of a short stiff span (a code
-// frequency of 119 Hz on two 12 m spans asks 711 Hz) keeps most of the
+// frequency of 119 Hz on two 12 m spans asks 357 Hz) keeps most of the
 // deck's modes, which costs more than FE and was never measured. Above it
 // interaction stays on FE.
 inline constexpr double kHybridMaxCutoffHz = 250.0;

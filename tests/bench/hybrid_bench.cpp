@@ -13,7 +13,9 @@
 // 20,000-DOF deck takes minutes); --cost runs the hybrid structure only and
 // prints its parts against the cost model's prediction (--train NAME: a
 // library train instead of ICE3); --duration-s T simulates T seconds only
-// (the seed-scale deck: 0.5 s is the paper's 2,000 steps); --partition prints how the hybrid structure
+// (the seed-scale deck: 0.5 s is the paper's 2,000 steps); --fixed-interface: the
+// interior's modes with the interface held (Craig-Bampton) instead of the bridge's
+// free-interface modes (BridgeModes); --partition prints how the hybrid structure
 // would split each deck (track, interface, interior DOFs) and runs nothing;
 // --frequencies-out PREFIX (with --cost) writes the interior modes'
 // frequencies to PREFIX-DOFS-CUTOFF.txt, one a line, to the last bit.
@@ -165,8 +167,10 @@ Values fe_values(const Scene& s, double code_hz, const std::string& cache_dir, c
   return v;
 }
 
-void compare(int dofs, bool dip, const std::vector<double>& cutoffs, const std::string& cache_dir, double duration_s) {
+void compare(int dofs, bool dip, const std::vector<double>& cutoffs, const std::string& cache_dir, double duration_s,
+             BridgeModes bridge_modes) {
   Scene s = deck_scene(dofs, dip, duration_s);
+  s.analysis.hybrid_bridge_modes = bridge_modes;
   const auto f = deck_frequencies(*s.structure);
   const double code_hz = code_cutoff_hz(f.f0_hz, f.f3_hz);
   std::printf("\n## 3D deck, %d DOFs, ICE3 300 km/h, German low seed 1%s%s; f0 %.3f Hz, f3 %.3f Hz, filter %.3g Hz\n",
@@ -199,8 +203,9 @@ void compare(int dofs, bool dip, const std::vector<double>& cutoffs, const std::
 // rest of the setup (the reduced operator's factor, rail flexibility,
 // statics) and the loop.
 void cost(int dofs, const std::vector<double>& cutoffs, double duration_s, const std::string& train,
-          const std::string& frequencies_out) {
+          BridgeModes bridge_modes, const std::string& frequencies_out) {
   Scene s = deck_scene(dofs, false, duration_s, train);
+  s.analysis.hybrid_bridge_modes = bridge_modes;
   const HybridPartition part = hybrid_partition(*s.structure);
   std::printf("\n## cost: %s (%d axles) over a 3D deck, %d DOFs (track %d, interface %d, interior %d; %zu rail DOFs), "
               "%ld steps\n",
@@ -252,6 +257,7 @@ int main(int argc, char** argv) {
   std::string train = "ICE3";
   std::string cache_dir, frequencies_out;
   double duration_s = 0.0;
+  railvsi::BridgeModes bridge_modes = railvsi::BridgeModes::kFreeInterface;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--duration-s" && i + 1 < argc) {
@@ -266,6 +272,8 @@ int main(int argc, char** argv) {
       cost_only = true;
     } else if (a == "--train" && i + 1 < argc) {
       train = argv[++i];
+    } else if (a == "--fixed-interface") {
+      bridge_modes = railvsi::BridgeModes::kFixedInterface;
     } else if (a == "--dip") {
       dip = true;
     } else if (a == "--cutoffs" && i + 1 < argc) {
@@ -279,8 +287,8 @@ int main(int argc, char** argv) {
   if (dofs.empty()) dofs = {6000, 20000};
   for (int n : dofs) {
     if (partition_only) railvsi::partition(n);
-    else if (cost_only) railvsi::cost(n, cutoffs, duration_s, train, frequencies_out);
-    else railvsi::compare(n, dip, cutoffs, cache_dir, duration_s);
+    else if (cost_only) railvsi::cost(n, cutoffs, duration_s, train, bridge_modes, frequencies_out);
+    else railvsi::compare(n, dip, cutoffs, cache_dir, duration_s, bridge_modes);
   }
   return 0;
 }

@@ -280,7 +280,7 @@ TEST(EffectsPlanner, InteractionOnADeckWithALargeInteriorRunsHybrid) {
   EXPECT_EQ(plan.rung.name(), "interaction/hybrid");
   EXPECT_DOUBLE_EQ(plan.modal_cutoff_hz, kHybridCutoffFactor * 36.8);
   EXPECT_NE(plan.reasons.back().find("hybrid structure"), std::string::npos);
-  EXPECT_TRUE(ignores(plan, "bridge's modes above 220.8 Hz"));
+  EXPECT_TRUE(ignores(plan, "bridge's own modes above 110.4 Hz"));
   EXPECT_FALSE(ignores(plan, "damping coupling"));  // the track keeps its dampers in FE
   // Its next rung up is the same contact law on FE.
   const auto up = next_rung(plan.rung);
@@ -290,12 +290,12 @@ TEST(EffectsPlanner, InteractionOnADeckWithALargeInteriorRunsHybrid) {
 
 TEST(EffectsPlanner, InteractionOnAShortStiffSpanStaysOnFe) {
   // Two 12 m spans of the 3D deck: f3 = 118.6 Hz, the hybrid cut-off would
-  // be 711 Hz.
+  // be 356 Hz.
   PlannerInput in = interaction_on_track(628, 90, 2298);
   in.f3_hz = 118.6;
   const EffectsPlan plan = plan_effects(in);
   EXPECT_EQ(plan.rung.name(), "interaction/fe");
-  EXPECT_NE(plan.reasons.back().find("711.6 Hz, is above the 250 Hz"), std::string::npos) << plan.reasons.back();
+  EXPECT_NE(plan.reasons.back().find("355.8 Hz, is above the 250 Hz"), std::string::npos) << plan.reasons.back();
   // 250 Hz is still hybrid: a code frequency of 41.6 Hz.
   in.f3_hz = kHybridMaxCutoffHz / kHybridCutoffFactor;
   EXPECT_EQ(plan_effects(in).rung.structure, "hybrid");
