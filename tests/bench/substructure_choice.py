@@ -207,27 +207,12 @@ def main():
     sos = butter(4, args.filter_hz, fs=1 / args.dt_s, output="sos")
     ref_af = sosfiltfilt(sos, ref_a, axis=0)
 
-    def basis(kind, m):
-        """n x (nT + nG + m) transformation, dense (fine at these sizes)."""
-        nT, nG = len(T), len(G)
-        Tm = np.zeros((n, nT + nG + m))
-        Tm[T, np.arange(nT)] = 1.0
-        Tm[G, nT + np.arange(nG)] = 1.0
-        Tm[np.ix_(I, nT + np.arange(nG))] = Psi
-        if m:
-            if kind == "CB":
-                Q = V_fix[:, :m]
-            else:
-                Q = V_free[iI, :m] - Psi @ V_free[iG, :m]
-            Tm[np.ix_(I, nT + nG + np.arange(m))] = Q
-        return Tm
-
     print("| model | cut-off Hz | modes | " + " | ".join(
         f"{o['name']} disp | acc | acc {args.filter_hz:g} Hz" for o in outs) + " |")
     for fc in [float(c) for c in args.cutoffs.split(",")]:
         for kind, fl in (("CB", f_fix), ("MR", f_free)):
             m = int(np.sum(fl <= fc))
-            Tm = basis(kind, m)
+            Tm = basis_fn(kind, m)
             Kr = Tm.T @ (K @ Tm); Mr = Tm.T @ (M @ Tm); Cr = Tm.T @ (C @ Tm)
             Kr = 0.5 * (Kr + Kr.T); Mr = 0.5 * (Mr + Mr.T); Cr = 0.5 * (Cr + Cr.T)
             # the track couples to the interface only: the reduced matrices are
