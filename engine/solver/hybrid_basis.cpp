@@ -130,7 +130,8 @@ std::pair<DenseMatrix, std::vector<double>> interior_ritz(const SparseMatrix& K,
   return {B * ek.eigenvectors(), std::move(f)};
 }
 
-// The interior's modes with the interface held, mass-normalised.
+// The modes of (K, M), mass-normalised: the interior's with the interface
+// held, or the bridge's own (K_BB, M_BB, its interface free).
 // `factor`: K's L L' factor (the constraint modes'), the first shift (0).
 ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const HybridBasisOptions& o,
                            const ShiftInvertFactor* factor, HybridBasisSummary& summary) {

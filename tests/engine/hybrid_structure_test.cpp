@@ -71,6 +71,17 @@ Scene viaduct_scene() {
   return s;
 }
 
+// One 12 m span of hexahedra with track: 473 DOFs, small enough for the
+// dense eigensolver.
+std::shared_ptr<const StructureModel> one_span_deck_3d() {
+  Deck3dOptions d;
+  d.spans_m = {12.0};
+  d.approach_m = 30.0;
+  d.exit_m = 6.0;
+  d.mesh = Deck3dMesh{{8}, 2, 1};
+  return make_deck_3d(d).model;
+}
+
 // Two 12 m spans of hexahedra with track, with more than 400 interior DOFs
 // (past the dense path of a cut-off); damped as Rayleigh on the deck.
 std::shared_ptr<const StructureModel> two_span_deck_3d() {
@@ -159,13 +170,8 @@ TEST(HybridStructure, AReductionInBlocksOfFewInterfaceColumnsEqualsTheFiniteElem
 }
 
 TEST(HybridStructure, OnADeck3dWithEveryBridgeModeKeptEqualsTheFiniteElementRun) {
-  Deck3dOptions d;
-  d.spans_m = {12.0};
-  d.approach_m = 30.0;
-  d.exit_m = 6.0;
-  d.mesh = Deck3dMesh{{8}, 2, 1};
   Scene s;
-  s.structure = make_deck_3d(d).model;
+  s.structure = one_span_deck_3d();
   s.train.name = "one coach";
   s.train.vehicles.push_back({make_car_2d(testing::ice3_coach()), 0.0});
   s.speed_mps = 250.0 / 3.6;
@@ -267,12 +273,7 @@ TEST(HybridStructure, WithEveryFixedInterfaceModeKeptEqualsTheFiniteElementRun) 
 // frequencies of the reduced model against the FE model's (both from the
 // dense eigensolver).
 TEST(HybridStructure, FreeInterfaceModesHoldTheCoupledLowFrequenciesBetterThanFixedInterfaceModes) {
-  Deck3dOptions d;
-  d.spans_m = {12.0};
-  d.approach_m = 30.0;
-  d.exit_m = 6.0;
-  d.mesh = Deck3dMesh{{8}, 2, 1};
-  const auto structure = make_deck_3d(d).model;
+  const auto structure = one_span_deck_3d();
   const auto lowest = [](const StructureModel& m, int k) {
     Eigen::GeneralizedSelfAdjointEigenSolver<DenseMatrix> es(DenseMatrix(m.K()), DenseMatrix(m.M()),
                                                             Eigen::EigenvaluesOnly);
