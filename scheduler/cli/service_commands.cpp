@@ -69,7 +69,7 @@ ServiceCommands::ServiceCommands(CLI::App& app) {
   add_db_option(work_, args_, false);
   add_work_options(work_, args_);
 
-  run_ = app.add_subcommand("run", "Submit a study, work until the queue is empty, print the study's envelope table");
+  run_ = app.add_subcommand("run", "Submit a study, work until the queue is empty, print the study's envelope table (a line study's: its line table, a row per bridge)");
   add_submit_options(run_, args_);
   add_db_option(run_, args_, true);
   add_work_options(run_, args_);

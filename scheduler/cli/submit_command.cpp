@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/interrupt_release.hpp"
+#include "cli/line_study_output.hpp"
 #include "core/input_error.hpp"
 #include "cli/progress_display.hpp"
 #include "cli/service_commands.hpp"
@@ -184,9 +185,17 @@ int run_command(const ServiceArgs& args) {
   spdlog::info("study {}: {} jobs, {} new, in {}", r.study_id.substr(0, 12), r.jobs, r.new_jobs,
                scheduler::terminal_safe(args.db));
   if (!work_and_refine(args, db, {r.study_id}, nullptr, &cache).error.empty()) return kExitRuntimeFailure;
-  const scheduler::StudyInfo info = scheduler::study_info(db, r.study_id);
-  const auto jobs = scheduler::study_results(db, {r.study_id, {}, {}, {}, {}, {}});
-  std::cout << scheduler::format_table(info, jobs);
+  // A line study ends with its line table: a row per bridge, read bridge by
+  // bridge (its jobs' table is vsi query's).
+  const bool line = !scheduler::study_structure_names(db, r.study_id).empty();
+  std::optional<Verdict> line_verdict;
+  std::vector<scheduler::JobResult> jobs;
+  if (line) {
+    line_verdict = write_line_table(db, r.study_id, std::cout);
+  } else {
+    jobs = scheduler::study_results(db, {r.study_id, {}, {}, {}, {}, {}});
+    std::cout << scheduler::format_table(scheduler::study_info(db, r.study_id), jobs);
+  }
   const scheduler::StateCounts c = scheduler::state_counts(db, r.study_id);
   int code = kExitOk;
   if (c.failed > 0) {
@@ -196,9 +205,15 @@ int run_command(const ServiceArgs& args) {
   }
   if (args.fail_on_exceeded) {
     // A failed check wins over failed jobs (3), which win over incomplete (5).
-    const ComplianceReport judged = judge_jobs(db, r.study_id, jobs);
-    std::cout << scheduler::format_verdict_lines(judged.checks, judged.overall);
-    const int verdict = verdict_exit_code(judged.overall);
+    Verdict overall = Verdict::kNotEvaluated;
+    if (line_verdict) {
+      overall = *line_verdict;  // the line table shows each bridge's verdicts
+    } else {
+      const ComplianceReport judged = judge_jobs(db, r.study_id, jobs);
+      std::cout << scheduler::format_verdict_lines(judged.checks, judged.overall);
+      overall = judged.overall;
+    }
+    const int verdict = verdict_exit_code(overall);
     if (verdict == kExitCheckFailed || code == kExitOk) code = verdict;
   }
   return code;

@@ -17,6 +17,7 @@
 #include "core/input_error.hpp"
 #include "analysis/static_influence.hpp"
 #include "query/bridge_results.hpp"
+#include "query/study_report.hpp"
 #include "query/stored_statics.hpp"
 #include "simulation/static_equilibrium.hpp"
 #include "scheduler_test_support.hpp"
@@ -351,6 +352,54 @@ std::optional<std::uint64_t> bits(std::optional<double> v) {
 // the static influence lines give, to the bit: the expected values here
 // are StaticInfluence's own, not the stored path's. With the rows gone the
 // line table and the report compute them, to the same bytes.
+// A whole line's table and CSV are written bridge by bridge (one bridge's
+// jobs in memory): the CSV is the bytes of one read of every job, each
+// bridge's table is what --structure prints, and vsi run ends with the line
+// table rather than a row per job.
+TEST_F(LineStudyFiles, AWholeLinesTableAndCsvAreWrittenBridgeByBridgeAndVsiRunEndsWithTheLineTable) {
+  const std::string db = (dir_ / "line.sqlite").string();
+  const VsiResult run = vsi({"run", write_json("line.json", line_study()).string(), "--db", db}, "run");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string id = study_id(db);
+  const VsiResult line = vsi({"query", "--db", db, "--study", id, "--line"}, "line");
+  ASSERT_EQ(line.exit_code, 0) << line.err;
+  EXPECT_EQ(run.out, line.out + "a bridge's jobs: vsi query --study " + id.substr(0, 12) +
+                         " --structure NAME; every job: without --structure\n");
+  EXPECT_NE(line.out.find("\nC "), std::string::npos) << line.out;  // a row per bridge
+
+  const VsiResult csv = vsi({"query", "--db", db, "--study", id, "--format", "csv"}, "csv");
+  ASSERT_EQ(csv.exit_code, 0) << csv.err;
+  {
+    scheduler::Database d(db, scheduler::OpenMode::kReadOnly);
+    EXPECT_EQ(csv.out, scheduler::format_csv(scheduler::study_results(d, {id, {}, {}, {}, {}, {}})));
+  }
+  EXPECT_GT(std::count(csv.out.begin(), csv.out.end(), '\n'), 30 * 4) << csv.out;  // 3 bridges x 10 jobs
+
+  const VsiResult table = vsi({"query", "--db", db, "--study", id}, "table");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  const std::string& t = table.out;
+  // 20 jobs: C is A under another name and shares its jobs.
+  EXPECT_EQ(t.rfind("study " + id.substr(0, 12) + " (tiny line): 20 jobs in 3 bridges", 0), 0u) << t;
+  const std::vector<std::string> names{"A", "B", "C"};
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string head = "\nbridge " + names[k] + "\n";
+    const std::size_t from = t.find(head);
+    ASSERT_NE(from, std::string::npos) << names[k];
+    const std::size_t to = k + 1 < names.size() ? t.find("\nbridge " + names[k + 1] + "\n") : t.size();
+    ASSERT_NE(to, std::string::npos);
+    const VsiResult own = vsi({"query", "--db", db, "--study", id, "--structure", names[k]}, "own" + names[k]);
+    ASSERT_EQ(own.exit_code, 0) << own.err;
+    EXPECT_NE(own.out.find("10 jobs shown"), std::string::npos) << own.out;
+    EXPECT_EQ(t.substr(from + head.size(), to - from - head.size()), own.out) << names[k];
+  }
+
+  // --fail-on-exceeded judges each bridge as the line table does.
+  const VsiResult judged = vsi({"query", "--db", db, "--study", id, "--fail-on-exceeded"}, "judged");
+  const VsiResult line_judged = vsi({"query", "--db", db, "--study", id, "--line", "--fail-on-exceeded"}, "lj");
+  EXPECT_EQ(judged.exit_code, line_judged.exit_code) << judged.err << line_judged.err;
+  EXPECT_NE(judged.exit_code, -1);
+}
+
 TEST_F(LineStudyFiles, TheStoredStaticEnvelopesAreTheInfluenceLinesOwnToTheBit) {
   const std::string db = (dir_ / "line.sqlite").string();
   ASSERT_EQ(vsi({"run", write_json("line.json", line_study()).string(), "--db", db}, "run").exit_code, 0);
