@@ -360,17 +360,19 @@ struct CompleteStatements {
   std::string fidelity_text, fidelity_id;
   // Jobs stored that neither factorized nor evicted (cache hits): counted in
   // cache_stats once per batch (count_cache_hits) rather than one by one.
-  std::vector<std::string> hits;
+  std::vector<std::int64_t> hits;  // by the jobs' numbers (jobs.seq)
 };
 
 // Adds the batch's cache hits to the statistics of every study that holds them.
-void count_cache_hits(Database& db, const std::vector<std::string>& job_ids) {
-  if (job_ids.empty()) return;
+// By the jobs' numbers: the links hold them, so no job id is looked up
+// (the view study_jobs joined jobs by id: 3.5 ms of 1,010 jobs' stores).
+void count_cache_hits(Database& db, const std::vector<std::int64_t>& job_seqs) {
+  if (job_seqs.empty()) return;
   db.prepare("INSERT INTO cache_stats (study_id, jobs, factorizations, hits, factorization_s, evictions) "
-             "SELECT study_id, count(*), 0, count(*), 0.0, 0 FROM study_jobs "
-             "WHERE job_id IN (SELECT value FROM json_each(?)) GROUP BY study_id "
+             "SELECT s.id, count(*), 0, count(*), 0.0, 0 FROM study_job_links l JOIN studies s ON s.seq = l.study_seq "
+             "WHERE l.job_seq IN (SELECT value FROM json_each(?)) GROUP BY s.id "
              "ON CONFLICT (study_id) DO UPDATE SET jobs = jobs + excluded.jobs, hits = hits + excluded.hits")
-      .bind(1, nlohmann::json(job_ids).dump())
+      .bind(1, nlohmann::json(job_seqs).dump())
       .run();
 }
 
@@ -451,7 +453,7 @@ bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::s
     }
   }
   if (!outcome.factorized && outcome.factorization_s == 0.0 && outcome.evictions == 0) {
-    st.hits.push_back(job.id);
+    st.hits.push_back(seq);
     return true;
   }
   st.stats.bind(1, outcome.factorized ? 1 : 0)
