@@ -365,7 +365,8 @@ struct CompleteStatements {
 
 // Adds the batch's cache hits to the statistics of every study that holds them.
 // By the jobs' numbers: the links hold them, so no job id is looked up
-// (the view study_jobs joined jobs by id: 3.5 ms of 1,010 jobs' stores).
+// (the view study_jobs joined jobs by id: 2.3-3.6 ms a pass of the 1,010 S2
+// jobs' stores, 1.1 ms this way).
 void count_cache_hits(Database& db, const std::vector<std::int64_t>& job_seqs) {
   if (job_seqs.empty()) return;
   db.prepare("INSERT INTO cache_stats (study_id, jobs, factorizations, hits, factorization_s, evictions) "
