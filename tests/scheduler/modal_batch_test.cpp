@@ -305,6 +305,24 @@ TEST_F(ModalBatches, ClaimTakesTrainsOfOneOperatorKeyInOrderOfTrainAndSpeed) {
   EXPECT_EQ(queue.renew(std::vector<std::string>{batch[0].id, batch[1].id, "no such job"}), 2u);
 }
 
+// A batch's scenes are joined from their stored parts once per part: each
+// must be the text the store's view job_scenes gives for the job, byte for byte.
+TEST_F(ModalBatches, EveryJobOfABatchClaimCarriesItsStoredSceneText) {
+  Database db((dir_ / "scenes.sqlite").string());
+  scheduler::migrate(db);
+  scheduler::submit_study(db, scheduler::expand_study(modal_study(), dir_, (dir_ / "s.json").string()));
+  scheduler::JobQueue queue(db, "w", 60.0);
+  const auto batch = queue.claim_batch({}, 256);
+  ASSERT_EQ(batch.size(), 26u);
+  Statement view = db.prepare("SELECT scene FROM job_scenes WHERE job_id = ?");
+  for (const auto& job : batch) {
+    view.reset();
+    ASSERT_TRUE(view.bind(1, job.id).step()) << job.id;
+    EXPECT_FALSE(job.scene.empty()) << job.id;
+    EXPECT_EQ(job.scene, view.text(0)) << job.id;
+  }
+}
+
 // Defect: after a kill (or a full disk) the jobs a dead worker held came
 // back one claim each, each stored in its own transaction: resuming the
 // 602-job sweep of docs/cluster-and-service.md wrote 12.2 MB of WAL against
