@@ -517,9 +517,8 @@ TEST_F(StoreMigration, SceneSplitGivesBackEveryTextToTheByte) {
   EXPECT_EQ(s.tail, R"(,"train":"A"})");
 }
 
-TEST_F(StoreMigration, FifteenKeepsEverySceneAndLinkToTheByteAndVsiQueryGivesTheSameBytes) {
-  // A line study (bridges A and C one structure, B another) run on this
-  // vsi's schema ...
+// A line study of three bridges (A and C one structure, "Brücke B" another).
+nlohmann::json three_bridge_line() {
   nlohmann::json doc = tiny_study();
   nlohmann::json span12 = doc["structure"];
   span12["spans_m"] = {12.0};
@@ -527,8 +526,14 @@ TEST_F(StoreMigration, FifteenKeepsEverySceneAndLinkToTheByteAndVsiQueryGivesThe
                                    {{"name", "Brücke B"}, {"structure", span12}},
                                    {{"name", "C"}, {"structure", doc["structure"]}}});
   doc.erase("structure");
+  return doc;
+}
+
+TEST_F(StoreMigration, FifteenKeepsEverySceneAndLinkToTheByteAndVsiQueryGivesTheSameBytes) {
+  // A line study (bridges A and C one structure, B another) run on this
+  // vsi's schema ...
   const std::string now_db = (dir_ / "now.sqlite").string(), old_db = (dir_ / "old.sqlite").string();
-  ASSERT_EQ(vsi({"run", write_json("line.json", doc).string(), "--db", now_db}, "run").exit_code, 0);
+  ASSERT_EQ(vsi({"run", write_json("line.json", three_bridge_line()).string(), "--db", now_db}, "run").exit_code, 0);
   // ... and the same rows written as a version-13 store holds them (tables
   // job_scenes, study_jobs, study_structures keyed by SHA-256 texts).
   write_as_version_13(now_db, old_db);
@@ -628,15 +633,8 @@ void write_as_version_15(const std::string& now_db, const std::string& old_db) {
 TEST_F(StoreMigration, SixteenNumbersTheStepReasonsAndFidelityRecordsAndVsiQueryAndReportGiveTheSameBytes) {
   // The line study of the test above (two structures, three bridges), run
   // on this vsi's schema ...
-  nlohmann::json doc = tiny_study();
-  nlohmann::json span12 = doc["structure"];
-  span12["spans_m"] = {12.0};
-  doc["structures"] = json::array({{{"name", "A"}, {"structure", doc["structure"]}},
-                                   {{"name", "Brücke B"}, {"structure", span12}},
-                                   {{"name", "C"}, {"structure", doc["structure"]}}});
-  doc.erase("structure");
   const std::string now_db = (dir_ / "now.sqlite").string(), old_db = (dir_ / "old.sqlite").string();
-  ASSERT_EQ(vsi({"run", write_json("line.json", doc).string(), "--db", now_db}, "run").exit_code, 0);
+  ASSERT_EQ(vsi({"run", write_json("line.json", three_bridge_line()).string(), "--db", now_db}, "run").exit_code, 0);
   // ... and as a version-15 store holds it.
   write_as_version_15(now_db, old_db);
   std::vector<std::string> records;
