@@ -43,8 +43,9 @@ struct BridgeReader::Statements {
                         "ORDER BY sb.position, sj.position")),
         job(database.prepare(f == BridgeFields::kAll
                            ? fmt::format("SELECT {}, j.seq FROM jobs j LEFT JOIN scene_parts p ON p.part = j.scene_part "
-                                         "LEFT JOIN fidelity_records f ON f.id = j.fidelity_id WHERE j.rowid = ?",
-                                         job_result_columns("p.head || j.scene_speed || p.tail", "f.record"))
+                                         "LEFT JOIN step_reasons r ON r.number = j.step_reason "
+                                         "LEFT JOIN fidelity_records f ON f.number = j.fidelity_record WHERE j.rowid = ?",
+                                         job_result_columns("p.head || j.scene_speed || p.tail", "r.text", "f.record"))
                            : std::string("SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, "
                                          "j.error, j.dt_s, j.cutoff_hz, j.seq, j.operator_key "
                                          "FROM jobs j WHERE j.rowid = ?"))),

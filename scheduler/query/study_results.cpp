@@ -51,15 +51,15 @@ std::optional<bool> TrainKinds::operator()(const std::string& type, const std::s
   return it->second;
 }
 
-std::string job_result_columns(std::string_view scene, std::string_view fidelity) {
+std::string job_result_columns(std::string_view scene, std::string_view dt_reason, std::string_view fidelity) {
   return fmt::format(
-      "j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, j.error, j.dt_s, j.dt_reason, "
+      "j.id, j.train, j.speed_kmh, j.irregularity, j.state, j.status, j.error, j.dt_s, {2}, "
       "j.cutoff_hz, j.wall_s, j.loop_s, {1}, j.warnings, "
       "CASE WHEN json_extract({0}, '$.irregularity.seed') IS NOT NULL "
       "THEN json_remove(json_extract({0}, '$.irregularity'), '$.seed') END, "
       "json_extract({0}, '$.irregularity.spectrum'), json_extract({0}, '$.structure.variant'), "
       "json_extract({1}, '$.dt_s'), json_type({0}, '$.train'), json_extract({0}, '$.train')",
-      scene, fidelity);
+      scene, fidelity, dt_reason);
 }
 
 JobResult read_job_result(Statement& s, TrainKinds& axle_forces) {
@@ -133,7 +133,7 @@ std::vector<JobResult> study_results(Database& db, const QueryFilter& filter) {
   TrainKinds axle_forces;
   Statement s = db.prepare(fmt::format("SELECT {}, ss.name FROM study_job_links sj {} JOIN job_records j ON j.seq = sj.job_seq "
                                        "WHERE {} ORDER BY coalesce(sb.position, 0), sj.position",
-                                       job_result_columns("j.scene", "j.fidelity"), kStructureJoin, kFilter));
+                                       job_result_columns("j.scene", "j.dt_reason", "j.fidelity"), kStructureJoin, kFilter));
   bind_filter(s, filter);
   while (s.step()) {
     JobResult r = read_job_result(s, axle_forces);

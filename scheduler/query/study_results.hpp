@@ -91,11 +91,11 @@ class TrainKinds {
  private:
   std::map<std::string, std::optional<bool>> known_;
 };
-// The columns study_results reads of a job (alias j of jobs, with its scene
-// and fidelity record given as SQL expressions), kJobResultColumns of them,
-// and the JobResult of a row that starts with them (no envelopes, no structure).
+// The columns study_results reads of a job (alias j of jobs, with its scene,
+// step reason and fidelity record given as SQL expressions), kJobResultColumns
+// of them, and the JobResult of a row that starts with them (no envelopes, no structure).
 constexpr int kJobResultColumns = 20;
-std::string job_result_columns(std::string_view scene, std::string_view fidelity);
+std::string job_result_columns(std::string_view scene, std::string_view dt_reason, std::string_view fidelity);
 JobResult read_job_result(Statement& s, TrainKinds& axle_forces);
 // A stored job's scene, loaded as the worker loaded it (job_scenes.scene).
 // Throws std::runtime_error when the job is not in the database.

@@ -14,6 +14,7 @@
 #include "core/sha256.hpp"
 #include "core/unix_time.hpp"
 #include "store/scene_parts.hpp"
+#include "store/step_reasons.hpp"
 
 namespace railvsi::scheduler {
 
@@ -81,12 +82,14 @@ std::int64_t study_seq(Database& db, const std::string& study_id) {
 std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_attempts, double now) {
   std::size_t new_jobs = 0;
   // The scene as its part (stored once for the jobs that share it) and its
-  // speed's text: the view job_scenes gives the very text back.
+  // speed's text: the view job_scenes gives the very text back. The step's
+  // reason by its number too (view job_records).
   Statement insert_job = db.prepare(
-      "INSERT OR IGNORE INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
+      "INSERT OR IGNORE INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, step_reason, "
       "cutoff_hz, max_attempts, enqueued_at, rung, planned_modes, scene_part, scene_speed, seq) VALUES (?, ?, ?, ?, ?, "
       "?, ?, ?, ?, ?, ?, ?, ?, ?, (SELECT coalesce(max(seq), 0) + 1 FROM jobs))");
   ScenePartCache parts(db);
+  StepReasonCache reasons(db);
   for (const JobSpec& j : jobs) {
     const SceneSplit split = split_scene(j.scene);
     insert_job.bind(1, j.id)
@@ -95,7 +98,7 @@ std::size_t insert_jobs(Database& db, const std::vector<JobSpec>& jobs, int max_
         .bind(4, j.irregularity)
         .bind(5, j.operator_key)
         .bind(6, j.dt_s)
-        .bind(7, j.dt_reason)
+        .bind(7, reasons.number(j.dt_reason))
         .bind(8, j.cutoff_hz)
         .bind(9, max_attempts)
         .bind(10, now)
@@ -296,7 +299,8 @@ struct CompleteStatements {
         fidelity(db.prepare("INSERT OR IGNORE INTO fidelity_records (id, record) VALUES (?, ?)")),
         // Only while `worker` still holds the job; its number in the store for the envelopes.
         update(db.prepare(
-            "UPDATE jobs SET state = ?, status = ?, error = ?, fidelity_id = ?, steps = ?, wall_s = ?, loop_s = ?, "
+            "UPDATE jobs SET state = ?, status = ?, error = ?, "
+            "fidelity_record = (SELECT number FROM fidelity_records WHERE id = ?), steps = ?, wall_s = ?, loop_s = ?, "
             "setup_s = ?, factorization_s = ?, lease_expires = NULL, finished_at = ?, warnings = ? "
             "WHERE id = ? AND state = 'running' AND worker = ? RETURNING seq")),
         // WHERE true: SQLite's upsert after INSERT ... SELECT needs a WHERE clause.
@@ -409,11 +413,13 @@ bool JobQueue::complete_in_transaction(const ClaimedJob& job, const JobOutcome& 
 namespace {
 
 bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::string& worker, CompleteStatements& st) {
-  // Fidelity records are stored once, by content (SHA-256 of the text).
+  // Fidelity records are stored once, by content (SHA-256 of the text),
+  // before the row that holds the record's number.
   const bool new_fidelity = st.fidelity_id.empty() || st.fidelity_text != outcome.fidelity;
   if (new_fidelity) {
     st.fidelity_text = outcome.fidelity;
     st.fidelity_id = sha256_hex(outcome.fidelity);
+    st.fidelity.bind(1, st.fidelity_id).bind(2, st.fidelity_text).run();
   }
   st.update.bind(1, outcome.ok ? "done" : "failed")
       .bind(2, outcome.status)
@@ -429,15 +435,13 @@ bool complete_one(const ClaimedJob& job, const JobOutcome& outcome, const std::s
       .bind(12, job.id)
       .bind(13, worker);
   if (!st.update.step()) {
-    // No longer this worker's (taken over or cancelled): nothing is
-    // written, and the next fidelity record is stored afresh.
+    // No longer this worker's (taken over or cancelled): nothing else is
+    // written (the record, keyed by content, is any run's).
     st.update.reset();
-    if (new_fidelity) st.fidelity_id.clear();
     return false;
   }
   const std::int64_t seq = st.update.int64(0);
   st.update.run();  // to its end (one row: the id is the key), then reset
-  if (new_fidelity) st.fidelity.bind(1, st.fidelity_id).bind(2, st.fidelity_text).run();
   if (outcome.ok) {
     const std::vector<EnvelopeRow>& rows = outcome.envelopes;
     for (std::size_t first = 0; first < rows.size(); first += CompleteStatements::kRowsPerInsert) {

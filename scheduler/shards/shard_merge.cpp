@@ -64,10 +64,12 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
     throw InputError("", "its jobs table differs from the target's", shard.file.string());
   // A job's number (seq) is the store's own: the target keeps its numbers
   // and numbers the jobs it takes after its last. So is the number of its
-  // scene's part: the target numbers the parts it takes (below).
+  // scene's part, step reason and fidelity record: the target numbers the
+  // ones it takes (below).
   std::vector<std::string> columns;
-  std::copy_if(all_columns.begin(), all_columns.end(), std::back_inserter(columns),
-               [](const std::string& c) { return c != "seq" && c != "scene_part" && c != "scene_speed"; });
+  std::copy_if(all_columns.begin(), all_columns.end(), std::back_inserter(columns), [](const std::string& c) {
+    return c != "seq" && c != "scene_part" && c != "scene_speed" && c != "step_reason" && c != "fidelity_record";
+  });
   target.exec("CREATE TEMP TABLE IF NOT EXISTS merge_take (id TEXT PRIMARY KEY)");
   DeferredTransaction tx(target);
   target.exec("DELETE FROM temp.merge_take");
@@ -97,7 +99,9 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
   for (const auto& c : rest) from_source.push_back("s." + c);
   // Fidelity records (keyed by content) before the jobs rows that refer to them.
   target.exec("INSERT OR IGNORE INTO main.fidelity_records (id, record) SELECT id, record FROM src.fidelity_records "
-              "WHERE id IN (SELECT fidelity_id FROM src.jobs WHERE id IN temp.merge_take)");
+              "WHERE number IN (SELECT fidelity_record FROM src.jobs WHERE id IN temp.merge_take) ORDER BY number");
+  target.exec("INSERT OR IGNORE INTO main.step_reasons (text) SELECT text FROM src.step_reasons "
+              "WHERE number IN (SELECT step_reason FROM src.jobs WHERE id IN temp.merge_take) ORDER BY number");
   target.exec("DELETE FROM main.envelope_values WHERE job_seq IN (SELECT seq FROM main.jobs WHERE id IN temp.merge_take)");
   target.exec(fmt::format("UPDATE main.jobs SET ({}) = (SELECT {} FROM src.jobs s WHERE s.id = main.jobs.id) "
                           "WHERE id IN temp.merge_take",
@@ -106,6 +110,11 @@ std::int64_t merge_one(Database& target, const CheckedShard& shard, const std::s
                           "(SELECT coalesce(max(seq), 0) FROM main.jobs) + row_number() OVER (ORDER BY seq) "
                           "FROM src.jobs WHERE id IN temp.merge_take AND id NOT IN (SELECT id FROM main.jobs)",
                           joined(columns)));
+  // A taken job's step reason and fidelity record under the target's numbers.
+  target.exec("UPDATE main.jobs SET (step_reason, fidelity_record) = (SELECT mr.number, mf.number FROM src.jobs s "
+              "LEFT JOIN src.step_reasons sr ON sr.number = s.step_reason LEFT JOIN main.step_reasons mr ON mr.text = sr.text "
+              "LEFT JOIN src.fidelity_records sf ON sf.number = s.fidelity_record "
+              "LEFT JOIN main.fidelity_records mf ON mf.id = sf.id WHERE s.id = main.jobs.id) WHERE id IN temp.merge_take");
   // A job the shard has not finished waits in the target's queue, not under
   // a lease of a worker on another machine.
   target.exec("UPDATE main.jobs SET state = 'queued', worker = NULL, lease_expires = NULL "

@@ -123,11 +123,14 @@ void copy_shard(Database& source, const std::string& study_id, const std::vector
   // With its planned rung and modes: a worker batches the modal moving-force
   // jobs of one key only when they carry their rung.
   // Their scenes' parts under the source's numbers too (the new store has none).
+  // And their step reasons.
   source.exec("INSERT INTO dst.scene_parts (part, head, tail) SELECT part, head, tail FROM main.scene_parts "
               "WHERE part IN (SELECT scene_part FROM main.jobs WHERE id IN temp.shard_job_ids)");
-  source.prepare("INSERT INTO dst.jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
+  source.exec("INSERT INTO dst.step_reasons (number, text) SELECT number, text FROM main.step_reasons "
+              "WHERE number IN (SELECT step_reason FROM main.jobs WHERE id IN temp.shard_job_ids)");
+  source.prepare("INSERT INTO dst.jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, step_reason, "
                  "cutoff_hz, max_attempts, enqueued_at, seq, rung, planned_modes, scene_part, scene_speed) SELECT id, "
-                 "train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, max_attempts, ?, seq, rung, "
+                 "train, speed_kmh, irregularity, operator_key, dt_s, step_reason, cutoff_hz, max_attempts, ?, seq, rung, "
                  "planned_modes, scene_part, scene_speed FROM main.jobs WHERE id IN temp.shard_job_ids")
       .bind(1, unix_now_s())
       .run();

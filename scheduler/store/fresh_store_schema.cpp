@@ -22,7 +22,6 @@ CREATE TABLE jobs (
   irregularity    TEXT NOT NULL,      -- profile label, 'none' for a perfect track
   operator_key    TEXT NOT NULL,      -- SHA-256 of (structure model, dt, HHT, contact needs): jobs sharing a factorization
   dt_s            REAL NOT NULL,
-  dt_reason       TEXT NOT NULL,
   cutoff_hz       REAL NOT NULL,      -- low-pass cut-off of the deck acceleration envelope
   state           TEXT NOT NULL DEFAULT 'queued'
                   CHECK (state IN ('queued', 'running', 'done', 'failed', 'cancelled')),
@@ -40,7 +39,7 @@ CREATE TABLE jobs (
   enqueued_at     REAL NOT NULL,
   started_at      REAL,
   finished_at     REAL
-, warnings TEXT, rung TEXT, fidelity_id TEXT, seq INTEGER, planned_modes INTEGER, scene_part INTEGER, scene_speed TEXT);
+, warnings TEXT, rung TEXT, seq INTEGER, planned_modes INTEGER, scene_part INTEGER, scene_speed TEXT, step_reason INTEGER, fidelity_record INTEGER);
 CREATE INDEX jobs_lease ON jobs (state, lease_expires);
 CREATE TABLE cache_stats (
   study_id        TEXT PRIMARY KEY REFERENCES studies (id),
@@ -102,10 +101,6 @@ CREATE TABLE price_rows (
   priced_at   REAL NOT NULL,        -- Unix time, s
   PRIMARY KEY (study_id, job_id, run, quantity)
 ) WITHOUT ROWID;
-CREATE TABLE fidelity_records (
-  id     TEXT PRIMARY KEY,            -- SHA-256 of record
-  record TEXT NOT NULL                -- JSON: model, contact law, solver path, DOFs, HHT parameters, modes, ...
-) WITHOUT ROWID;
 CREATE UNIQUE INDEX jobs_seq ON jobs (seq);
 CREATE TABLE envelope_keys (
   key      INTEGER PRIMARY KEY,       -- what a job's rows hold instead of the two names
@@ -141,6 +136,15 @@ END;
 CREATE VIEW envelopes AS
   SELECT j.id AS job_id, e.quantity, e.location, e.value, e.error_estimate
   FROM job_envelopes e JOIN jobs j ON j.seq = e.job_seq;
+CREATE TABLE static_envelopes (
+  structure_job TEXT NOT NULL REFERENCES jobs (id),  -- the job whose scene gives the structure and its rail lines
+  train_job     TEXT NOT NULL REFERENCES jobs (id),  -- the job whose scene gives the train's axles
+  quantity      TEXT NOT NULL,        -- deck_displacement_m, bending_moment_Nm, shear_force_N, support_reaction_N, support_rotation_rad
+  place         INTEGER NOT NULL,     -- the output point's or the support's index in the structure
+  location      TEXT NOT NULL,        -- its name
+  value         REAL,                 -- max over the train's positions; NULL: the section has no such form
+  PRIMARY KEY (structure_job, train_job, quantity, place)
+) WITHOUT ROWID;
 CREATE TABLE scene_parts (
   part INTEGER PRIMARY KEY,           -- what a job's row holds (jobs.scene_part)
   head TEXT NOT NULL,                 -- the scene up to and with its first "speed_kmh": (all of it when none)
@@ -166,9 +170,6 @@ CREATE TRIGGER job_scenes_insert INSTEAD OF INSERT ON job_scenes BEGIN
     JOIN scene_parts p ON p.head = s.head AND p.tail = s.tail
   WHERE jobs.id = NEW.job_id AND jobs.scene_part IS NULL;
 END;
-CREATE VIEW job_records AS
-  SELECT j.*, p.head || j.scene_speed || p.tail AS scene, f.record AS fidelity
-  FROM jobs j LEFT JOIN scene_parts p ON p.part = j.scene_part LEFT JOIN fidelity_records f ON f.id = j.fidelity_id;
 CREATE UNIQUE INDEX studies_seq ON studies (seq);
 CREATE TRIGGER studies_number AFTER INSERT ON studies WHEN NEW.seq IS NULL BEGIN
   UPDATE studies SET seq = (SELECT coalesce(max(seq), 0) + 1 FROM studies) WHERE id = NEW.id;
@@ -225,16 +226,23 @@ CREATE VIEW study_envelopes AS
   SELECT s.id AS study_id, j.id AS job_id, j.train, j.speed_kmh, j.irregularity, e.quantity, e.location, e.value
   FROM study_job_links l JOIN studies s ON s.seq = l.study_seq JOIN jobs j ON j.seq = l.job_seq
   JOIN job_envelopes e ON e.job_seq = j.seq;
-CREATE TABLE static_envelopes (
-  structure_job TEXT NOT NULL REFERENCES jobs (id),  -- the job whose scene gives the structure and its rail lines
-  train_job     TEXT NOT NULL REFERENCES jobs (id),  -- the job whose scene gives the train's axles
-  quantity      TEXT NOT NULL,        -- deck_displacement_m, bending_moment_Nm, shear_force_N, support_reaction_N, support_rotation_rad
-  place         INTEGER NOT NULL,     -- the output point's or the support's index in the structure
-  location      TEXT NOT NULL,        -- its name
-  value         REAL,                 -- max over the train's positions; NULL: the section has no such form
-  PRIMARY KEY (structure_job, train_job, quantity, place)
-) WITHOUT ROWID;
 CREATE INDEX jobs_claim ON jobs (operator_key, rung, train) WHERE state = 'queued';
+CREATE TABLE step_reasons (
+  number INTEGER PRIMARY KEY,         -- what a job's row holds (jobs.step_reason)
+  text   TEXT NOT NULL UNIQUE         -- why the job's dt_s is what it is (the planner's words)
+);
+CREATE TABLE fidelity_records (
+  number INTEGER PRIMARY KEY,         -- what a job's row holds (jobs.fidelity_record)
+  id     TEXT NOT NULL UNIQUE,        -- SHA-256 of record
+  record TEXT NOT NULL                -- JSON: model, contact law, solver path, DOFs, HHT parameters, modes, ...
+);
+CREATE VIEW job_records AS
+  SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.operator_key, j.dt_s, r.text AS dt_reason, j.cutoff_hz, j.state,
+    j.attempts, j.max_attempts, j.worker, j.lease_expires, j.error, j.status, j.steps, j.wall_s, j.loop_s, j.setup_s,
+    j.factorization_s, j.enqueued_at, j.started_at, j.finished_at, j.warnings, j.rung, f.id AS fidelity_id, j.seq,
+    j.planned_modes, j.scene_part, j.scene_speed, p.head || j.scene_speed || p.tail AS scene, f.record AS fidelity
+  FROM jobs j LEFT JOIN scene_parts p ON p.part = j.scene_part LEFT JOIN step_reasons r ON r.number = j.step_reason
+  LEFT JOIN fidelity_records f ON f.number = j.fidelity_record;
 )sql";
   return kSql;
 }

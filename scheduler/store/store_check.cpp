@@ -48,9 +48,11 @@ const Invariant kInvariants[] = {
      "OR j.scene_speed IS NULL",
      "jobs without a scene"},
     {"SELECT count(*) FROM studies WHERE seq IS NULL", "studies without a number (studies.seq: their jobs cannot be linked)"},
-    {"SELECT count(*) FROM jobs j WHERE fidelity_id IS NOT NULL "
-     "AND NOT EXISTS (SELECT 1 FROM fidelity_records f WHERE f.id = j.fidelity_id)",
+    {"SELECT count(*) FROM jobs j WHERE fidelity_record IS NOT NULL "
+     "AND NOT EXISTS (SELECT 1 FROM fidelity_records f WHERE f.number = j.fidelity_record)",
      "jobs whose fidelity record is missing"},
+    {"SELECT count(*) FROM jobs j WHERE NOT EXISTS (SELECT 1 FROM step_reasons r WHERE r.number = j.step_reason)",
+     "jobs without a step reason"},
 };
 
 }  // namespace

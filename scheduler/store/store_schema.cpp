@@ -450,6 +450,40 @@ CREATE VIEW study_envelopes AS
 DROP INDEX jobs_claim;
 CREATE INDEX jobs_claim ON jobs (operator_key, rung, train) WHERE state = 'queued';
 )sql"},
+      {"step_reasons and numbered fidelity_records: the step's reason and the fidelity record's id, the same for "
+       "every job of a structure (or a batch), out of the jobs rows as numbers of rows stored once, as the scenes' "
+       "parts are; view job_records gives dt_reason and fidelity_id as before",
+       R"sql(
+CREATE TABLE step_reasons (
+  number INTEGER PRIMARY KEY,         -- what a job's row holds (jobs.step_reason)
+  text   TEXT NOT NULL UNIQUE         -- why the job's dt_s is what it is (the planner's words)
+);
+INSERT OR IGNORE INTO step_reasons (text) SELECT dt_reason FROM jobs ORDER BY seq;
+DROP VIEW job_records;
+ALTER TABLE fidelity_records RENAME TO fidelity_records_15;
+CREATE TABLE fidelity_records (
+  number INTEGER PRIMARY KEY,         -- what a job's row holds (jobs.fidelity_record)
+  id     TEXT NOT NULL UNIQUE,        -- SHA-256 of record
+  record TEXT NOT NULL                -- JSON: model, contact law, solver path, DOFs, HHT parameters, modes, ...
+);
+INSERT INTO fidelity_records (id, record) SELECT id, record FROM fidelity_records_15 ORDER BY id;
+DROP TABLE fidelity_records_15;
+-- No REFERENCES clauses, as for fidelity_id before (migration 8); vsi check
+-- verifies both.
+ALTER TABLE jobs ADD COLUMN step_reason INTEGER;      -- step_reasons.number
+ALTER TABLE jobs ADD COLUMN fidelity_record INTEGER;  -- fidelity_records.number; NULL before the run
+UPDATE jobs SET step_reason = (SELECT number FROM step_reasons WHERE text = jobs.dt_reason),
+  fidelity_record = (SELECT number FROM fidelity_records WHERE id = jobs.fidelity_id);
+ALTER TABLE jobs DROP COLUMN dt_reason;
+ALTER TABLE jobs DROP COLUMN fidelity_id;
+CREATE VIEW job_records AS
+  SELECT j.id, j.train, j.speed_kmh, j.irregularity, j.operator_key, j.dt_s, r.text AS dt_reason, j.cutoff_hz, j.state,
+    j.attempts, j.max_attempts, j.worker, j.lease_expires, j.error, j.status, j.steps, j.wall_s, j.loop_s, j.setup_s,
+    j.factorization_s, j.enqueued_at, j.started_at, j.finished_at, j.warnings, j.rung, f.id AS fidelity_id, j.seq,
+    j.planned_modes, j.scene_part, j.scene_speed, p.head || j.scene_speed || p.tail AS scene, f.record AS fidelity
+  FROM jobs j LEFT JOIN scene_parts p ON p.part = j.scene_part LEFT JOIN step_reasons r ON r.number = j.step_reason
+  LEFT JOIN fidelity_records f ON f.number = j.fidelity_record;
+)sql"},
   };
   return all;
 }

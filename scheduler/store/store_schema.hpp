@@ -6,7 +6,7 @@
 
 namespace railvsi::scheduler {
 
-inline constexpr int kStoreSchemaVersion = 15;
+inline constexpr int kStoreSchemaVersion = 16;
 
 // Applies the missing migrations in one BEGIN IMMEDIATE transaction (safe
 // when several workers open a new file at once). Throws SqliteError, or

@@ -10,7 +10,9 @@
 // is its part (shared by the jobs that differ in speed alone) and its
 // speed's text, studies link their jobs and bridges by the store's numbers;
 // views job_scenes, study_jobs and study_structures give the very rows, and
-// vsi query the very bytes, of before.
+// vsi query the very bytes, of before. 16: the step's reason and the
+// fidelity record are numbers of rows stored once; view job_records gives
+// the very rows, vsi query and report the very bytes, of before.
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -18,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "core/sha256.hpp"
@@ -283,7 +286,7 @@ TEST_F(StoreMigration, TwelveSpellsTheLoadModelAsTheSchemaDoesInRecordsAndPriceR
   EXPECT_EQ(count_rows(db, "SELECT count(*) FROM fidelity_records"), 2);
   // Each job's record by its key: the respelled one under its own SHA-256,
   // the other untouched; no job points to a record that is gone.
-  Statement s = db.prepare("SELECT j.id, j.fidelity_id, f.record FROM jobs j LEFT JOIN fidelity_records f "
+  Statement s = db.prepare("SELECT j.id, j.fidelity_id, f.record FROM job_records j LEFT JOIN fidelity_records f "
                            "ON f.id = j.fidelity_id ORDER BY j.id");
   int jobs = 0;
   while (s.step()) {
@@ -418,13 +421,13 @@ void write_as_version_13(const std::string& now_db, const std::string& old_db) {
   old.exec("ATTACH '" + now_db + "' AS now");
   old.exec("INSERT INTO studies (id, name, file, document, checks, job_count, submitted_at) "
            "SELECT id, name, file, document, checks, job_count, submitted_at FROM now.studies");
-  old.exec("INSERT INTO fidelity_records SELECT * FROM now.fidelity_records");
+  old.exec("INSERT INTO fidelity_records (id, record) SELECT id, record FROM now.fidelity_records");
   old.exec("INSERT INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, state, "
            "attempts, max_attempts, worker, lease_expires, error, status, steps, wall_s, loop_s, setup_s, "
            "factorization_s, enqueued_at, started_at, finished_at, warnings, rung, fidelity_id, seq, planned_modes) "
            "SELECT id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, state, attempts, "
            "max_attempts, worker, lease_expires, error, status, steps, wall_s, loop_s, setup_s, factorization_s, "
-           "enqueued_at, started_at, finished_at, warnings, rung, fidelity_id, seq, planned_modes FROM now.jobs "
+           "enqueued_at, started_at, finished_at, warnings, rung, fidelity_id, seq, planned_modes FROM now.job_records "
            "ORDER BY seq");
   old.exec("INSERT INTO job_scenes (job_id, scene) SELECT job_id, scene FROM now.job_scenes");
   old.exec("INSERT INTO study_jobs SELECT study_id, job_id, position FROM now.study_jobs");
@@ -514,9 +517,8 @@ TEST_F(StoreMigration, SceneSplitGivesBackEveryTextToTheByte) {
   EXPECT_EQ(s.tail, R"(,"train":"A"})");
 }
 
-TEST_F(StoreMigration, FifteenKeepsEverySceneAndLinkToTheByteAndVsiQueryGivesTheSameBytes) {
-  // A line study (bridges A and C one structure, B another) run on this
-  // vsi's schema ...
+// A line study of three bridges (A and C one structure, "Brücke B" another).
+nlohmann::json three_bridge_line() {
   nlohmann::json doc = tiny_study();
   nlohmann::json span12 = doc["structure"];
   span12["spans_m"] = {12.0};
@@ -524,8 +526,14 @@ TEST_F(StoreMigration, FifteenKeepsEverySceneAndLinkToTheByteAndVsiQueryGivesThe
                                    {{"name", "Brücke B"}, {"structure", span12}},
                                    {{"name", "C"}, {"structure", doc["structure"]}}});
   doc.erase("structure");
+  return doc;
+}
+
+TEST_F(StoreMigration, FifteenKeepsEverySceneAndLinkToTheByteAndVsiQueryGivesTheSameBytes) {
+  // A line study (bridges A and C one structure, B another) run on this
+  // vsi's schema ...
   const std::string now_db = (dir_ / "now.sqlite").string(), old_db = (dir_ / "old.sqlite").string();
-  ASSERT_EQ(vsi({"run", write_json("line.json", doc).string(), "--db", now_db}, "run").exit_code, 0);
+  ASSERT_EQ(vsi({"run", write_json("line.json", three_bridge_line()).string(), "--db", now_db}, "run").exit_code, 0);
   // ... and the same rows written as a version-13 store holds them (tables
   // job_scenes, study_jobs, study_structures keyed by SHA-256 texts).
   write_as_version_13(now_db, old_db);
@@ -577,8 +585,8 @@ TEST_F(StoreMigration, FifteenKeepsEverySceneAndLinkToTheByteAndVsiQueryGivesThe
   // and link; a duplicate link refused, OR IGNORE ignored; a link deleted.
   const std::string scene = R"({"speed_kmh":777,"train":"Zug ü"})";
   const std::string id = sha256_hex(scene);
-  old.prepare("INSERT INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, "
-              "enqueued_at, seq) VALUES (?, 'Zug ü', 777, 'none', 'k', 0.001, 'r', 30, 0, 1000)")
+  old.prepare("INSERT INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, cutoff_hz, "
+              "enqueued_at, seq) VALUES (?, 'Zug ü', 777, 'none', 'k', 0.001, 30, 0, 1000)")
       .bind(1, id)
       .run();
   old.prepare("INSERT INTO job_scenes (job_id, scene) VALUES (?, ?)").bind(1, id).bind(2, scene).run();
@@ -597,6 +605,91 @@ TEST_F(StoreMigration, FifteenKeepsEverySceneAndLinkToTheByteAndVsiQueryGivesThe
   EXPECT_EQ(count_rows(old, "SELECT count(*) FROM study_structures WHERE structure = 'Brücke B'"), 11);
   old.prepare("DELETE FROM study_jobs WHERE job_id = ?").bind(1, id).run();
   EXPECT_EQ(count_rows(old, "SELECT count(*) FROM study_jobs"), 20);
+}
+
+// The rows of the store `now_db` written as a version-15 store holds them
+// (the step's reason and the fidelity record's id as texts in each job's
+// row) into the new file `old_db`.
+void write_as_version_15(const std::string& now_db, const std::string& old_db) {
+  Database old(old_db);
+  migrate(old, 15);
+  old.exec("ATTACH '" + now_db + "' AS now");
+  old.exec("INSERT INTO studies (id, name, file, document, checks, job_count, submitted_at, seq) "
+           "SELECT id, name, file, document, checks, job_count, submitted_at, seq FROM now.studies");
+  old.exec("INSERT INTO fidelity_records (id, record) SELECT id, record FROM now.fidelity_records");
+  old.exec("INSERT INTO scene_parts SELECT * FROM now.scene_parts");
+  old.exec("INSERT INTO jobs (id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, cutoff_hz, state, "
+           "attempts, max_attempts, worker, lease_expires, error, status, steps, wall_s, loop_s, setup_s, "
+           "factorization_s, enqueued_at, started_at, finished_at, warnings, rung, fidelity_id, seq, planned_modes, "
+           "scene_part, scene_speed) SELECT id, train, speed_kmh, irregularity, operator_key, dt_s, dt_reason, "
+           "cutoff_hz, state, attempts, max_attempts, worker, lease_expires, error, status, steps, wall_s, loop_s, "
+           "setup_s, factorization_s, enqueued_at, started_at, finished_at, warnings, rung, fidelity_id, seq, "
+           "planned_modes, scene_part, scene_speed FROM now.job_records ORDER BY seq");
+  for (const char* table : {"study_job_links", "study_bridges", "study_bridge_jobs", "cache_stats", "envelope_keys",
+                            "envelope_values", "static_envelopes"})
+    old.exec(fmt::format("INSERT INTO {0} SELECT * FROM now.{0}", table));
+}
+
+TEST_F(StoreMigration, SixteenNumbersTheStepReasonsAndFidelityRecordsAndVsiQueryAndReportGiveTheSameBytes) {
+  // The line study of the test above (two structures, three bridges), run
+  // on this vsi's schema ...
+  const std::string now_db = (dir_ / "now.sqlite").string(), old_db = (dir_ / "old.sqlite").string();
+  ASSERT_EQ(vsi({"run", write_json("line.json", three_bridge_line()).string(), "--db", now_db}, "run").exit_code, 0);
+  // ... and as a version-15 store holds it.
+  write_as_version_15(now_db, old_db);
+  std::vector<std::string> records;
+  std::int64_t reasons = 0, fidelities = 0;
+  {
+    Database old(old_db);
+    records = rows_of(old, "SELECT * FROM job_records");
+    reasons = count_rows(old, "SELECT count(DISTINCT dt_reason) FROM jobs");
+    fidelities = count_rows(old, "SELECT count(DISTINCT fidelity_id) FROM jobs");
+    ASSERT_EQ(records.size(), 20u);  // 2 structures x 2 trains x 5 speeds
+    ASSERT_GE(reasons, 1);
+    ASSERT_GE(fidelities, 1);
+  }
+  // A writing command upgrades it.
+  const VsiResult upgrade = vsi({"work", "--db", old_db, "--threads", "1"}, "upgrade");
+  ASSERT_EQ(upgrade.exit_code, 0) << upgrade.err;
+  {
+    Database old(old_db);
+    EXPECT_EQ(count_rows(old, "PRAGMA user_version"), kStoreSchemaVersion);
+    // job_records gives every row and column of before, to the byte, and
+    // the store run on this schema the same rows.
+    EXPECT_EQ(rows_of(old, "SELECT * FROM job_records"), records);
+    Database now(now_db, OpenMode::kReadOnly);
+    EXPECT_EQ(rows_of(now, "SELECT * FROM job_records"), records);
+    // Each text once; the rows hold their numbers, not the texts.
+    EXPECT_EQ(count_rows(old, "SELECT count(*) FROM step_reasons"), reasons);
+    EXPECT_EQ(count_rows(old, "SELECT count(*) FROM fidelity_records"), fidelities);
+    EXPECT_EQ(count_rows(old, "SELECT count(*) FROM pragma_table_info('jobs') WHERE name IN ('dt_reason', 'fidelity_id')"), 0);
+    EXPECT_EQ(count_rows(old, "SELECT count(*) FROM jobs WHERE step_reason IS NULL OR fidelity_record IS NULL"), 0);
+    for (const std::string& p : check_store(old).problems) ADD_FAILURE() << p;
+  }
+  // vsi query and the report read the upgraded store to the byte as the
+  // store run on this schema.
+  std::string study;
+  {
+    Database old(old_db, OpenMode::kReadOnly);
+    study = rows_of(old, "SELECT id FROM studies").at(0);
+  }
+  ::setenv("SOURCE_DATE_EPOCH", "1800000000", 1);  // the report's date (the child inherits it)
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"query"}, {"query", "--format", "csv"}, {"query", "--format", "json"},
+        {"query", "--line"}, {"query", "--line", "--format", "csv"}, {"query", "--line", "--format", "json"},
+        {"query", "--structure", "Brücke B", "--format", "json"},
+        {"report", "--no-histories", "--format", "json"}}) {
+    std::vector<std::string> on_old = args;
+    on_old.insert(on_old.begin() + 1, {"--db", old_db, "--study", study});
+    std::vector<std::string> on_now = on_old;
+    on_now[2] = now_db;
+    const VsiResult a = vsi(on_old, "old"), b = vsi(on_now, "now");
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    EXPECT_EQ(a.out, b.out) << args.back();
+    EXPECT_GT(a.out.size(), 200u) << "an output to compare";
+  }
+  ::unsetenv("SOURCE_DATE_EPOCH");
 }
 }  // namespace
 }  // namespace railvsi::test
