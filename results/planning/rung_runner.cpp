@@ -23,18 +23,18 @@ void record_rung(const Scene& scene, const ScenePlan& plan, const Rung& rung, Ru
 namespace {
 
 // A wheel that leaves the rail lands with an impact, whose broadband force
-// excites the bridge's modes above the hybrid structure's cut-off: over a
-// 20 mm dip on the 19,869-DOF 3D deck the fixed-interface modes left the
-// filtered deck acceleration +1.8 % off FE at 221 Hz (tests/bench/
-// hybrid_bench, docs/performance.md). The free-interface modes at the
-// planner's cut-off gave -0.090 % there and the contact-loss time equal to
-// FE's (2026-11-28, two decks): the repeat is kept until more cases show it
-// can go.
+// excites the bridge's modes above the hybrid structure's cut-off. With the
+// fixed-interface modes (Craig-Bampton, selectable only in code) that left
+// the filtered deck acceleration +1.8 % off FE at 221 Hz over a 20 mm dip
+// on the 19,869-DOF 3D deck, so such a run is repeated on FE. The
+// free-interface modes (the default) at the planner's cut-off held the
+// targets in every contact-loss case measured (tests/bench/hybrid_bench,
+// docs/performance.md, 2026-11-28): no repeat.
 std::optional<std::string> impact_reason(const RunSummary& summary) {
   for (const WheelSummary& w : summary.wheels)
     if (w.evaluated && w.contact_loss_s > 0.0)
-      return fmt::format("wheel {} lost contact for {:.4g} ms on the hybrid structure: its landing excites the "
-                         "bridge's modes above the cut-off, repeated on the FE structure",
+      return fmt::format("wheel {} lost contact for {:.4g} ms on the hybrid structure with fixed-interface modes: its "
+                         "landing excites the bridge's modes above the cut-off, repeated on the FE structure",
                          w.name, 1e3 * w.contact_loss_s);
   return std::nullopt;
 }
@@ -74,10 +74,12 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
   Result r = Simulation(on_rung, op).run();
   record_rung(on_rung, plan, plan.rung, r.summary);
   if (scene.train.is_moving_forces()) return r;
-  // On the hybrid structure a lost contact sends the run (escalated or
-  // not) to FE.
+  // On the fixed-interface hybrid structure a lost contact sends the run
+  // (escalated or not) to FE.
   const auto on_fe_after_impact = [&](Result last, const Scene& ran, const Rung& rung) {
-    if (plan.rung.structure != "hybrid" || !plan.impact_repeats_on_fe || !last.status.ok()) return last;
+    if (plan.rung.structure != "hybrid" || !plan.impact_repeats_on_fe || !last.status.ok() ||
+        ran.analysis.hybrid_bridge_modes != BridgeModes::kFixedInterface)
+      return last;
     const auto impact = impact_reason(last.summary);
     if (!impact) return last;
     Scene fe = ran;

@@ -24,8 +24,10 @@ struct ScenePlan {
   std::optional<double> escalation_dt_factor;  // the escalated run's dt / the plan's; absent: 1
   std::vector<std::string> reasons;
   int modes_below_cutoff = -1;  // as the planner counted them ("auto"), else -1
-  // A hybrid run whose wheel lost contact is repeated on FE (rung_runner);
-  // false for the price, which measures the hybrid rung itself.
+  // A hybrid run on fixed-interface modes whose wheel lost contact is
+  // repeated on FE (rung_runner; the free-interface modes, the default,
+  // need no repeat); false for the price, which measures the hybrid rung
+  // itself.
   bool impact_repeats_on_fe = true;
 };
 

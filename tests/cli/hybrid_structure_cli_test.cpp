@@ -101,10 +101,11 @@ TEST_F(HybridStructureCli, TheAutomaticStudyOverA3dDeckRunsOnTheHybridStructure)
   EXPECT_EQ(rung.rfind("interaction/hybrid|hybrid (track in FE", 0), 0u) << rung;
 }
 
-// A wheel that loses contact on the hybrid structure lands with an impact
-// whose response the bridge's cut-off leaves out: the run is repeated on FE
-// and its record says why.
-TEST_F(HybridStructureCli, ALostContactOnTheHybridStructureRepeatsTheRunOnFe) {
+// A wheel that loses contact on the hybrid structure lands with an impact;
+// with the bridge's free-interface modes to the planner's cut-off (3 x the
+// code frequency) the run stays on the hybrid structure and agrees with the
+// same scene pinned on FE.
+TEST_F(HybridStructureCli, ALostContactOnTheHybridStructureAgreesWithFeWithoutARepeat) {
   const VsiRun g = vsi("generate deck-3d --dofs 3000 --spans 25 --approach 30 --out '" + (dir_ / "deck").string() + "'");
   ASSERT_EQ(g.exit_code, 0) << g.err;
   json coach = json::parse(read_text(std::filesystem::path(RAILVSI_SOURCE_DIR) / "jobs/trains/ICE3.json")).at("vehicles").at(0);
@@ -113,22 +114,37 @@ TEST_F(HybridStructureCli, ALostContactOnTheHybridStructureRepeatsTheRunOnFe) {
       {"structure", {{"import", {{"K", "deck/K.mtx"}, {"M", "deck/M.mtx"}, {"C", "deck/C.mtx"}, {"map", "deck/map.json"}}}}},
       {"train", {{"name", "ICE3 coach"}, {"vehicles", json::array({coach})}}},
       {"speed_kmh", 350},
-      {"irregularity", nullptr},
+      {"irregularity", {{"defects", {{{"type", "dip"}, {"x_m", 12.0}, {"length_m", 1.0}, {"depth_m", 0.03}}}}}},
       {"analysis", {{"dt_s", 2.5e-4}, {"contact", {{"law", "hertz"}, {"rail_lines", {0, 1}}}}}},
-      {"fidelity", {{"model", "interaction"}, {"structure", "hybrid"}, {"modal_cutoff_hz", 100}}}};
-  const VsiRun smooth = vsi("simulate '" + write_json("smooth.json", scene).string() + "'");
-  ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
-  EXPECT_EQ(json::parse(smooth.out).at("run").at("fidelity").at("rung"), "interaction/hybrid");
-  scene["irregularity"] = {{"defects", {{{"type", "dip"}, {"x_m", 12.0}, {"length_m", 1.0}, {"depth_m", 0.03}}}}};
-  const VsiRun dip = vsi("simulate '" + write_json("dip.json", scene).string() + "'");
-  ASSERT_EQ(dip.exit_code, 0) << dip.err;
-  const json s = json::parse(dip.out);
-  EXPECT_GT(s.at("wheels").at("contact_loss_s").get<double>(), 0.0);
-  const json& f = s.at("run").at("fidelity");
-  EXPECT_EQ(f.at("rung"), "interaction/fe");
-  EXPECT_EQ(f.at("structure_backend"), "cholmod");
-  EXPECT_NE(f.at("escalation").get<std::string>().find("lost contact"), std::string::npos) << f.dump();
-  EXPECT_NE(f.at("escalation").get<std::string>().find("repeated on the FE structure"), std::string::npos) << f.dump();
+      {"fidelity", {{"model", "interaction"}, {"structure", "hybrid"}}}};
+  const VsiRun hybrid = vsi("simulate '" + write_json("hybrid.json", scene).string() + "'");
+  ASSERT_EQ(hybrid.exit_code, 0) << hybrid.err;
+  scene["fidelity"]["structure"] = "fe";
+  const VsiRun fe = vsi("simulate '" + write_json("fe.json", scene).string() + "'");
+  ASSERT_EQ(fe.exit_code, 0) << fe.err;
+  const json h = json::parse(hybrid.out), f = json::parse(fe.out);
+  const json& record = h.at("run").at("fidelity");
+  EXPECT_EQ(record.at("rung"), "interaction/hybrid");
+  EXPECT_EQ(record.at("structure_backend").get<std::string>().rfind("hybrid (", 0), 0u) << record.dump();
+  EXPECT_TRUE(record.at("escalation").is_null()) << record.dump();
+  EXPECT_EQ(f.at("run").at("fidelity").at("rung"), "interaction/fe");
+  // Both lose contact (FE 36.25 ms over the four wheels).
+  const double loss_fe = f.at("wheels").at("contact_loss_s");
+  ASSERT_GT(loss_fe, 0.01);
+  // Measured 2026-11-28 (17 modes to 109.7 Hz): the same number of steps
+  // without contact; half a step is that count.
+  EXPECT_NEAR(h.at("wheels").at("contact_loss_s").get<double>(), loss_fe, 0.5 * 2.5e-4);
+  const auto near = [&](const std::string& group, const std::string& key, double tolerance) {
+    const double hy = h.at(group).at(key), ref = f.at(group).at(key);
+    EXPECT_GT(std::abs(ref), 0.0) << key;
+    EXPECT_NEAR(hy, ref, tolerance * std::abs(ref)) << key;
+  };
+  // Measured (hybrid - FE) / FE, 2026-11-28: displacement +0.197 % (the
+  // target 0.5 %, 2.5x), filtered deck acceleration +0.024 % (0.07 %),
+  // car body -0.020 % (0.06 %).
+  near("deck", "max_abs_displacement_m", 5e-3);
+  near("deck", "max_abs_acceleration_filtered_mps2", 7e-4);
+  near("vehicles", "max_abs_carbody_acceleration_mps2", 6e-4);
 }
 
 }  // namespace
