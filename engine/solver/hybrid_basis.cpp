@@ -374,11 +374,12 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
     r.GG = b.GG + X;
     r.Gq = DenseMatrix::Zero(n_interface_, m);
     DenseMatrix Z, WPhi;
+    SparseProductWorkspace work;
     if (!stiffness) {
       DenseMatrix S = DenseMatrix::Zero(n_interface_, n_interface_);
       for (int c0 = 0; c0 < n_interface_; c0 += block) {
         const int w = std::min(block, n_interface_ - c0);
-        Z = sparse_times_dense(b.II, Psi.middleCols(c0, w));
+        sparse_times_dense(b.II, Psi.middleCols(c0, w), Z, work);
         multiply_blocks(true, Psi.rightCols(n_interface_ - c0), Z, S.block(c0, c0, n_interface_ - c0, w));
         // W = Z + A_IG's columns, added in place (no dense copy of A_IG's
         // block: the same sums).

@@ -89,10 +89,13 @@ bool constraint_modes(const ShiftInvertFactor& factor, int n_interior, int colum
   Psi.resize(n_interior, n_interface);
   // L' y = [L_GI' e; 0]: y's interface part is 0, its interior part
   // L_II^-T L_GI' e (the factor's order).
+  // One right-hand side and one solution array for every block (a fresh
+  // allocation of this size is a page fault per 4 kB).
   DenseMatrix rhs, y;
   for (int c0 = 0; c0 < n_interface; c0 += column_block) {
     const int w = std::min(column_block, n_interface - c0);
-    rhs = DenseMatrix::Zero(n, w);
+    rhs.resize(n, w);
+    rhs.setZero();
     rhs.topRows(n_interior) = LGIt.middleCols(c0, w);
     if (!factor.solve(CHOLMOD_Lt, rhs, y)) return false;
     for (int j = 0; j < w; ++j) {
