@@ -98,32 +98,37 @@ Measured measure(const SparseMatrix& K_BB, int n_interior, int column_block) {
   return m;
 }
 
-TEST(InterfaceLastFactor, ConstraintModesAndSchurComplementOfASupernodalFactorEqualTheDenseFormulas) {
-  // 12 x 10 x 8 grid, 960 DOFs, the top layer (120) the interface.
-  const SparseMatrix K = grid(12, 10, 8);
-  const Measured m = measure(K, 12 * 10 * 7, 32);
-  EXPECT_TRUE(m.supernodal);
-  std::printf("[interface last, supernodal] Psi %.2e, Schur complement %.2e, solve %.2e\n", m.psi, m.schur, m.solve);
-  // Measured 2026-11-28: Psi 7.7e-16, Schur complement 4.4e-16 of the
-  // largest entry, K_BB X = B to 2.7e-16; tolerances 3x.
-  EXPECT_LT(m.psi, 2.3e-15);
-  EXPECT_LT(m.schur, 1.3e-15);
-  EXPECT_LT(m.solve, 8.1e-16);
+// Each case: the grid, its interior's size, the column block, the factor
+// kind CHOLMOD picks, and the tolerances (3x the errors measured
+// 2026-11-28, relative to the largest entry): Psi, Schur complement, solve.
+struct Case {
+  const char* name;
+  int nx, ny, nz, n_interior, column_block;
+  bool supernodal;
+  double psi, schur, solve;
+};
+
+class InterfaceLastFactorCases : public ::testing::TestWithParam<Case> {};
+
+TEST_P(InterfaceLastFactorCases, ConstraintModesAndSchurComplementEqualTheDenseFormulas) {
+  const Case& c = GetParam();
+  const Measured m = measure(grid(c.nx, c.ny, c.nz), c.n_interior, c.column_block);
+  EXPECT_EQ(m.supernodal, c.supernodal);
+  std::printf("[interface last, %s] Psi %.2e, Schur complement %.2e, solve %.2e\n", c.name, m.psi, m.schur, m.solve);
+  EXPECT_LT(m.psi, c.psi);
+  EXPECT_LT(m.schur, c.schur);
+  EXPECT_LT(m.solve, c.solve);
 }
 
-TEST(InterfaceLastFactor, ConstraintModesAndSchurComplementOfASimplicialFactorEqualTheDenseFormulas) {
-  // A chain of 200 springs, the last 5 DOFs the interface: CHOLMOD's
-  // simplicial factor; blocks of 2 interface columns.
-  const SparseMatrix K = grid(200, 1, 1);
-  const Measured m = measure(K, 195, 2);
-  EXPECT_FALSE(m.supernodal);
-  std::printf("[interface last, simplicial] Psi %.2e, Schur complement %.2e, solve %.2e\n", m.psi, m.schur, m.solve);
-  // Measured 2026-11-28: Psi 3.5e-16, Schur complement 1.5e-16, K_BB X = B
-  // to 3.3e-16; tolerances 3x.
-  EXPECT_LT(m.psi, 1.1e-15);
-  EXPECT_LT(m.schur, 4.6e-16);
-  EXPECT_LT(m.solve, 1.0e-15);
-}
+INSTANTIATE_TEST_SUITE_P(
+    Factors, InterfaceLastFactorCases,
+    ::testing::Values(
+        // 12 x 10 x 8 grid, 960 DOFs, the top layer (120) the interface:
+        // supernodal; measured Psi 7.7e-16, Schur 4.4e-16, solve 2.7e-16.
+        Case{"supernodal", 12, 10, 8, 12 * 10 * 7, 32, true, 2.3e-15, 1.3e-15, 8.1e-16},
+        // A chain of 200 springs, the last 5 DOFs the interface, blocks of
+        // 2 columns: simplicial; measured 3.5e-16, 1.5e-16, 3.3e-16.
+        Case{"simplicial", 200, 1, 1, 195, 2, false, 1.1e-15, 4.6e-16, 1.0e-15}));
 
 TEST(InterfaceLastFactor, RefusesAFactorInAnotherOrder) {
   const SparseMatrix K = grid(6, 5, 4);
