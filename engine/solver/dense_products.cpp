@@ -38,22 +38,29 @@ void multiply_blocks(bool transpose_a, const Eigen::Ref<const DenseMatrix>& A, c
 }
 
 DenseMatrix sparse_times_dense(const SparseMatrix& A, const Eigen::Ref<const DenseMatrix>& X) {
+  DenseMatrix Y;
+  SparseProductWorkspace work;
+  sparse_times_dense(A, X, Y, work);
+  return Y;
+}
+
+void sparse_times_dense(const SparseMatrix& A, const Eigen::Ref<const DenseMatrix>& X, DenseMatrix& Y,
+                        SparseProductWorkspace& work) {
   // 32 columns of X row by row (a 32-wide multiply-add per nonzero of A,
   // on memory next to the last one: FE orderings keep A's columns near
   // its rows).
   constexpr Eigen::Index kBlock = 32;
-  using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  DenseMatrix Y(A.rows(), X.cols());
-  RowBlock x, y;
+  Y.resize(A.rows(), X.cols());
   for (Eigen::Index c0 = 0; c0 < X.cols(); c0 += kBlock) {
     const Eigen::Index w = std::min(kBlock, X.cols() - c0);
-    x = X.middleCols(c0, w);
-    y = RowBlock::Zero(A.rows(), w);
+    work.x.resize(X.rows(), w);
+    work.y.resize(A.rows(), w);
+    work.x = X.middleCols(c0, w);
+    work.y.setZero();
     for (Eigen::Index j = 0; j < A.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(A, j); it; ++it) y.row(it.row()) += it.value() * x.row(j);
-    Y.middleCols(c0, w) = y;
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) work.y.row(it.row()) += it.value() * work.x.row(j);
+    Y.middleCols(c0, w) = work.y;
   }
-  return Y;
 }
 
 }  // namespace railvsi

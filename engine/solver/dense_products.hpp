@@ -21,4 +21,15 @@ void multiply_blocks(bool transpose_a, const Eigen::Ref<const DenseMatrix>& A, c
 // Y = A X for a sparse A and a tall dense X, column block by column block.
 DenseMatrix sparse_times_dense(const SparseMatrix& A, const Eigen::Ref<const DenseMatrix>& X);
 
+// The same into Y, with the row-major blocks in `work`: a loop over column
+// blocks of a tall X keeps one allocation of each (a fresh allocation of
+// hundreds of MB is a page fault and a cleared page per 4 kB: 19.6 % of
+// the seed-scale hybrid run's samples, perf 2026-11-28). Y and work are
+// resized only when their sizes change.
+struct SparseProductWorkspace {
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> x, y;
+};
+void sparse_times_dense(const SparseMatrix& A, const Eigen::Ref<const DenseMatrix>& X, DenseMatrix& Y,
+                        SparseProductWorkspace& work);
+
 }  // namespace railvsi

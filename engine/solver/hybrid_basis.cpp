@@ -13,6 +13,7 @@
 #include "core/input_error.hpp"
 #include "core/thread_cpu_time.hpp"
 #include "solver/dense_products.hpp"
+#include "solver/interface_last_factor.hpp"
 #include "solver/lanczos_slices.hpp"
 #include "solver/modal_analysis.hpp"
 #include "solver/shift_invert_factor.hpp"
@@ -132,7 +133,8 @@ std::pair<DenseMatrix, std::vector<double>> interior_ritz(const SparseMatrix& K,
 
 // The modes of (K, M), mass-normalised: the interior's with the interface
 // held, or the bridge's own (K_BB, M_BB, its interface free).
-// `factor`: K's L L' factor (the constraint modes'), the first shift (0).
+// `factor`: K's L L' factor (the constraint modes'), the first shift (0),
+// or null (the solver's own at -1).
 ModalResult interior_modes(const SparseMatrix& K, const SparseMatrix& M, const HybridBasisOptions& o,
                            const ShiftInvertFactor* factor, HybridBasisSummary& summary) {
   const Eigen::Index n = K.rows();
@@ -277,15 +279,37 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
   const Blocks M = split(s.M(), part, local, n_interior, n_interface_);
   const Blocks C = split(s.C(), part, local, n_interior, n_interface_);
 
-  // Psi = -K_II^-1 K_IG, from one factor of K_II (positive definite: the
-  // interface held fixed supports the interior), solved a block of columns
-  // at a time: the dense K_IG and CHOLMOD's workspace stay a block wide.
+  // Psi = -K_II^-1 K_IG. With free-interface modes, from one factor of the
+  // whole bridge with the interface ordered last (interface_last_factor.hpp:
+  // backward solves only), which is also the modes' shift-invert operator
+  // at shift 0. Else, or when the bridge without its track is not positive
+  // definite, from one factor of K_II (positive definite: the interface
+  // held supports the interior), solved a block of columns at a time: the
+  // dense K_IG and CHOLMOD's workspace stay a block wide.
   double cpu_s = thread_cpu_s();
   DenseMatrix Psi(n_interior, n_interface_);
-  // K_II's factor is also the mode solver's first shift (0: below the
+  bridge_modes_ = options.bridge_modes;
+  const bool free_modes = bridge_modes_ == BridgeModes::kFreeInterface && n_interior > 0;
+  SparseMatrix K_BB, M_BB;  // the bridge without its track (free-interface modes)
+  if (free_modes) {
+    K_BB = bridge_block(s.K(), part, local, n_interior, n_interface_);
+    M_BB = bridge_block(s.M(), part, local, n_interior, n_interface_);
+  }
+  std::unique_ptr<ShiftInvertFactor> bridge_factor;  // K_BB's, interface last
+  if (free_modes && n_interface_ > 0 && options.interface_last_factor) {
+    Status ordered;
+    std::vector<int> order = interface_last_ordering(K.II, n_interface_, ordered);
+    if (ordered.ok()) {
+      bridge_factor = std::make_unique<ShiftInvertFactor>(K_BB, M_BB);
+      bridge_factor->order_as(std::move(order));
+      if (!bridge_factor->factorize(0.0).ok() || !constraint_modes(*bridge_factor, n_interior, block, Psi))
+        bridge_factor.reset();
+    }
+  }
+  // K_II's factor: the fixed-interface modes' first shift (0: below the
   // spectrum, the interface held).
   std::unique_ptr<ShiftInvertFactor> factor;
-  if (n_interior > 0 && n_interface_ > 0) {
+  if (!bridge_factor && n_interior > 0 && n_interface_ > 0) {
     factor = std::make_unique<ShiftInvertFactor>(K.II, M.II);
     if (!factor->factorize(0.0).ok())
       throw InputError("/structure", "the bridge with its track-bearing DOFs held is not supported: " +
@@ -300,8 +324,8 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
     }
   }
   summary_.constraint_modes_cpu_s = thread_cpu_s() - cpu_s;
+  summary_.shared_bridge_factor = bridge_factor != nullptr;
   cpu_s = thread_cpu_s();
-  bridge_modes_ = options.bridge_modes;
   ModalResult modes;
   if (bridge_modes_ == BridgeModes::kFixedInterface) {
     modes = interior_modes(K.II, M.II, options, factor.get(), summary_);
@@ -311,9 +335,8 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
     // The bridge's own modes (its interface free), each less its static
     // interface part, then orthonormalised on the interior.
     factor.reset();
-    const SparseMatrix K_BB = bridge_block(s.K(), part, local, n_interior, n_interface_);
-    const SparseMatrix M_BB = bridge_block(s.M(), part, local, n_interior, n_interface_);
-    ModalResult free = interior_modes(K_BB, M_BB, options, nullptr, summary_);
+    ModalResult free = interior_modes(K_BB, M_BB, options, bridge_factor.get(), summary_);
+    bridge_factor.reset();
     bridge_frequencies_hz_ = free.frequencies_hz;
     const DenseMatrix Q = free.shapes.topRows(n_interior) - Psi * free.shapes.bottomRows(n_interface_);
     auto [basis, ritz_hz] = interior_ritz(K.II, M.II, Q);
@@ -350,15 +373,19 @@ HybridBasis::HybridBasis(std::shared_ptr<const StructureModel> structure, const 
     const DenseMatrix X = b.IG.transpose() * Psi;
     r.GG = b.GG + X;
     r.Gq = DenseMatrix::Zero(n_interface_, m);
-    DenseMatrix Z, W, WPhi;
+    DenseMatrix Z, WPhi;
+    SparseProductWorkspace work;
     if (!stiffness) {
       DenseMatrix S = DenseMatrix::Zero(n_interface_, n_interface_);
       for (int c0 = 0; c0 < n_interface_; c0 += block) {
         const int w = std::min(block, n_interface_ - c0);
-        Z = sparse_times_dense(b.II, Psi.middleCols(c0, w));
+        sparse_times_dense(b.II, Psi.middleCols(c0, w), Z, work);
         multiply_blocks(true, Psi.rightCols(n_interface_ - c0), Z, S.block(c0, c0, n_interface_ - c0, w));
-        W = Z + DenseMatrix(b.IG.middleCols(c0, w));
-        multiply_transposed(W, Phi, WPhi);
+        // W = Z + A_IG's columns, added in place (no dense copy of A_IG's
+        // block: the same sums).
+        for (int k = 0; k < w; ++k)
+          for (SparseMatrix::InnerIterator it(b.IG, c0 + k); it; ++it) Z(it.row(), k) += it.value();
+        multiply_transposed(Z, Phi, WPhi);
         r.Gq.middleRows(c0, w) = WPhi;
       }
       S.triangularView<Eigen::StrictlyUpper>() = S.transpose();

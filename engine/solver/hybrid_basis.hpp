@@ -72,6 +72,11 @@ struct HybridBasisOptions {
   // of its own products (false: always its own; for verification).
   bool rayleigh_shortcut = true;
   BridgeModes bridge_modes = BridgeModes::kFreeInterface;
+  // Free-interface modes: the constraint modes from one factor of the whole
+  // bridge with the interface last, which is also the modes' first shift
+  // (interface_last_factor.hpp); false: from a factor of K_II, the modes
+  // with a factor of their own (for verification).
+  bool interface_last_factor = true;
 };
 
 // How exactly C must equal a0 M + a1 K on the bridge's interior (largest
@@ -84,7 +89,11 @@ struct HybridBasisSummary {
   double interior_modes_cpu_s = 0.0;    // the modes with the interface held
   double interior_factor_cpu_s = 0.0;   // of which the mode solver's factors
   double reduction_cpu_s = 0.0;         // T' K T, T' M T, T' C T
-  int factorizations = 0;               // of the mode solver (its first shift is K_II's factor)
+  int factorizations = 0;               // of the mode solver (its first shift is the constraint modes' factor)
+  // The free-interface modes' first shift was the constraint modes' factor
+  // of the whole bridge with the interface last (interface_last_factor.hpp),
+  // not a factor of their own.
+  bool shared_bridge_factor = false;
   // The interior modes come from block Lanczos: the largest true relative
   // residual of its pairs and of those kept, and whether its pairs failed
   // kMaxBlockLanczosResidual (ModalResult) and were computed again one

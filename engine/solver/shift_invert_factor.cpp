@@ -26,8 +26,17 @@ ShiftInvertFactor::Outcome ShiftInvertFactor::factor_at(double sigma, bool indef
   c->final_ll = indefinite ? 0 : 1;  // L L' also when simplicial (see the header)
   // The pattern of K - sigma M is the same for every shift: a simplicial
   // L D L' factor of an earlier shift keeps its ordering and is refactorized.
-  if (!indefinite || !factor_ || factor_->is_super || factor_->is_ll)
+  if (!indefinite && !given_ordering_.empty()) {
+    // The given ordering as it is: one method, no postorder.
+    c->nmethods = 1;
+    c->method[0].ordering = CHOLMOD_GIVEN;
+    c->postorder = 0;
+    factor_ = Factor(cholmod_analyze_p(&view, given_ordering_.data(), nullptr, 0, c), CholmodFactorDeleter{c});
+  } else if (!indefinite || !factor_ || factor_->is_super || factor_->is_ll) {
+    c->nmethods = 0;  // CHOLMOD's default suite
+    c->postorder = 1;
     factor_ = Factor(cholmod_analyze(&view, c), CholmodFactorDeleter{c});
+  }
   if (!factor_ || !cholmod_factorize(&view, factor_.get(), c)) return Outcome::kFailed;
   return c->status != CHOLMOD_NOT_POSDEF && factor_->minor == factor_->n ? Outcome::kComplete : Outcome::kStopped;
 }
@@ -110,11 +119,15 @@ void ShiftInvertFactor::solve(const double* x, double* y) const {
 
 bool ShiftInvertFactor::solve(const DenseMatrix& B, DenseMatrix& X) const {
   if (uses_mumps()) return mumps_->solve(B, X);
-  if (!factor_) return false;
+  return solve(CHOLMOD_A, B, X);
+}
+
+bool ShiftInvertFactor::solve(int cholmod_system, const DenseMatrix& B, DenseMatrix& X) const {
+  if (uses_mumps() || !factor_) return false;
   DenseMatrix& b = const_cast<DenseMatrix&>(B);  // CHOLMOD reads B only
   cholmod_dense bview = cholmod_view(b);
   cholmod_common* c = common_->get();
-  if (!cholmod_solve2(CHOLMOD_A, factor_.get(), &bview, nullptr, &X_, nullptr, &Y_, &E_, c)) return false;
+  if (!cholmod_solve2(cholmod_system, factor_.get(), &bview, nullptr, &X_, nullptr, &Y_, &E_, c)) return false;
   X.resize(B.rows(), B.cols());
   std::copy_n(static_cast<const double*>(X_->x), B.size(), X.data());
   return true;

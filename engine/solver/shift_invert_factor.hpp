@@ -7,6 +7,7 @@
 // MUMPS, or CHOLMOD's simplicial factor (IndefiniteFactorizer).
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "core/status.hpp"
 #include "core/types.hpp"
@@ -36,6 +37,11 @@ class ShiftInvertFactor {
   // supernodal factor is L L' only). A zero pivot (sigma an eigenvalue to
   // rounding) is a Status.
   const Status& factorize_indefinite(double sigma);
+  // The L L' factors that follow use this fill-reducing permutation as it
+  // is (row k of L is DOF permutation[k]), without CHOLMOD's postorder,
+  // which could move a trailing block (interface_last_factor.hpp) forward.
+  // Empty: CHOLMOD's own ordering. Call before factorize().
+  void order_as(std::vector<int> permutation) { given_ordering_ = std::move(permutation); }
   const Status& status() const { return status_; }
   // The number of eigenvalues below the shift factorized (Sylvester's law
   // of inertia: the negative entries of D; 0 after factorize()). The Sturm
@@ -49,6 +55,12 @@ class ShiftInvertFactor {
   void solve(const double* x, double* y) const;
   // X = (K - sigma M)^-1 B, all columns in one solve; false if CHOLMOD fails.
   bool solve(const DenseMatrix& B, DenseMatrix& X) const;
+  // The CHOLMOD L L' factor (null with MUMPS's L D L', or none), to read L
+  // and to solve with its parts (CHOLMOD_L, CHOLMOD_Lt).
+  const cholmod_factor* cholmod_l() const { return uses_mumps() ? nullptr : factor_.get(); }
+  // X = op^-1 B with CHOLMOD's system `cholmod_system` (CHOLMOD_A, _L,
+  // _Lt, ...; B in the factor's order for _L and _Lt); false if it fails.
+  bool solve(int cholmod_system, const DenseMatrix& B, DenseMatrix& X) const;
 
  private:
   using Factor = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>;
@@ -69,6 +81,7 @@ class ShiftInvertFactor {
   mutable cholmod_dense* X_ = nullptr;
   mutable cholmod_dense* Y_ = nullptr;
   mutable cholmod_dense* E_ = nullptr;
+  std::vector<int> given_ordering_;  // order_as(); empty: CHOLMOD's
   Status status_{StatusCode::kInvalidInput, "not factorized"};
   std::optional<double> sigma_;  // the shift factorized (or failed) last
   bool indefinite_ = false;      // and how

@@ -58,6 +58,12 @@ namespace {
 // what the track, the wheels and the envelopes cost on every deck (0.36
 // ms a step for ICE3's 32 wheels on 2,124 track DOFs: one track size
 // cannot separate them, so it is put on the track DOFs).
+// Refitted 2026-11-28 (04:16-04:28 UTC, load 10-12) for the free-interface
+// basis with one factor of the bridge, interface last: hybrid_bench 6000
+// 20000 50000 --cost --cutoffs 110 and 233292 --cutoffs 108.9 (45-48
+// modes); constraint modes 0.05 / 0.54 / 2.32 / 22.42 s (x 0.77 of the old
+// term at 50k and seed scale), modes 0.32 / 1.88 / 5.13 / 35.74 s (x 0.73-
+// 0.75), reduction 0.02 / 0.31 / 1.33 / 11.62 s (the old term, kept).
 struct Coefficients {
   double mf_per_dof = 3.2e-8;
   double axle = 2.5e-8;
@@ -67,8 +73,8 @@ struct Coefficients {
   double modal_step = 5.0e-8;
   double mode_per_load = 3.2e-10;
   double basis_per_dof_mode = 2.5e-6;
-  double hybrid_psi = 5.8e-9;            // x n_i^1.25 x n_g
-  double hybrid_interior_mode = 1.5e-7;  // x n_i^1.25 x (modes + 20)
+  double hybrid_psi = 4.5e-9;            // x n_i^1.25 x n_g
+  double hybrid_interior_mode = 1.1e-7;  // x n_i^1.25 x (modes + 20)
   double hybrid_modes_start = 20.0;
   double hybrid_reduce = 4.7e-11;        // x n_i x (n_g + modes)^2
   double hybrid_flexibility = 4.0e-8;    // x rail DOFs x (n_t + n_g + modes), per dt

@@ -24,13 +24,17 @@
 // free-interface modes (BridgeModes); --partition prints how the hybrid structure
 // would split each deck (track, interface, interior DOFs) and runs nothing;
 // --frequencies-out PREFIX (with --cost) writes the interior modes'
-// frequencies to PREFIX-DOFS-CUTOFF.txt, one a line, to the last bit.
+// frequencies to PREFIX-DOFS-CUTOFF.txt, one a line, to the last bit, and
+// beside it the bridge's own frequencies (-bridge.txt), the reduced K, M, C
+// (-K.bin ...: int row, int column, double value) and the run's values
+// (-values.txt): two builds compared (tests/bench/compare_hybrid_outputs.py).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <utility>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -330,14 +334,40 @@ void cost(int dofs, const std::vector<double>& cutoffs, double duration_s, const
                 cutoff, hybrid->basis().num_modes(), h.constraint_modes_cpu_s, h.interior_modes_cpu_s,
                 h.reduction_cpu_s, structure_s, p.structure_setup_cpu_s, t1 - t0 - structure_s,
                 p.setup_cpu_s - p.structure_setup_cpu_s, t2 - t1, p.loop_cpu_s, (t2 - t0) / p.total_cpu_s());
-    std::printf("  (interior modes: %d more factors, %.2f s of factoring; largest residual %.2e%s)\n", h.factorizations,
+    std::printf("  (interior modes: %d more factors%s, %.2f s of factoring; largest residual %.2e%s)\n",
+                h.factorizations, h.shared_bridge_factor ? " (first shift: the constraint modes' factor)" : "",
                 h.interior_factor_cpu_s, h.interior_max_residual,
                 h.interior_single_vector_fallback ? ", block Lanczos failed its check: computed again one vector at a time"
                                                   : "");
     if (!frequencies_out.empty()) {
       // Every interior mode's frequency to the last bit: two builds compared mode by mode.
-      std::ofstream out(fmt::format("{}-{}-{:.0f}.txt", frequencies_out, dofs, cutoff));
+      const std::string prefix = fmt::format("{}-{}-{:.0f}", frequencies_out, dofs, cutoff);
+      std::ofstream out(prefix + ".txt");
       for (double f : hybrid->basis().frequencies_hz()) out << fmt::format("{:.17g}\n", f);
+      // The bridge's own (free-interface) frequencies, the reduced K, M, C
+      // (binary triplets: int row, int column, double value) and the run's
+      // deck and wheel values (deck acceleration filtered at a fixed 30 Hz),
+      // for the same comparison.
+      std::ofstream bridge(prefix + "-bridge.txt");
+      for (double f : hybrid->basis().bridge_frequencies_hz()) bridge << fmt::format("{:.17g}\n", f);
+      const StructureModel& red = hybrid->basis().reduced();
+      for (const auto& [name, A] : {std::pair{"K", &red.K()}, std::pair{"M", &red.M()}, std::pair{"C", &red.C()}}) {
+        std::ofstream bin(prefix + "-" + name + ".bin", std::ios::binary);
+        for (int j = 0; j < A->outerSize(); ++j)
+          for (SparseMatrix::InnerIterator it(*A, j); it; ++it) {
+            const int rc[2] = {static_cast<int>(it.row()), j};
+            const double v = it.value();
+            bin.write(reinterpret_cast<const char*>(rc), sizeof rc);
+            bin.write(reinterpret_cast<const char*>(&v), sizeof v);
+          }
+      }
+      const JobEnvelopes e = compute_envelopes(r, s.analysis.dt_s, s.analysis.history_stride, 30.0);
+      std::ofstream values(prefix + "-values.txt");
+      values << fmt::format("displacement_m {:.17g}\nfiltered_acc_30hz_mps2 {:.17g}\nmin_force_N {:.17g}\n"
+                            "unloading {:.17g}\ncarbody_mps2 {:.17g}\ncontact_loss_s {:.17g}\n",
+                            max_over_points(e, false).value_or(NAN), max_over_points(e, true).value_or(NAN),
+                            e.min_contact_force_N.value_or(NAN), e.max_unloading_ratio.value_or(NAN),
+                            e.max_abs_carbody_acceleration_mps2.value_or(NAN), r.summary.contact_loss_s);
     }
     std::fflush(stdout);
   }

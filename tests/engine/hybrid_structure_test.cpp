@@ -249,6 +249,56 @@ TEST(HybridStructure, ARayleighDampedInteriorReducesCFromMAndKAsItsOwnProducts) 
   EXPECT_FALSE(HybridBasis(damped, HybridBasisOptions{150.0, 0, false}).summary().rayleigh_damping);
 }
 
+// Free-interface modes from one factor of the bridge with its interface
+// last (the constraint modes' backward solves, and the modes' first shift
+// at 0) against the constraint modes from K_II's factor and the modes'
+// own factor at -1: the same basis to round-off.
+TEST(HybridStructure, OneBridgeFactorWithTheInterfaceLastGivesTheReductionOfTwoFactors) {
+  const auto structure = two_span_deck_3d();
+  HybridBasisOptions o{150.0, 0, false};
+  const HybridBasis shared(structure, o);
+  o.interface_last_factor = false;
+  const HybridBasis two(structure, o);
+  EXPECT_TRUE(shared.summary().shared_bridge_factor);
+  EXPECT_FALSE(two.summary().shared_bridge_factor);
+  ASSERT_EQ(shared.num_modes(), two.num_modes());
+  ASSERT_EQ(shared.bridge_frequencies_hz().size(), two.bridge_frequencies_hz().size());
+  ASSERT_GT(shared.num_modes(), 10);
+  double worst_f = 0.0;
+  for (std::size_t k = 0; k < two.bridge_frequencies_hz().size(); ++k)
+    worst_f = railvsi::testing::worst_of(worst_f,
+                                         std::abs(shared.bridge_frequencies_hz()[k] / two.bridge_frequencies_hz()[k] - 1.0));
+  for (std::size_t k = 0; k < two.frequencies_hz().size(); ++k)
+    worst_f = railvsi::testing::worst_of(worst_f, std::abs(shared.frequencies_hz()[k] / two.frequencies_hz()[k] - 1.0));
+  // What no choice of the modes' basis changes (the Rayleigh-Ritz step
+  // leaves each mode's sign, and the plane of a near-double frequency, to
+  // the eigensolver): the track and interface block, and the coupling's
+  // Gram matrix Gq Gq'.
+  const int q0 = shared.track_dofs() + shared.interface_dofs(), m = shared.num_modes();
+  double worst_block = 0.0, worst_gram = 0.0;
+  for (auto A : {&StructureModel::K, &StructureModel::M, &StructureModel::C}) {
+    const DenseMatrix a = DenseMatrix((shared.reduced().*A)()), b = DenseMatrix((two.reduced().*A)());
+    ASSERT_EQ(a.rows(), b.rows());
+    const double largest = b.cwiseAbs().maxCoeff();
+    worst_block = railvsi::testing::worst_of(
+        worst_block, (a.topLeftCorner(q0, q0) - b.topLeftCorner(q0, q0)).cwiseAbs().maxCoeff() / largest);
+    const DenseMatrix ga = a.topRightCorner(q0, m) * a.topRightCorner(q0, m).transpose();
+    const DenseMatrix gb = b.topRightCorner(q0, m) * b.topRightCorner(q0, m).transpose();
+    if (gb.cwiseAbs().maxCoeff() > 0.0)
+      worst_gram = railvsi::testing::worst_of(worst_gram, (ga - gb).cwiseAbs().maxCoeff() / gb.cwiseAbs().maxCoeff());
+    else
+      EXPECT_EQ(ga.cwiseAbs().maxCoeff(), 0.0);  // K: the modes uncoupled from the interface
+  }
+  std::printf("[hybrid interface-last factor] %d modes: frequencies %.2e, track and interface block %.2e of the "
+              "largest entry, coupling Gram matrix %.2e\n",
+              m, worst_f, worst_block, worst_gram);
+  // Measured 2026-11-28 (24 modes): frequencies 1.56e-11 (the bridge's
+  // and the Ritz ones), block 6.43e-15, Gram matrix 3.08e-12; tolerances 3x.
+  EXPECT_LT(worst_f, 4.7e-11);
+  EXPECT_LT(worst_block, 1.9e-14);
+  EXPECT_LT(worst_gram, 9.2e-12);
+}
+
 // Fixed-interface modes (Craig-Bampton, BridgeModes::kFixedInterface), kept
 // for verification: with every interior mode kept, the FE run too.
 TEST(HybridStructure, WithEveryFixedInterfaceModeKeptEqualsTheFiniteElementRun) {
