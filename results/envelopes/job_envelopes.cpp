@@ -84,13 +84,22 @@ JobEnvelopes envelopes_of(const Status& status, const RunSummary& s, double dt_s
   e.cutoff_hz = cutoff_hz;
   e.filter = code_filter_description(dt_s, cutoff_hz);
   if (!filtered) e.notes.push_back("filtered deck acceleration left out: " + obstacle);
+  // The hybrid structure does not give the unfiltered deck acceleration
+  // after a wheel's landing (rung_runner.cpp says why in its warning).
+  const bool landed_on_hybrid = std::any_of(s.warnings.begin(), s.warnings.end(), [](const RunWarning& w) {
+    return w.code == "unfiltered_acceleration_after_landing";
+  });
+  if (landed_on_hybrid)
+    e.notes.push_back("unfiltered deck acceleration left out: a wheel lost contact on the hybrid structure (see the "
+                      "run's warning)");
   for (std::size_t p = 0; p < s.points.size(); ++p) {
     const PointSummary& ps = s.points[p];
     PointEnvelope pe;
     pe.name = ps.name;
     pe.x_m = ps.x_m;
     pe.max_abs_displacement_m = finite(ps.max_abs_displacement_m, "deck displacement at " + ps.name);
-    pe.max_abs_acceleration_unfiltered_mps2 = finite(ps.max_abs_acceleration_mps2, "deck acceleration at " + ps.name);
+    if (!landed_on_hybrid)
+      pe.max_abs_acceleration_unfiltered_mps2 = finite(ps.max_abs_acceleration_mps2, "deck acceleration at " + ps.name);
     if (filtered) pe.max_abs_acceleration_mps2 = finite((*filtered)[p], "filtered deck acceleration at " + ps.name);
     if (ps.max_abs_bending_moment_Nm)
       pe.max_abs_bending_moment_Nm = finite(*ps.max_abs_bending_moment_Nm, "bending moment at " + ps.name);

@@ -145,6 +145,15 @@ TEST_F(HybridStructureCli, ALostContactOnTheHybridStructureAgreesWithFeWithoutAR
   near("deck", "max_abs_displacement_m", 5e-3);
   near("deck", "max_abs_acceleration_filtered_mps2", 7e-4);
   near("vehicles", "max_abs_carbody_acceleration_mps2", 6e-4);
+  // The unfiltered deck acceleration over the landing is not given on the
+  // hybrid structure (measured -8.3 % off FE on this scene), and the run
+  // says why; FE gives it.
+  EXPECT_TRUE(h.at("deck").at("max_abs_acceleration_mps2").is_null()) << h.at("deck").dump();
+  EXPECT_GT(f.at("deck").at("max_abs_acceleration_mps2").get<double>(), 0.0);
+  bool warned = false;
+  for (const json& w : h.at("run").at("warnings"))
+    warned = warned || w.at("code") == "unfiltered_acceleration_after_landing";
+  EXPECT_TRUE(warned) << h.at("run").dump();
 }
 
 }  // namespace
