@@ -107,14 +107,4 @@ bool constraint_modes(const ShiftInvertFactor& factor, int n_interior, int colum
   return true;
 }
 
-DenseMatrix interface_factor(const ShiftInvertFactor& factor, int n_interior) {
-  const cholmod_factor* L = interface_last(factor, n_interior);
-  if (!L) return {};
-  const int n = static_cast<int>(L->n), n_interface = n - n_interior;
-  DenseMatrix LGG = DenseMatrix::Zero(n_interface, n_interface);
-  for_each_entry(*L, n_interior, n, n_interior,
-                 [&](int i, int j, double v) { LGG(i - n_interior, j - n_interior) = v; });
-  return LGG;
-}
-
 }  // namespace railvsi

@@ -7,9 +7,7 @@
 //
 // L_II is K_II's factor and L_GI = K_GI L_II^-T, so
 // Psi = -P_I' L_II^-T L_GI': one backward solve per interface column where
-// a factor of K_II alone needs a forward one too; and L_GG L_GG' is the
-// Schur complement K_GG - K_GI K_II^-1 K_IG (the constraint modes'
-// stiffness). The same factor is the bridge's modes' shift-invert operator
+// a factor of K_II alone needs a forward one too. The same factor is the bridge's modes' shift-invert operator
 // at shift 0 (hybrid_basis.cpp): one factor of the bridge instead of two.
 #include <vector>
 
@@ -31,9 +29,5 @@ std::vector<int> interface_last_ordering(const SparseMatrix& K_II, int n_interfa
 // `column_block` interface columns per backward solve. False when the
 // factor is not such a CHOLMOD L L' factor or a solve fails.
 bool constraint_modes(const ShiftInvertFactor& factor, int n_interior, int column_block, DenseMatrix& Psi);
-
-// L_GG (n_interface square, lower triangular), the factor of the Schur
-// complement; empty when `factor` is not a CHOLMOD L L' factor.
-DenseMatrix interface_factor(const ShiftInvertFactor& factor, int n_interior);
 
 }  // namespace railvsi

@@ -31,12 +31,16 @@ namespace {
 // free-interface modes (the default) at the planner's cut-off held the
 // targets in every contact-loss case measured (tests/bench/hybrid_bench,
 // docs/performance.md, 2026-11-28): no repeat.
-std::optional<std::string> impact_reason(const RunSummary& summary) {
-  for (const WheelSummary& w : summary.wheels)
-    if (w.evaluated && w.contact_loss_s > 0.0)
-      return fmt::format("wheel {} lost contact for {:.4g} ms on the hybrid structure with fixed-interface modes: its "
-                         "landing excites the bridge's modes above the cut-off, repeated on the FE structure",
-                         w.name, 1e3 * w.contact_loss_s);
+std::string impact_reason(const WheelSummary& w) {
+  return fmt::format("wheel {} lost contact for {:.4g} ms on the hybrid structure with fixed-interface modes: its "
+                     "landing excites the bridge's modes above the cut-off, repeated on the FE structure",
+                     w.name, 1e3 * w.contact_loss_s);
+}
+
+// The first wheel inside the evaluation window that lost contact.
+std::optional<std::size_t> first_landing(const RunSummary& summary) {
+  for (std::size_t k = 0; k < summary.wheels.size(); ++k)
+    if (summary.wheels[k].evaluated && summary.wheels[k].contact_loss_s > 0.0) return k;
   return std::nullopt;
 }
 
@@ -44,23 +48,18 @@ std::optional<std::string> impact_reason(const RunSummary& summary) {
 // landing (0.3 %), not its unfiltered one (-29 % to +10 % off FE over a
 // dip, tests/bench/hybrid_bench, 2026-11-28): the run says so, and its
 // stored envelopes leave that value out (job_envelopes.cpp).
-void warn_of_landing(RunSummary& summary) {
-  for (std::size_t k = 0; k < summary.wheels.size(); ++k) {
-    const WheelSummary& w = summary.wheels[k];
-    if (!w.evaluated || w.contact_loss_s <= 0.0) continue;
-    summary.warnings.push_back(
-        {"unfiltered_acceleration_after_landing",
-         fmt::format("wheel {} lost contact on the hybrid structure: its landing excites the bridge's modes above the "
-                     "cut-off, which the hybrid structure leaves out, so the unfiltered deck acceleration is not "
-                     "given (measured -29 % to +10 % off FE; the filtered one within 0.3 %); pin \"structure\": "
-                     "\"fe\" for it",
-                     w.name),
-         std::nullopt, static_cast<int>(k), std::nullopt});
-    // null in the run's JSON; its envelopes leave it out.
-    summary.max_abs_acceleration_mps2 = std::numeric_limits<double>::quiet_NaN();
-    for (PointSummary& p : summary.points) p.max_abs_acceleration_mps2 = std::numeric_limits<double>::quiet_NaN();
-    return;
-  }
+void warn_of_landing(RunSummary& summary, std::size_t wheel) {
+  summary.warnings.push_back(
+      {"unfiltered_acceleration_after_landing",
+       fmt::format("wheel {} lost contact on the hybrid structure: its landing excites the bridge's modes above the "
+                   "cut-off, which the hybrid structure leaves out, so the unfiltered deck acceleration is not "
+                   "given (measured -29 % to +10 % off FE; the filtered one within 0.3 %); pin \"structure\": "
+                   "\"fe\" for it",
+                   summary.wheels[wheel].name),
+       std::nullopt, static_cast<int>(wheel), std::nullopt});
+  // null in the run's JSON; its envelopes leave it out.
+  summary.max_abs_acceleration_mps2 = std::numeric_limits<double>::quiet_NaN();
+  for (PointSummary& p : summary.points) p.max_abs_acceleration_mps2 = std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
@@ -102,13 +101,14 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
   // (escalated or not) to FE.
   const auto on_fe_after_impact = [&](Result last, const Scene& ran, const Rung& rung) {
     if (plan.rung.structure != "hybrid" || !last.status.ok()) return last;
+    const std::optional<std::size_t> landed = first_landing(last.summary);
+    if (!landed) return last;
     if (ran.analysis.hybrid_bridge_modes != BridgeModes::kFixedInterface) {
-      warn_of_landing(last.summary);
+      warn_of_landing(last.summary, *landed);
       return last;
     }
     if (!plan.impact_repeats_on_fe) return last;
-    const auto impact = impact_reason(last.summary);
-    if (!impact) return last;
+    const std::string impact = impact_reason(last.summary.wheels[*landed]);
     Scene fe = ran;
     fe.analysis.structure_backend = StructureBackend::kFiniteElements;
     Rung fe_rung = rung;
@@ -116,7 +116,7 @@ Result run_at_rung(const Scene& scene, const ScenePlan& plan, const RungModels& 
     Result again = Simulation(fe, models.fe_operator(fe, nullptr)).run();
     record_rung(fe, plan, fe_rung, again.summary);
     const std::string& before = last.summary.fidelity.escalation;
-    again.summary.fidelity.escalation = before.empty() ? *impact : before + "; " + *impact;
+    again.summary.fidelity.escalation = before.empty() ? impact : before + "; " + impact;
     again.summary.wall_s += last.summary.wall_s;
     return again;
   };
